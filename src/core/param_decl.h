@@ -1,0 +1,25 @@
+// ParamDecl: one scene parameter as the scene's ISF-style JSON header declares it.
+//
+// The scene module parses headers into these; mapping, smoothing, uniforms and the overlay
+// all read the same list, so a parameter is declared once, in the scene file.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace sdfvj {
+
+enum class ParamType { Float, Bool, Int };
+
+struct ParamDecl {
+    std::string name;          // uniform is u_<name>
+    ParamType type = ParamType::Float;
+    float defaultValue = 0.0f;
+    float minValue = 0.0f;
+    float maxValue = 1.0f;
+    std::string label;         // human-readable, for the overlay
+};
+
+// Clamp a value into the declared range (integers and bools are rounded).
+float ClampParam(const ParamDecl& decl, float value);
+
+}  // namespace sdfvj
