@@ -1,0 +1,55 @@
+// The sdfvj commands. Each returns the process exit code: 0 ok, 1 failed while running,
+// 2 bad usage or nothing to run on (unknown scene, bad size, no GL).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "app/show.h"
+
+namespace sdfvj {
+
+struct RenderOptions {
+    ShowOptions show;
+    std::string size = "640x360";
+    int frames = 1;            // 0 = the whole take when replaying
+    bool framesGiven = false;
+    double fps = 30.0;
+    std::string out = "out";
+    std::string replay;        // .mid take (full build only)
+    std::string mapping;       // mapping for the replay; default: preset's, else generic profile
+    std::string video;         // pipe to ffmpeg
+    bool quiet = false;
+};
+int RunRender(const RenderOptions& o);
+
+struct BenchOptions {
+    std::vector<std::string> scenes;   // empty = all
+    std::vector<std::string> sizes = {"640x480", "1280x720", "1600x1024", "1920x1080", "3840x2160"};
+    std::vector<std::string> tests;    // lighting tests by name; empty = all four
+    std::vector<std::string> paths = {"fragment", "compute"};
+    int frames = 10;
+    int warmup = 3;
+    std::string markdown;              // also write the table here
+};
+int RunBench(const BenchOptions& o);
+
+int RunList();
+
+#ifdef SDFVJ_HAS_LIVE
+struct LiveOptions {
+    ShowOptions show;
+    std::string size = "1280x720";
+    bool fullscreen = false;
+    std::string midi;                   // port substring or index
+    int oscPort = 9000;
+    std::string oscFeedback;
+    std::string mapping;
+    std::string record;
+    std::string replay;
+    double seconds = 0;                 // quit after this long (0 = run until closed)
+    std::string screenshot;             // write the last frame here on exit
+};
+int RunLive(const LiveOptions& o);
+#endif
+
+}  // namespace sdfvj

@@ -1,0 +1,119 @@
+// sdfvj: a live SDF raymarching visualizer. This file only parses the command line; each command
+// lives in cmd_*.cpp. Exit codes: 0 ok, 1 failed while running, 2 bad usage / nothing to run on.
+#include <cstdio>
+#include <cstdlib>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#ifdef SDFVJ_HAS_LIVE
+#include "control/control.h"
+#endif
+
+using namespace sdfvj;
+
+namespace {
+
+// Options shared by render, live: scene, preset, effects, quality.
+void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
+    cmd->add_option("--scene", s->scene, "scene name (see `sdfvj list`) or a .glsl file");
+    cmd->add_option("--preset", s->preset, "preset JSON (presets/NAME.json): scene, parameter values, effects, mapping");
+    cmd->add_option("--effects", s->effects,
+                    "effects over the scene's own, comma-separated: hard_shadows, soft_shadows, improved_shadows, ao, "
+                    "specular, pbr, reflections=N, fog, fixed_step, heatmap, depth, normals; none clears; -ao removes");
+    cmd->add_option("--normals", s->normals, "normal method: central, forward or tetrahedron");
+    cmd->add_option("--path", s->path, "render path: auto (timed probe, cached per GPU), compute or fragment")->capture_default_str();
+    cmd->add_option("--param", s->params, "set a scene parameter, NAME=VALUE (repeatable; clamped to its range)");
+    cmd->add_option("--steps", s->quality.maxSteps, "maximum raymarch steps")->capture_default_str();
+    cmd->add_option("--eps", s->quality.hitEps, "hit epsilon, relative to distance travelled")->capture_default_str();
+    cmd->add_option("--step-factor", s->quality.stepFactor, "step factor (below 1 under-relaxes)")->capture_default_str();
+    cmd->add_option("--max-dist", s->quality.maxDist, "far distance")->capture_default_str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    CLI::App app{
+        "sdfvj — raymarch signed-distance-field scenes live from MIDI/OSC, or offline from a recorded take.\n\n"
+        "Examples:\n"
+        "  sdfvj list                                      scenes, presets and MIDI ports\n"
+        "  sdfvj render --scene midi --size 640x360 --frames 60 --out out/\n"
+        "  sdfvj render --preset demo --replay presets/demo_take.mid --video demo.mp4\n"
+        "  sdfvj live --preset demo --midi LPD8            a window; knobs drive the scene\n"
+        "  sdfvj bench --sizes 1920x1080                   GPU ms per frame, both render paths\n"};
+    app.require_subcommand(1);
+
+    RenderOptions render;
+    auto* cmdRender = app.add_subcommand("render", "render frames headless (EGL, no display) to PNGs or a video");
+    AddShowOptions(cmdRender, &render.show);
+    cmdRender->add_option("--size", render.size, "frame size WxH")->capture_default_str();
+    auto* framesOpt = cmdRender->add_option("--frames", render.frames, "frames to render (default: 1, or the whole take)");
+    cmdRender->add_option("--fps", render.fps, "frames per second of the fixed clock (time = frame / fps)")->capture_default_str();
+    cmdRender->add_option("--out", render.out, "folder for frame_00000.png, ...")->capture_default_str();
+    cmdRender->add_option("--replay", render.replay, "a Standard MIDI File whose events drive the parameters");
+    cmdRender->add_option("--mapping", render.mapping, "mapping for --replay (default: the preset's, else generic_8knob)");
+    cmdRender->add_option("--video", render.video, "pipe frames to ffmpeg and write this .mp4 instead of PNGs");
+    cmdRender->add_flag("--quiet", render.quiet, "no progress bar");
+
+    BenchOptions bench;
+    auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
+    cmdBench->add_option("--scenes", bench.scenes, "scenes (default: all)")->delimiter(',');
+    cmdBench->add_option("--sizes", bench.sizes, "sizes")->capture_default_str()->delimiter(',');
+    cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: all)")->delimiter(',');
+    cmdBench->add_option("--paths", bench.paths, "render paths")->capture_default_str()->delimiter(',');
+    cmdBench->add_option("--frames", bench.frames, "timed frames per cell (median)")->capture_default_str();
+    cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->capture_default_str();
+    cmdBench->add_option("--markdown", bench.markdown, "also write the table to this file");
+
+    app.add_subcommand("list", "list scenes, presets and MIDI ports");
+
+#ifdef SDFVJ_HAS_LIVE
+    LiveOptions live;
+    auto* cmdLive = app.add_subcommand("live", "open a window and perform: MIDI and OSC drive the scene");
+    AddShowOptions(cmdLive, &live.show);
+    cmdLive->add_option("--size", live.size, "window size WxH")->capture_default_str();
+    cmdLive->add_flag("--fullscreen", live.fullscreen, "fullscreen on the primary monitor");
+    cmdLive->add_option("--midi", live.midi, "MIDI input port: name substring or index (default: all, plus virtual port 'sdfvj')");
+    cmdLive->add_option("--osc-port", live.oscPort, "OSC UDP port")->capture_default_str();
+    cmdLive->add_option("--osc-feedback", live.oscFeedback, "send values back to HOST:PORT on preset changes");
+    cmdLive->add_option("--mapping", live.mapping, "controller mapping TOML (default: the preset's, else generic_8knob)");
+    cmdLive->add_option("--record", live.record, "record incoming MIDI and OSC to this .mid");
+    cmdLive->add_option("--replay", live.replay, "play a take into the show in real time (rehearsal)");
+    cmdLive->add_option("--seconds", live.seconds, "quit after this many seconds (0: run until closed)");
+    cmdLive->add_option("--screenshot", live.screenshot, "write the last frame to this PNG on exit");
+
+    std::string learnParam, learnMapping = "mappings/learned.toml";
+    double learnTimeout = 30;
+    auto* cmdLearn = app.add_subcommand("learn", "MIDI learn: wait for the next control that moves and map it");
+    cmdLearn->add_option("--param", learnParam, "parameter to map")->required();
+    cmdLearn->add_option("--mapping", learnMapping, "mapping file to add the entry to")->capture_default_str();
+    cmdLearn->add_option("--timeout", learnTimeout, "seconds to wait")->capture_default_str();
+#endif
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
+    render.framesGiven = framesOpt->count() > 0;
+
+    if (cmdRender->parsed()) return RunRender(render);
+    if (cmdBench->parsed()) return RunBench(bench);
+#ifdef SDFVJ_HAS_LIVE
+    if (cmdLive->parsed()) return RunLive(live);
+    if (cmdLearn->parsed()) return RunLearn(learnParam, learnMapping, learnTimeout);
+#endif
+    if (app.got_subcommand("list")) {
+        int rc = RunList();
+#ifdef SDFVJ_HAS_LIVE
+        std::printf("MIDI input ports:\n");
+        auto ports = ListMidiPorts();
+        if (ports.empty()) std::printf("  (none: no controller connected, or no MIDI system)\n");
+        for (size_t i = 0; i < ports.size(); ++i) std::printf("  %zu: %s\n", i, ports[i].c_str());
+#endif
+        return rc;
+    }
+    return 2;
+}

@@ -1,0 +1,45 @@
+// Show: what the frame loop renders — a scene, its effect variant, its parameter values and the
+// program compiled for them. Shared by `render`, `live` and `bench`.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/render.h"
+#include "scene/scene.h"
+
+namespace sdfvj {
+
+// Options every rendering command takes. Zero/empty means "the scene's or preset's own".
+struct ShowOptions {
+    std::string scene;        // name or .glsl path
+    std::string preset;       // presets/NAME.json or a path
+    std::string effects;      // --effects list, applied over the scene's (and preset's)
+    std::string normals;      // --normals central|forward|tetrahedron
+    std::string path = "auto";
+    std::vector<std::string> params;   // --param name=value
+    Quality quality;
+};
+
+struct Show {
+    SceneInfo scene;
+    Preset preset;            // empty unless a preset was given
+    EffectSet effects;        // the variant being rendered
+    RenderPath path = RenderPath::Fragment;
+    std::vector<std::pair<std::string, float>> params;   // starting values, clamped
+    Quality quality;
+    std::unique_ptr<Program> program;
+};
+
+// Resolves scene and preset and parses every option (no GL needed). Errors are one line.
+bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error);
+// Picks the render path (probe when "auto") and builds the program. Needs a current GL context.
+bool BuildShow(Show* show, const std::string& pathOption, std::string* error, bool verbose);
+
+// Parses "WxH".
+bool ParseSize(const std::string& text, int* w, int* h, std::string* error);
+
+// A one-line progress bar on stderr: frames done, frames per second, time left.
+void PrintProgress(int done, int total, double elapsedSeconds);
+
+}  // namespace sdfvj

@@ -1,0 +1,130 @@
+#include <epoxy/gl.h>
+
+#include <cstring>
+
+#include "render/render.h"
+
+namespace sdfvj {
+
+FrameRenderer::~FrameRenderer() { Release(); }
+
+void FrameRenderer::Release() {
+    if (fbo_) glDeleteFramebuffers(1, &fbo_);
+    if (texture_) glDeleteTextures(1, &texture_);
+    if (vao_) glDeleteVertexArrays(1, &vao_);
+    if (query_) glDeleteQueries(1, &query_);
+    fbo_ = texture_ = vao_ = query_ = 0;
+}
+
+bool FrameRenderer::Resize(int width, int height, std::string* error) {
+    if (width == width_ && height == height_ && fbo_) return true;
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (width <= 0 || height <= 0 || width > maxSize || height > maxSize) {
+        *error = "frame size " + std::to_string(width) + "x" + std::to_string(height) + " is not supported (1.." +
+                 std::to_string(maxSize) + " per side)";
+        return false;
+    }
+    Release();
+    glGenTextures(1, &texture_);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glGenFramebuffers(1, &fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        *error = "offscreen framebuffer is incomplete";
+        Release();
+        return false;
+    }
+    glGenVertexArrays(1, &vao_);
+    glGenQueries(1, &query_);
+    width_ = width;
+    height_ = height;
+    return true;
+}
+
+void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const FrameInputs& in, bool timeGpu) {
+    if (!program.IsValid() || !fbo_) return;   // a program that failed to build just skips its draws
+    const Program& p = program;
+    p.Set("u_time", (float)in.time);
+    p.Set("u_frame", (float)in.frame);
+    p.Set("u_beat", in.beat);
+    p.Set("u_resolution", (float)width_, (float)height_);
+    p.Set("u_camPos", scene.camPos[0], scene.camPos[1], scene.camPos[2]);
+    p.Set("u_camTarget", scene.camTarget[0], scene.camTarget[1], scene.camTarget[2]);
+    p.Set("u_fov", scene.fov);
+    p.Set("u_lightDir", scene.lightDir[0], scene.lightDir[1], scene.lightDir[2]);
+    p.Set("u_lightColor", scene.lightColor[0], scene.lightColor[1], scene.lightColor[2]);
+    p.Set("u_roughness", scene.roughness);
+    p.Set("u_metalness", scene.metalness);
+    const Quality& q = in.quality;
+    p.Set("u_maxSteps", (float)q.maxSteps);
+    p.Set("u_hitEps", q.hitEps);
+    p.Set("u_maxDist", q.maxDist);
+    p.Set("u_stepFactor", q.stepFactor);
+    p.Set("u_fixedStep", q.fixedStep);
+    p.Set("u_shadowSteps", (float)q.shadowSteps);
+    p.Set("u_shadowK", q.shadowK);
+    p.Set("u_aoSamples", (float)q.aoSamples);
+    p.Set("u_normalEps", q.normalEps);
+    for (const ParamDecl& d : scene.params) {
+        float v = d.defaultValue;
+        for (const auto& [name, value] : in.params)
+            if (name == d.name) v = ClampParam(d, value);   // never unclamped into the shader
+        p.Set("u_" + d.name, v);
+    }
+
+    if (timeGpu) glBeginQuery(GL_TIME_ELAPSED, query_);
+    glUseProgram(p.Id());
+    if (p.Path() == RenderPath::Compute) {
+        glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        glDispatchCompute((GLuint)(width_ + 7) / 8, (GLuint)(height_ + 7) / 8, 1);
+        glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        glViewport(0, 0, width_, height_);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glBindVertexArray(vao_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    if (timeGpu) {
+        glEndQuery(GL_TIME_ELAPSED);
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
+        lastGpuMs_ = (double)ns * 1e-6;
+    }
+}
+
+std::vector<uint8_t> FrameRenderer::ReadPixels() const {
+    std::vector<uint8_t> rgba((size_t)width_ * height_ * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    // GL's first row is the bottom one; images want the top first.
+    const size_t row = (size_t)width_ * 4;
+    std::vector<uint8_t> tmp(row);
+    for (int y = 0; y < height_ / 2; ++y) {
+        uint8_t* a = rgba.data() + row * y;
+        uint8_t* b = rgba.data() + row * (height_ - 1 - y);
+        std::memcpy(tmp.data(), a, row);
+        std::memcpy(a, b, row);
+        std::memcpy(b, tmp.data(), row);
+    }
+    return rgba;
+}
+
+std::string GlRendererName() {
+    const GLubyte* s = glGetString(GL_RENDERER);
+    return s ? (const char*)s : "unknown";
+}
+
+bool IsSoftwareRenderer() {
+    std::string r = GlRendererName();
+    return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos;
+}
+
+}  // namespace sdfvj

@@ -1,0 +1,77 @@
+// Headless EGL context: device platform, then surfaceless, then the default display.
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include "render/render.h"
+
+namespace sdfvj {
+
+namespace {
+
+// Tries one display: initialise, pick a config-less GL 4.5 core context, make it current.
+bool TryDisplay(EGLDisplay dpy, EGLContext* ctx, std::string* why) {
+    if (dpy == EGL_NO_DISPLAY) { *why = "no display"; return false; }
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(dpy, &major, &minor)) { *why = "eglInitialize failed"; return false; }
+    if (!eglBindAPI(EGL_OPENGL_API)) { *why = "no desktop OpenGL API"; eglTerminate(dpy); return false; }
+    const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
+    EGLConfig config = nullptr;
+    EGLint count = 0;
+    eglChooseConfig(dpy, configAttribs, &config, 1, &count);   // may be none: then config-less
+    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    *ctx = eglCreateContext(dpy, count > 0 ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctxAttribs);
+    if (*ctx == EGL_NO_CONTEXT) { *why = "no OpenGL 4.5 core context"; eglTerminate(dpy); return false; }
+    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, *ctx)) {
+        *why = "eglMakeCurrent without a surface failed";
+        eglDestroyContext(dpy, *ctx);
+        eglTerminate(dpy);
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool HeadlessContext::Create(std::string* error) {
+    std::string tried;
+    EGLContext ctx = EGL_NO_CONTEXT;
+    auto attempt = [&](const char* name, EGLDisplay dpy) {
+        std::string why;
+        if (TryDisplay(dpy, &ctx, &why)) {
+            display_ = dpy;
+            context_ = ctx;
+            description_ = std::string(name) + ": " + (const char*)glGetString(GL_RENDERER) + ", " +
+                           (const char*)glGetString(GL_VERSION);
+            return true;
+        }
+        tried += std::string(tried.empty() ? "" : "; ") + name + ": " + why;
+        return false;
+    };
+    const bool hasClientExt = epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base");
+    if (hasClientExt && epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
+        EGLDeviceEXT devices[16];
+        EGLint n = 0;
+        if (eglQueryDevicesEXT(16, devices, &n)) {
+            for (EGLint i = 0; i < n; ++i)
+                if (attempt("EGL device platform", eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr)))
+                    return true;
+        }
+    }
+    if (hasClientExt && epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
+        if (attempt("EGL surfaceless platform", eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)))
+            return true;
+    }
+    if (attempt("EGL default display", eglGetDisplay(EGL_DEFAULT_DISPLAY))) return true;
+    *error = "no OpenGL 4.5 available through EGL (" + (tried.empty() ? std::string("no EGL platform") : tried) + ")";
+    return false;
+}
+
+HeadlessContext::~HeadlessContext() {
+    if (!display_) return;
+    eglMakeCurrent((EGLDisplay)display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext((EGLDisplay)display_, (EGLContext)context_);
+    eglTerminate((EGLDisplay)display_);
+}
+
+}  // namespace sdfvj

@@ -1,0 +1,119 @@
+// Render module: GL programs for scene variants, drawing them into an offscreen texture on the
+// fragment or compute path, reading pixels back, and a headless EGL context to do it without a
+// display. Only the render thread may call anything here (GL has one current context per thread).
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "shader/shader.h"
+
+namespace sdfvj {
+
+// An OpenGL 4.5 core context with no window: EGL device platform, then surfaceless, then the
+// default display. Never GLFW (its headless EGL failed on the GPU machines).
+class HeadlessContext {
+public:
+    HeadlessContext() = default;
+    ~HeadlessContext();
+    HeadlessContext(const HeadlessContext&) = delete;
+    HeadlessContext& operator=(const HeadlessContext&) = delete;
+    // False with one readable line when no GL is available.
+    bool Create(std::string* error);
+    std::string Description() const { return description_; }  // "EGL device platform: llvmpipe (...)"
+private:
+    void* display_ = nullptr;
+    void* context_ = nullptr;
+    std::string description_;
+};
+
+// Raymarch quality knobs; all are uniforms, so changing them never recompiles.
+struct Quality {
+    int maxSteps = 128;
+    float hitEps = 1e-3f;       // relative to distance travelled (t * eps), see render.glsl
+    float maxDist = 50.0f;
+    float stepFactor = 1.0f;    // further divided by the scene's Lipschitz bound in the shader
+    float fixedStep = 0.05f;    // MARCH_FIXED step length
+    int shadowSteps = 64;
+    float shadowK = 8.0f;       // penumbra: higher is harder
+    int aoSamples = 5;
+    float normalEps = 1e-3f;
+};
+
+// Everything a frame sets besides the program: clock, camera, light, quality, scene parameters.
+struct FrameInputs {
+    double time = 0.0;
+    int frame = 0;
+    float beat = 0.0f;
+    Quality quality;
+    std::vector<std::pair<std::string, float>> params;   // scene parameters by name (no u_ prefix)
+};
+
+// A linked program and the uniforms it actually declares.
+class Program {
+public:
+    Program() = default;
+    ~Program();
+    Program(const Program&) = delete;
+    Program& operator=(const Program&) = delete;
+    // Compiles and links; on failure returns false and `log` holds file:line messages.
+    bool Build(const ShaderSource& src, RenderPath path, std::string* log);
+    bool IsValid() const { return id_ != 0; }
+    unsigned Id() const { return id_; }
+    RenderPath Path() const { return path_; }
+    const ShaderSource& Source() const { return source_; }
+    // Active uniform names (after the compiler dropped unused ones).
+    std::vector<std::string> ActiveUniforms() const;
+    // Sets a uniform only if the program declares it; converts to its declared type.
+    void Set(const std::string& name, float x) const;
+    void Set(const std::string& name, float x, float y) const;
+    void Set(const std::string& name, float x, float y, float z) const;
+private:
+    struct Slot { int location; unsigned type; };
+    unsigned id_ = 0;
+    RenderPath path_ = RenderPath::Fragment;
+    ShaderSource source_;
+    std::map<std::string, Slot> uniforms_;
+};
+
+// Draws programs into an RGBA8 texture of a given size and reads it back.
+class FrameRenderer {
+public:
+    FrameRenderer() = default;
+    ~FrameRenderer();
+    FrameRenderer(const FrameRenderer&) = delete;
+    FrameRenderer& operator=(const FrameRenderer&) = delete;
+    bool Resize(int width, int height, std::string* error);
+    int Width() const { return width_; }
+    int Height() const { return height_; }
+    // Sets built-in, scene and quality uniforms, then draws. With `timeGpu` the GPU time of the
+    // draw is measured by a GL timer query (see LastGpuMs; costs a sync, use in benchmarks only).
+    void Draw(const Program& program, const SceneInfo& scene, const FrameInputs& in, bool timeGpu = false);
+    double LastGpuMs() const { return lastGpuMs_; }
+    // RGBA rows, top row first.
+    std::vector<uint8_t> ReadPixels() const;
+    unsigned Framebuffer() const { return fbo_; }
+    unsigned Texture() const { return texture_; }
+private:
+    void Release();
+    int width_ = 0, height_ = 0;
+    unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
+    double lastGpuMs_ = 0.0;
+};
+
+// GL_RENDERER string of the current context.
+std::string GlRendererName();
+// True on Mesa's software rasterizer, where timer queries are meaningless (time with glFinish).
+bool IsSoftwareRenderer();
+
+// Picks the faster path for this GPU by timing both on a small probe (cached per GL_RENDERER in
+// $XDG_CACHE_HOME/sdfvj/paths.json). Logs the decision to `log` when given.
+RenderPath ProbeRenderPath(const SceneInfo& scene, std::string* log);
+
+// Writes RGBA rows (top first) as PNG. False with a reason on failure.
+bool WritePng(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba, std::string* error);
+
+}  // namespace sdfvj

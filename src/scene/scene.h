@@ -1,0 +1,86 @@
+// Scene module: finds scene files and presets, and parses their ISF-style JSON headers.
+//
+// A scene file (shaders/scenes/NAME.glsl) opens with a JSON header in a comment:
+//   /*{ "NAME": "midi", "INPUTS": [ {"NAME": "twist", "TYPE": "float", ...} ],
+//       "EFFECTS": {"SHADOWS": "soft", "AO": true, ...}, "CAMERA": {...}, "LIGHT": {...} }*/
+// The header is the one place a parameter is declared: uniforms, mapping validation and the
+// overlay all read the ParamDecl list made here.
+#pragma once
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/param_decl.h"
+
+namespace sdfvj {
+
+using Vec3f = std::array<float, 3>;
+
+// The effects a program is compiled with. Zero-initialised means "nothing": no shadows, no AO.
+// Every field becomes a #define; an effect that is 0 is not in the program at all.
+struct EffectSet {
+    int shadows = 0;        // 0 none, 1 hard, 2 soft, 3 improved soft
+    bool ao = false;
+    bool specular = false;  // Blinn-Phong highlight
+    bool pbr = false;       // Cook-Torrance instead of Lambert + Blinn-Phong
+    int reflections = 0;    // bounce count
+    bool fog = false;
+    int debugView = 0;      // 0 off, 1 step heatmap, 2 depth, 3 normals
+    int normals = 0;        // 0 central, 1 forward, 2 tetrahedron
+    bool marchFixed = false;
+    auto operator<=>(const EffectSet&) const = default;
+};
+
+struct SceneInfo {
+    std::string name;
+    std::string path;          // absolute path of the .glsl file
+    std::string description;
+    std::vector<ParamDecl> params;
+    EffectSet effects;         // what the scene calls for
+    Vec3f camPos{0, 1, -5}, camTarget{0, 0, 0};
+    float fov = 45.0f;
+    Vec3f lightDir{0.577f, 0.577f, -0.577f}, lightColor{1, 1, 1};
+    float roughness = 0.5f, metalness = 0.0f;
+};
+
+// Where shaders/, presets/ and mappings/ live: $SDFVJ_ROOT, else the source tree we were built from.
+std::string DataRoot();
+
+// Parses a scene's header. On failure returns false and sets error to
+// "path:line: what is wrong, what was expected".
+bool LoadScene(const std::string& path, SceneInfo* out, std::string* error);
+
+// A scene by name ("midi") or by file path. Error lists the known scenes.
+bool FindScene(const std::string& nameOrFile, SceneInfo* out, std::string* error);
+
+// Names of the scenes in shaders/scenes, sorted.
+std::vector<std::string> ListScenes();
+
+// Effect names as used on the command line and in presets: "soft_shadows", "ao", ...
+// Applies a comma-separated list on top of `base` ("none" clears everything first).
+bool ParseEffectList(const std::string& list, EffectSet* effects, std::string* error);
+std::string DescribeEffects(const EffectSet& e);  // the inverse, for logs and bench tables
+// "central" | "forward" | "tetrahedron"
+bool ParseNormalMethod(const std::string& name, int* method, std::string* error);
+
+// The four lighting tests of the seed thesis: full (soft shadows + AO + specular),
+// soft shadows + AO, soft shadows, none.
+struct LightingTest { const char* name; EffectSet effects; };
+std::vector<LightingTest> SeedLightingTests();
+
+// A preset: a scene with parameter values and effect overrides, optionally a mapping and a take.
+struct Preset {
+    std::string path;
+    std::string scene;
+    std::map<std::string, float> params;
+    std::string effects;       // effect list as for --effects, applied over the scene's own
+    std::string normals;
+    std::string mapping;       // path relative to the data root
+    std::string take;          // path relative to the data root
+};
+bool LoadPreset(const std::string& path, Preset* out, std::string* error);
+std::vector<std::string> ListPresets();
+
+}  // namespace sdfvj

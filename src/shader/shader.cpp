@@ -1,0 +1,166 @@
+#include "shader/shader.h"
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace sdfvj {
+
+const char* RenderPathName(RenderPath p) { return p == RenderPath::Compute ? "compute" : "fragment"; }
+
+uint64_t HashBytes(const std::string& bytes) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+    return h;
+}
+
+std::string DisplayPath(const std::string& path) {
+    std::error_code ec;
+    fs::path rel = fs::relative(path, DataRoot(), ec);
+    if (ec || rel.empty() || rel.string().rfind("..", 0) == 0) return path;
+    return rel.string();
+}
+
+namespace {
+
+// Mesa reports some errors with source-string number 0 whatever #line said, so the file index is
+// also folded into the line number: line = index * kLinesPerFile + line-in-file.
+constexpr int kLinesPerFile = 100000;
+
+std::string LineDirective(int line, int fileIndex) {
+    return "#line " + std::to_string(fileIndex * kLinesPerFile + line) + " " + std::to_string(fileIndex) + "\n";
+}
+
+struct Expander {
+    ShaderSource* out;
+    std::set<std::string> included;   // each file once (files also carry guards)
+    std::vector<std::string> stack;   // for cycle messages
+    std::string error;
+
+    int FileIndex(const std::string& path) {
+        for (size_t i = 0; i < out->files.size(); ++i)
+            if (out->files[i] == path) return (int)i;
+        out->files.push_back(path);
+        return (int)out->files.size() - 1;
+    }
+
+    bool Expand(const std::string& path, const std::string& from, int fromLine) {
+        std::string canon = fs::weakly_canonical(path).string();
+        if (included.count(canon)) return true;
+        std::ifstream in(canon);
+        if (!in) {
+            error = from.empty() ? DisplayPath(path) + ":1: cannot read the file"
+                                 : DisplayPath(from) + ":" + std::to_string(fromLine) + ": cannot open include '" +
+                                       DisplayPath(path) + "', expected a file under shaders/";
+            return false;
+        }
+        included.insert(canon);
+        const int index = FileIndex(canon);
+        out->text += LineDirective(1, index);
+        std::string line;
+        int lineNo = 0;
+        static const std::regex kInclude(R"(^\s*#\s*include\s*"([^"]+)\"\s*$)");
+        while (std::getline(in, line)) {
+            ++lineNo;
+            std::smatch m;
+            if (line.find("#") != std::string::npos && std::regex_match(line, m, kInclude)) {
+                const std::string name = m[1];
+                fs::path fromRoot = fs::path(DataRoot()) / "shaders" / name;
+                fs::path fromHere = fs::path(canon).parent_path() / name;
+                fs::path target = fs::exists(fromRoot) ? fromRoot : fromHere;
+                if (!Expand(target.string(), canon, lineNo)) return false;
+                out->text += LineDirective(lineNo + 1, index);
+                continue;
+            }
+            out->text += line;
+            out->text += '\n';
+        }
+        return true;
+    }
+};
+
+const char* kVertexShader = R"(#version 450 core
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+}  // namespace
+
+bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* error) {
+    Expander e{out, {}, {}, {}};
+    if (out->files.empty()) out->files.push_back("<generated>");
+    if (!e.Expand(path, "", 0)) {
+        *error = e.error;
+        return false;
+    }
+    return true;
+}
+
+std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
+    std::vector<std::string> d = {
+        "SHADOWS " + std::to_string(e.shadows),
+        "AO " + std::to_string(e.ao ? 1 : 0),
+        "SPECULAR " + std::to_string(e.specular ? 1 : 0),
+        "PBR " + std::to_string(e.pbr ? 1 : 0),
+        "REFLECTIONS " + std::to_string(e.reflections),
+        "FOG " + std::to_string(e.fog ? 1 : 0),
+        "DEBUG_VIEW " + std::to_string(e.debugView),
+        "NORMALS " + std::to_string(e.normals),
+        "MARCH_FIXED " + std::to_string(e.marchFixed ? 1 : 0),
+    };
+    d.push_back(path == RenderPath::Compute ? "SDFVJ_COMPUTE 1" : "SDFVJ_FRAGMENT 1");
+    return d;
+}
+
+bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error) {
+    ShaderSource s;
+    s.files.push_back("<generated>");
+    s.text = "#version 450 core\n";
+    for (const auto& d : VariantDefines(key.effects, key.path)) s.text += "#define " + d + "\n";
+    const fs::path root = fs::path(DataRoot()) / "shaders";
+    if (!ExpandIncludes((root / "render" / "uniforms.glsl").string(), &s, error)) return false;
+    // Scene parameters: declared once, in the scene header.
+    s.text += LineDirective(1, 0);
+    for (const ParamDecl& p : scene.params)
+        s.text += "uniform float u_" + p.name + ";\n";  // bool and int params are floats too
+    if (!ExpandIncludes(scene.path, &s, error)) return false;
+    if (!ExpandIncludes((root / "render" / "render.glsl").string(), &s, error)) return false;
+    const char* mainFile = key.path == RenderPath::Compute ? "main_comp.glsl" : "main_frag.glsl";
+    if (!ExpandIncludes((root / "render" / mainFile).string(), &s, error)) return false;
+    s.hash = HashBytes(s.text);
+    *out = std::move(s);
+    return true;
+}
+
+std::string MapCompileLog(const std::string& log, const ShaderSource& src) {
+    static const std::regex kMesa(R"(^(\d+):(\d+)\(\d+\):\s*(.*)$)");
+    static const std::regex kNvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+    std::stringstream in(log), out;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::smatch m;
+        if (std::regex_match(line, m, kMesa) || std::regex_match(line, m, kNvidia)) {
+            size_t file = std::stoul(m[1]);
+            long lineNo = std::stol(m[2]);
+            if (lineNo >= kLinesPerFile) {
+                file = (size_t)(lineNo / kLinesPerFile);
+                lineNo %= kLinesPerFile;
+            }
+            std::string name = file < src.files.size() ? DisplayPath(src.files[file]) : "<source " + m[1].str() + ">";
+            out << name << ":" << lineNo << ": " << m[3] << "\n";
+        } else if (!line.empty()) {
+            out << line << "\n";
+        }
+    }
+    return out.str();
+}
+
+const char* FullscreenVertexShader() { return kVertexShader; }
+
+}  // namespace sdfvj

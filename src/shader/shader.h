@@ -1,0 +1,55 @@
+// Shader module: turns a scene + effect set + render path into one GLSL source string.
+//
+// GLSL has no #include, so we expand it here, emitting `#line N S` after every file switch;
+// S indexes ShaderSource::files, which is how a driver's "0:42(5): error" becomes
+// "shaders/scenes/midi.glsl:42: error" (MapCompileLog). The same file list is what hot reload
+// watches. Nothing here touches GL.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace sdfvj {
+
+enum class RenderPath { Fragment, Compute };
+const char* RenderPathName(RenderPath p);
+
+// Everything that selects a distinct compiled program. Uniform values are not part of it.
+struct VariantKey {
+    std::string scenePath;
+    EffectSet effects;
+    RenderPath path = RenderPath::Fragment;
+    auto operator<=>(const VariantKey&) const = default;
+};
+
+struct ShaderSource {
+    std::string text;                // the complete program source, #version first
+    std::vector<std::string> files;  // index = #line source-string number; [0] is "<generated>"
+    uint64_t hash = 0;               // FNV-1a of text: same hash, same program
+};
+
+// Expands `#include "path"` (relative to shaders/, then to the including file), each file once.
+// On failure: "file:line: what is wrong".
+bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* error);
+
+// Builds the program source for a variant: version, effect #defines, built-in uniforms, the
+// scene's generated parameter uniforms, the scene, render.glsl and the path's main().
+bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error);
+
+// The #defines a variant compiles with, one "NAME VALUE" per entry (also used by tests).
+std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path);
+
+// Rewrites a driver's compile log so each message names the file and line the performer edited.
+// Understands Mesa ("0:42(5): error: ...") and NVIDIA ("0(42) : error C0000: ...") formats.
+std::string MapCompileLog(const std::string& log, const ShaderSource& src);
+
+// The data-root-relative form of a path, for messages ("shaders/scenes/midi.glsl").
+std::string DisplayPath(const std::string& path);
+
+uint64_t HashBytes(const std::string& bytes);
+
+// A vertex shader that draws one full-screen triangle from gl_VertexID (no buffers).
+const char* FullscreenVertexShader();
+
+}  // namespace sdfvj
