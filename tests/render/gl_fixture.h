@@ -1,0 +1,39 @@
+// Shared helpers for GL tests: one headless EGL context per test process (Mesa llvmpipe in CI),
+// rendering a scene variant to RGBA, and image comparison with a stated tolerance.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/render.h"
+
+namespace sdfvj::test {
+
+// The process-wide context; FAILs the test with the reason when no GL is available.
+void RequireGl();
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;   // top row first
+};
+
+// Renders one frame of a scene with an effect set on a path. FAILs on compile errors.
+Image RenderScene(const std::string& scene, const EffectSet& effects, RenderPath path, int width, int height,
+                  double time = 1.0, const std::vector<std::pair<std::string, float>>& params = {},
+                  const Quality& quality = {});
+
+bool LoadPng(const std::string& path, Image* out);
+bool SavePng(const std::string& path, const Image& img);
+
+// How far two images are apart: the tolerance is stated in terms of these.
+struct ImageDiff {
+    double meanAbs = 0;         // mean |a-b| over all RGB channels, in 0..255 units
+    int maxAbs = 0;             // largest channel difference
+    double fractionOver = 0;    // fraction of pixels with any channel off by more than `threshold`
+};
+ImageDiff CompareImages(const Image& a, const Image& b, int threshold);
+
+// Mean luminance of a rectangle (fractions of the image), 0..255.
+double MeanLuma(const Image& img, double x0, double y0, double x1, double y1);
+
+}  // namespace sdfvj::test

@@ -1,0 +1,107 @@
+// Every scene x the seed's four lighting tests, rendered headless on llvmpipe and compared with
+// committed reference images. Tolerance: at most 0.2% of pixels may have a channel more than 8/255
+// off, and the mean channel difference must stay under 0.5/255 — loose enough for another Mesa
+// build's float rounding, tight enough that any visible change to a scene or the lighting fails.
+// Regenerate on purpose with scripts/update_references.sh (then look at the PNGs).
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "gl_fixture.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+namespace fs = std::filesystem;
+
+namespace {
+constexpr int kW = 160, kH = 120;
+const fs::path kReferenceDir = SDFVJ_TEST_REFERENCE_DIR;
+const fs::path kActualDir = SDFVJ_TEST_OUTPUT_DIR;
+}  // namespace
+
+TEST_CASE("render: every scene x lighting test matches its reference image", "[render]") {
+    const bool update = std::getenv("SDFVJ_UPDATE_REFERENCES") != nullptr;
+    const auto scenes = ListScenes();
+    REQUIRE(scenes.size() >= 4);
+    fs::create_directories(kActualDir);
+    for (const std::string& scene : scenes) {
+        for (const LightingTest& t : SeedLightingTests()) {
+            const std::string name = scene + "_" + t.name + ".png";
+            SECTION(name) {
+                Image actual = RenderScene(scene, t.effects, RenderPath::Fragment, kW, kH);
+                SavePng((kActualDir / name).string(), actual);
+                if (update) {
+                    SavePng((kReferenceDir / name).string(), actual);
+                    WARN("updated reference " << name);
+                    continue;
+                }
+                Image ref;
+                INFO("reference " << (kReferenceDir / name) << ", actual " << (kActualDir / name));
+                REQUIRE(LoadPng((kReferenceDir / name).string(), &ref));
+                ImageDiff d = CompareImages(actual, ref, 8);
+                INFO("mean " << d.meanAbs << ", max " << d.maxAbs << ", over 8/255: " << d.fractionOver * 100 << "%");
+                CHECK(d.fractionOver <= 0.002);
+                CHECK(d.meanAbs <= 0.5);
+            }
+        }
+    }
+}
+
+TEST_CASE("render: fragment and compute paths give the same image", "[render]") {
+    // Same shader body, two wrappers. Tolerance: no channel more than 2/255 off on more than
+    // 0.1% of pixels (llvmpipe vectorises the two differently). Small size: compute is ~100x
+    // slower than fragment on llvmpipe.
+    for (const std::string& scene : ListScenes()) {
+        SECTION(scene) {
+            EffectSet full = SeedLightingTests()[0].effects;
+            Image frag = RenderScene(scene, full, RenderPath::Fragment, 64, 48);
+            Image comp = RenderScene(scene, full, RenderPath::Compute, 64, 48);
+            ImageDiff d = CompareImages(frag, comp, 2);
+            INFO("mean " << d.meanAbs << ", max " << d.maxAbs << ", over 2/255: " << d.fractionOver * 100 << "%");
+            CHECK(d.fractionOver <= 0.001);
+        }
+    }
+}
+
+TEST_CASE("render: what a person would see", "[render]") {
+    for (const std::string& scene : ListScenes()) {
+        SECTION(scene) {
+            const auto tests = SeedLightingTests();
+            Image full = RenderScene(scene, tests[0].effects, RenderPath::Fragment, kW, kH);
+            Image none = RenderScene(scene, tests[3].effects, RenderPath::Fragment, kW, kH);
+            // Something is in the middle of the frame: its centre differs from the top corners (sky).
+            double centre = MeanLuma(full, 0.4, 0.4, 0.6, 0.6);
+            double corner = MeanLuma(full, 0.0, 0.0, 0.1, 0.1);
+            INFO("centre luma " << centre << ", corner luma " << corner);
+            CHECK(std::abs(centre - corner) > 8.0);
+            // Not a blank or saturated frame.
+            double mean = MeanLuma(full, 0, 0, 1, 1);
+            CHECK(mean > 15.0);
+            CHECK(mean < 240.0);
+            // Shadows, AO and specular change the picture: full lighting is not the unlit image.
+            ImageDiff d = CompareImages(full, none, 8);
+            INFO("full vs none: " << d.fractionOver * 100 << "% of pixels differ by more than 8/255");
+            CHECK(d.fractionOver > 0.02);
+            // The scene moves with time (character walks; others animate or stay still).
+            if (scene == "character") {
+                Image later = RenderScene(scene, tests[0].effects, RenderPath::Fragment, kW, kH, 1.5);
+                CHECK(CompareImages(full, later, 8).fractionOver > 0.005);
+            }
+        }
+    }
+}
+
+TEST_CASE("render: a scene parameter changes the image", "[render]") {
+    SceneInfo midi;
+    std::string error;
+    REQUIRE(FindScene("midi", &midi, &error));
+    EffectSet none;
+    for (const ParamDecl& d : midi.params) {
+        SECTION(d.name) {
+            Image lo = RenderScene("midi", none, RenderPath::Fragment, 96, 72, 1.0, {{d.name, d.minValue}});
+            Image hi = RenderScene("midi", none, RenderPath::Fragment, 96, 72, 1.0, {{d.name, d.maxValue}});
+            CHECK(CompareImages(lo, hi, 8).fractionOver > 0.01);
+        }
+    }
+}

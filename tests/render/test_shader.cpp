@@ -1,0 +1,119 @@
+// The shader module: include expansion, errors mapped back to the file the performer edited,
+// and variants that leave out what a scene does not call for.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "gl_fixture.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path TempDir(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("sdfvj-test-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+void Write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+const char* kHeader = "/*{ \"NAME\": \"t\", \"INPUTS\": [{\"NAME\": \"r\", \"DEFAULT\": 0.5, \"MIN\": 0, \"MAX\": 1}] }*/\n";
+
+bool Has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+}  // namespace
+
+TEST_CASE("shader: compile errors name the edited file and line, also inside an include", "[shader]") {
+    RequireGl();
+    fs::path dir = TempDir("errors");
+    Write(dir / "helper.glsl", "// helper\nfloat helper(float x) {\n    return x * undefinedThing;\n}\n");
+    Write(dir / "scene.glsl", std::string(kHeader) + "#include \"helper.glsl\"\nvec4 map(vec3 p) { return vec4(1.0f, 1.0f, 1.0f, length(p) - u_r); }\nfloat sceneLipschitz() { return 1.0f; }\n");
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(LoadScene((dir / "scene.glsl").string(), &scene, &error));
+    ShaderSource src;
+    REQUIRE(AssembleProgram(scene, VariantKey{scene.path, {}, RenderPath::Fragment}, &src, &error));
+    Program prog;
+    REQUIRE_FALSE(prog.Build(src, RenderPath::Fragment, &error));
+    INFO(error);
+    CHECK(error.find("helper.glsl:3:") != std::string::npos);
+    CHECK(error.find("undefinedThing") != std::string::npos);
+    CHECK_FALSE(prog.IsValid());
+
+    // An error in the scene itself, below the include, keeps its own line numbers.
+    Write(dir / "helper.glsl", "float helper(float x) { return x; }\n");
+    Write(dir / "scene.glsl", std::string(kHeader) + "#include \"helper.glsl\"\nvec4 map(vec3 p) {\n  return vec4(1.0f, 1.0f, 1.0f, fNoSuchThing(p));\n}\nfloat sceneLipschitz() { return 1.0f; }\n");
+    REQUIRE(AssembleProgram(scene, VariantKey{scene.path, {}, RenderPath::Fragment}, &src, &error));
+    REQUIRE_FALSE(prog.Build(src, RenderPath::Fragment, &error));
+    INFO(error);
+    CHECK(error.find("scene.glsl:4:") != std::string::npos);
+}
+
+TEST_CASE("shader: a missing include and a broken header are one readable line", "[shader]") {
+    fs::path dir = TempDir("missing");
+    Write(dir / "scene.glsl", std::string(kHeader) + "#include \"nope.glsl\"\n");
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(LoadScene((dir / "scene.glsl").string(), &scene, &error));
+    ShaderSource src;
+    REQUIRE_FALSE(AssembleProgram(scene, VariantKey{scene.path, {}, RenderPath::Fragment}, &src, &error));
+    CHECK(error.find("scene.glsl:2: cannot open include") != std::string::npos);
+
+    Write(dir / "bad.glsl", "// a scene\n/*{ \"NAME\": \"bad\",\n  \"INPUTS\": [ {\"NAME\": \"x\", \"TYPE\": \"vec9\"} ] }*/\n");
+    REQUIRE_FALSE(LoadScene((dir / "bad.glsl").string(), &scene, &error));
+    CHECK(error.find("bad.glsl:3: input 'x' has TYPE 'vec9', expected float, int or bool") != std::string::npos);
+
+    Write(dir / "json.glsl", "/*{ \"NAME\": \"bad\",\n  \"INPUTS\": [ {\"NAME\": \"x\",, } ] }*/\n");
+    REQUIRE_FALSE(LoadScene((dir / "json.glsl").string(), &scene, &error));
+    CHECK(error.find("json.glsl:2: bad JSON") != std::string::npos);
+}
+
+TEST_CASE("variant: an effect the scene does not call for is not in its program", "[variant]") {
+    RequireGl();
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    auto build = [&](const EffectSet& e, Program* prog) {
+        ShaderSource src;
+        REQUIRE(AssembleProgram(scene, VariantKey{scene.path, e, RenderPath::Fragment}, &src, &error));
+        INFO(error);
+        REQUIRE(prog->Build(src, RenderPath::Fragment, &error));
+    };
+    EffectSet none, soft;
+    soft.shadows = 2;
+    soft.ao = true;
+    Program plain, shadowed;
+    build(none, &plain);
+    build(soft, &shadowed);
+    // The compiler keeps only uniforms the code uses: the shadow and AO uniforms exist only
+    // where those effects were compiled in.
+    auto a = plain.ActiveUniforms(), b = shadowed.ActiveUniforms();
+    CHECK_FALSE(Has(a, "u_shadowK"));
+    CHECK_FALSE(Has(a, "u_shadowSteps"));
+    CHECK_FALSE(Has(a, "u_aoSamples"));
+    CHECK(Has(b, "u_shadowSteps"));
+    CHECK(Has(b, "u_aoSamples"));
+    // And the switches are preprocessor defines, not uniforms.
+    CHECK(plain.Source().text.find("#define SHADOWS 0") != std::string::npos);
+    CHECK(shadowed.Source().text.find("#define SHADOWS 2") != std::string::npos);
+    CHECK_FALSE(Has(b, "SHADOWS"));
+}
+
+TEST_CASE("shader: parameters are clamped before they reach the shader", "[shader]") {
+    EffectSet none;
+    Image atMax = RenderScene("midi", none, RenderPath::Fragment, 64, 48, 1.0, {{"twist", 1e9f}});
+    SceneInfo midi;
+    std::string error;
+    REQUIRE(FindScene("midi", &midi, &error));
+    float maxTwist = 0;
+    for (const auto& d : midi.params)
+        if (d.name == "twist") maxTwist = d.maxValue;
+    Image clamped = RenderScene("midi", none, RenderPath::Fragment, 64, 48, 1.0, {{"twist", maxTwist}});
+    CHECK(CompareImages(atMax, clamped, 0).maxAbs == 0);
+}
