@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# GPU-machine runs in one command each.
+#
+#   scripts/gpu.sh prepare        here: build the headless renderer (EGL + libepoxy only) into
+#                                 .devbuild/ and fetch the GL loader .debs into .gl/ (both ignored)
+#   scripts/gpu.sh remote ARGS..  there (the device tool runs it in the repo root, carrying .gl and
+#                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
+#                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
+#
+# Example (device tool): carry [".gl", ".devbuild"], command
+#   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
+set -euo pipefail
+cd "$(dirname "$0")/.."
+case "${1:-}" in
+  prepare)
+    mkdir -p .gl /tmp/amd64/partial .devbuild/lib
+    o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
+    if ! ls .gl/libegl1_*.deb >/dev/null 2>&1; then
+      apt-get $o update -qq
+      (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+    fi
+    if ! ls .devbuild/lib/libepoxy.so.0* >/dev/null 2>&1; then
+      (cd /tmp && apt-get download libepoxy0 && dpkg -x libepoxy0_*.deb /tmp/epoxy-x)
+      cp -a /tmp/epoxy-x/usr/lib/x86_64-linux-gnu/libepoxy.so.0* .devbuild/lib/
+    fi
+    cmake -S . -B .devbuild/cmake -DSDFVJ_HEADLESS_ONLY=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake --build .devbuild/cmake -j"$(nproc)" --target sdfvj-headless
+    cp .devbuild/cmake/src/app/sdfvj-headless .devbuild/
+    rm -rf .devbuild/cmake
+    du -sh .gl .devbuild
+    ;;
+  remote)
+    shift
+    for f in .gl/*.deb; do dpkg -x "$f" /; done
+    ldconfig
+    export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+    export LD_LIBRARY_PATH="$PWD/.devbuild/lib:${LD_LIBRARY_PATH:-}"
+    export SDFVJ_ROOT="$PWD"
+    nvidia-smi --query-gpu=name,driver_version --format=csv,noheader || true
+    exec ./.devbuild/sdfvj-headless "$@"
+    ;;
+  *)
+    sed -n '2,14p' "$0"; exit 2 ;;
+esac

@@ -1,0 +1,183 @@
+// `sdfvj live`: a GLFW window, MIDI and OSC in, the performer's overlay on top.
+//
+// The frame loop reads top to bottom: clock -> drain events -> mapping -> smoothing -> draw ->
+// overlay -> swap. Input threads (RtMidi, liblo, replay) only push onto the queue; all GL and all
+// parameter state live on this thread.
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "app/commands.h"
+#include "app/live_support.h"
+#include "take/take.h"
+
+namespace sdfvj {
+
+namespace {
+
+struct WindowCloser { void operator()(GLFWwindow* w) const { glfwDestroyWindow(w); glfwTerminate(); } };
+
+// The overlay: what the performer needs, nothing the audience should see (Tab hides it).
+void DrawOverlay(const Show& show, ParamState& params, const InputSession& input, const std::string& error,
+                 double fps, size_t recorded, bool recording) {
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    ImGui::Begin("sdfvj", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Text("%s  [%s, %s]  %.1f fps", show.scene.name.c_str(), DescribeEffects(show.effects).c_str(),
+                RenderPathName(show.path), fps);
+    for (size_t i = 0; i < params.decls.size(); ++i) {
+        const ParamDecl& d = params.decls[i];
+        float v = params.target[i];
+        if (ImGui::SliderFloat(d.label.c_str(), &v, d.minValue, d.maxValue)) SetParamTarget(params, (int)i, v);
+    }
+    for (const std::string& line : input.StatusLines()) ImGui::TextDisabled("%s", line.c_str());
+    if (recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC  %zu events", recorded);
+    if (!error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error.c_str());
+    ImGui::TextDisabled("Tab: hide overlay   Esc: quit");
+    ImGui::End();
+}
+
+}  // namespace
+
+int RunLive(const LiveOptions& o) {
+    std::string error;
+    int w = 0, h = 0;
+    if (!ParseSize(o.size, &w, &h, &error)) { std::fprintf(stderr, "sdfvj live: %s\n", error.c_str()); return 2; }
+    Show show;
+    if (!PrepareShow(o.show, &show, &error)) { std::fprintf(stderr, "sdfvj live: %s\n", error.c_str()); return 2; }
+    Mapping mapping;
+    if (!LoadShowMapping(show, o.mapping, &mapping, &error)) { std::fprintf(stderr, "%s\n", error.c_str()); return 2; }
+
+    if (!glfwInit()) {
+        std::fprintf(stderr, "sdfvj live: no display (GLFW could not start); use `sdfvj render` for headless output\n");
+        return 2;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    GLFWmonitor* monitor = o.fullscreen ? glfwGetPrimaryMonitor() : nullptr;
+    std::unique_ptr<GLFWwindow, WindowCloser> window(glfwCreateWindow(w, h, "sdfvj", monitor, nullptr));
+    if (!window) {
+        glfwTerminate();
+        std::fprintf(stderr, "sdfvj live: cannot open an OpenGL 4.5 core window on this display\n");
+        return 2;
+    }
+    glfwMakeContextCurrent(window.get());
+    glfwSwapInterval(1);
+    std::fprintf(stderr, "GL: %s, %s\n", (const char*)glGetString(GL_RENDERER), (const char*)glGetString(GL_VERSION));
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui_ImplGlfw_InitForOpenGL(window.get(), true);
+    ImGui_ImplOpenGL3_Init("#version 450");
+
+    int rc = 0;
+    {   // GL objects live in this scope, so they go before the context does.
+        if (!BuildShow(&show, o.show.path, &error, true)) {
+            std::fprintf(stderr, "%s\n", error.c_str());
+            rc = 1;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        auto clock = [start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+        EventQueue queue;
+        InputOptions io;
+        io.midiPort = o.midi;
+        io.oscPort = o.oscPort;
+        io.oscFeedback = o.oscFeedback;
+        InputSession input(io, queue, clock);
+        for (const auto& line : input.StatusLines()) std::fprintf(stderr, "%s\n", line.c_str());
+
+        TakeRecorder recorder;
+        if (!o.record.empty() && !recorder.Open(o.record, &error))
+            std::fprintf(stderr, "sdfvj live: not recording: %s\n", error.c_str());
+        Take rehearsal;
+        std::unique_ptr<ReplayCursor> replay;
+        if (!o.replay.empty()) {
+            TakeReadResult r = ReadTake(o.replay, &rehearsal);
+            if (!r.ok) std::fprintf(stderr, "sdfvj live: not replaying: %s\n", r.error.c_str());
+            else replay = std::make_unique<ReplayCursor>(rehearsal);
+        }
+
+        ParamState params = ShowParamState(show);
+        MappingState mstate;
+        MappingActions actions;
+        FrameRenderer fr;
+        FrameInputs in;
+        in.quality = show.quality;
+        bool overlay = true;
+        bool tabWasDown = false;
+        double last = clock(), fps = 0;
+        int frame = 0;
+        while (rc == 0 && !glfwWindowShouldClose(window.get())) {
+            glfwPollEvents();
+            const double now = clock();
+            const double dt = now - last;
+            last = now;
+            fps = fps == 0 ? 1.0 / std::max(dt, 1e-6) : 0.95 * fps + 0.05 / std::max(dt, 1e-6);
+            if (o.seconds > 0 && now >= o.seconds) break;
+            if (glfwGetKey(window.get(), GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
+            const bool tabDown = glfwGetKey(window.get(), GLFW_KEY_TAB) == GLFW_PRESS;
+            if (tabDown && !tabWasDown) overlay = !overlay;
+            tabWasDown = tabDown;
+
+            // Rehearsal: the take plays through the same queue a controller feeds.
+            if (replay)
+                for (ControlEvent& e : replay->Until(now)) queue.Push(std::move(e));
+            for (const ControlEvent& e : queue.DrainUntil(now)) {
+                if (recorder.IsOpen()) recorder.Record(e);
+                actions.Clear();
+                ApplyEvent(mapping, mstate, e, params, &actions);
+                for (const auto& m : actions.messages) std::fprintf(stderr, "%s\n", m.c_str());
+            }
+            StepSmoothing(params, dt);
+            CopyParams(params, &in.params);
+
+            int fbw = 0, fbh = 0;
+            glfwGetFramebufferSize(window.get(), &fbw, &fbh);
+            if (fbw > 0 && fbh > 0 && fr.Resize(fbw, fbh, &error)) {
+                in.time = now;
+                in.frame = frame++;
+                fr.Draw(*show.program, show.scene, in);
+                glBindFramebuffer(GL_READ_FRAMEBUFFER, fr.Framebuffer());
+                glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+                glBlitFramebuffer(0, 0, fbw, fbh, 0, 0, fbw, fbh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+                glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            }
+            ImGui_ImplOpenGL3_NewFrame();
+            ImGui_ImplGlfw_NewFrame();
+            ImGui::NewFrame();
+            if (overlay) DrawOverlay(show, params, input, error, fps, recorder.Recorded(), recorder.IsOpen());
+            ImGui::Render();
+            glViewport(0, 0, fbw, fbh);
+            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            if (!o.screenshot.empty() && o.seconds > 0 && clock() + 0.05 >= o.seconds) {
+                std::vector<uint8_t> rgba((size_t)fbw * fbh * 4);
+                glReadBuffer(GL_BACK);
+                glPixelStorei(GL_PACK_ALIGNMENT, 1);
+                glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+                std::vector<uint8_t> flipped(rgba.size());
+                for (int y = 0; y < fbh; ++y)
+                    std::copy_n(&rgba[(size_t)(fbh - 1 - y) * fbw * 4], (size_t)fbw * 4, &flipped[(size_t)y * fbw * 4]);
+                WritePng(o.screenshot, fbw, fbh, flipped, &error);
+            }
+            glfwSwapBuffers(window.get());
+        }
+        if (recorder.IsOpen()) {
+            recorder.Close(clock());
+            std::fprintf(stderr, "recorded %zu events to %s\n", recorder.Recorded(), o.record.c_str());
+        }
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    return rc;
+}
+
+}  // namespace sdfvj

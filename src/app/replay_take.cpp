@@ -1,0 +1,88 @@
+// Replay for the full build: take -> ReplayCursor -> mapping -> smoothing, on the fixed clock.
+#include <cstdio>
+#include <filesystem>
+
+#include "app/live_support.h"
+#include "app/replay_driver.h"
+#include "control/control.h"
+#include "take/take.h"
+
+namespace fs = std::filesystem;
+
+namespace sdfvj {
+
+// The mapping a show uses: --mapping, else the preset's, else the generic 8-knob profile.
+std::string ResolveMappingPath(const Show& show, const std::string& option) {
+    std::string p = !option.empty() ? option : !show.preset.mapping.empty() ? show.preset.mapping : "mappings/generic_8knob.toml";
+    if (!fs::exists(p) && fs::exists(fs::path(DataRoot()) / p)) p = (fs::path(DataRoot()) / p).string();
+    return p;
+}
+
+// Loads and validates a mapping for a show; errors are "file:line:col: ..." lines.
+bool LoadShowMapping(const Show& show, const std::string& option, Mapping* mapping, std::string* error) {
+    const std::string path = ResolveMappingPath(show, option);
+    LoadResult r = LoadMapping(path, mapping);
+    if (!r.ok) {
+        *error = r.error;
+        return false;
+    }
+    std::string problems;
+    if (!ValidateMapping(*mapping, show.scene.params, &problems))
+        std::fprintf(stderr, "%s (entries for other scenes are ignored)\n", problems.c_str());
+    return true;
+}
+
+// Starting values of a show as a ParamState: scene defaults overridden by preset and --param.
+ParamState ShowParamState(const Show& show) {
+    ParamState s = MakeParamState(show.scene.params);
+    for (const auto& [name, value] : show.params) {
+        int i = FindParam(s, name);
+        if (i >= 0) s.value[i] = s.target[i] = value;
+    }
+    return s;
+}
+
+void CopyParams(const ParamState& s, std::vector<std::pair<std::string, float>>* out) {
+    out->clear();
+    for (size_t i = 0; i < s.decls.size(); ++i) out->emplace_back(s.decls[i].name, s.value[i]);
+}
+
+namespace {
+
+class TakeReplayDriver : public ReplayDriver {
+public:
+    Take take;
+    Mapping mapping;
+    MappingState state;
+    ParamState params;
+    std::unique_ptr<ReplayCursor> cursor;
+
+    double Duration() const override { return take.duration; }
+    void Advance(double time, double dt, std::vector<std::pair<std::string, float>>* out) override {
+        // An event is applied to the first frame that starts at or after it.
+        for (const ControlEvent& e : cursor->Until(time + 1e-9)) ApplyEvent(mapping, state, e, params, nullptr);
+        StepSmoothing(params, dt);
+        CopyParams(params, out);
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<ReplayDriver> MakeReplayDriver(const Show& show, const std::string& takePath,
+                                               const std::string& mappingPath, std::string* error) {
+    auto d = std::make_unique<TakeReplayDriver>();
+    std::string path = takePath;
+    if (!fs::exists(path) && fs::exists(fs::path(DataRoot()) / path)) path = (fs::path(DataRoot()) / path).string();
+    TakeReadResult r = ReadTake(path, &d->take);
+    if (!r.ok) {
+        *error = r.error;
+        return nullptr;
+    }
+    for (const std::string& w : d->take.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    if (!LoadShowMapping(show, mappingPath, &d->mapping, error)) return nullptr;
+    d->params = ShowParamState(show);
+    d->cursor = std::make_unique<ReplayCursor>(d->take);
+    return d;
+}
+
+}  // namespace sdfvj
