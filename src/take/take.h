@@ -138,6 +138,7 @@ private:
 class ReplayCursor {
 public:
     explicit ReplayCursor(const Take& take) : take_(&take) {}
+    explicit ReplayCursor(Take&&) = delete;  // would dangle: keep the take alive elsewhere
 
     std::vector<ControlEvent> Until(double t);
     // Same, appending to *out (no allocation once *out has grown). Returns how many were added.

@@ -118,3 +118,51 @@ TEST_CASE("take: a recorder file is readable between flushes", "[take]") {
     CHECK(take.events.size() == 3);
     CHECK(take.duration == 5.0);
 }
+
+static std::vector<uint8_t> Slurp(const std::string& path) {
+    std::vector<uint8_t> bytes;
+    if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+        int c;
+        while ((c = std::fgetc(f)) != EOF) bytes.push_back(uint8_t(c));
+        std::fclose(f);
+    }
+    return bytes;
+}
+
+TEST_CASE("take: a recorder killed between writing events and their length reads back", "[take]") {
+    // The state a crash leaves between steps 1 and 3 of a write (docs/takes.md): the new events
+    // and End-of-Track are on disk, the MTrk length is still the old one.
+    for (int kind = 0; kind < 4; ++kind) {
+        TempFile file("midwrite");
+        TakeRecorder rec;
+        TakeRecorderDesc desc;
+        desc.flushInterval = 60.0;
+        std::string error;
+        REQUIRE(rec.Open(file.path, desc, &error));
+        rec.Record(Midi(0.1, {0x90, 60, 1}));
+        rec.Record(Midi(0.2, {0x80, 60, 0}));
+        rec.Flush();
+        const std::vector<uint8_t> before = Slurp(file.path);
+        // Second write: events whose first bytes do and do not fit where End-of-Track was.
+        if (kind == 0) rec.Record(Midi(0.3, {0xB0, 7, 64}));                     // 00 B0 07 40 + ...
+        if (kind == 1) rec.Record(Midi(9000.0, {0xB0, 7, 64}));                  // 4-byte delta
+        if (kind == 2) rec.Record(Osc(0.3, "/a/long/osc/address/for/the/meta/length", {Arg('f', 1)}));
+        if (kind == 3) rec.Record(Midi(0.3, {0xF8}));                            // F7 escape
+        rec.Record(Midi(9001.0, {0xB0, 8, 1}));
+        rec.Flush();
+        std::vector<uint8_t> mid = Slurp(file.path);
+        REQUIRE(mid.size() > before.size());
+        std::copy(before.begin() + 18, before.begin() + 22, mid.begin() + 18);  // old length
+        Take take;
+        const TakeReadResult r = ParseTake(mid.data(), mid.size(), "take.mid", &take);
+        INFO("kind " << kind << ": " << r.error);
+        REQUIRE(r.ok);
+        REQUIRE(take.events.size() >= 2);
+        REQUIRE(take.events.size() <= 3);
+        CHECK(SameMidi(take.events[0], {0x90, 60, 1}));
+        CHECK(SameMidi(take.events[1], {0x80, 60, 0}));
+        if (take.events.size() == 3) CHECK(take.events[2].time >= 0.3 - 1e-9);  // a whole, real event
+        CHECK_FALSE(take.warnings.empty());
+        rec.Close();
+    }
+}
