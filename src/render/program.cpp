@@ -4,78 +4,115 @@
 
 namespace sdfvj {
 
-namespace {
-
-unsigned CompileStage(GLenum stage, const std::string& text, std::string* log) {
-    GLuint s = glCreateShader(stage);
-    const char* p = text.c_str();
-    glShaderSource(s, 1, &p, nullptr);
-    glCompileShader(s);
-    GLint ok = 0, len = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-    if (!ok) {
-        std::string buf(len > 1 ? len : 1, '\0');
-        glGetShaderInfoLog(s, (GLsizei)buf.size(), nullptr, buf.data());
-        *log = buf.c_str();
-        glDeleteShader(s);
-        return 0;
-    }
-    return s;
-}
-
-}  // namespace
 
 Program::~Program() {
     if (id_) glDeleteProgram(id_);
 }
 
 bool Program::Build(const ShaderSource& src, RenderPath path, std::string* log) {
-    std::string raw;
-    GLuint prog = glCreateProgram();
-    std::vector<GLuint> stages;
-    if (path == RenderPath::Compute) {
-        stages.push_back(CompileStage(GL_COMPUTE_SHADER, src.text, &raw));
-    } else {
-        stages.push_back(CompileStage(GL_VERTEX_SHADER, FullscreenVertexShader(), &raw));
-        if (stages.back()) stages.push_back(CompileStage(GL_FRAGMENT_SHADER, src.text, &raw));
-    }
-    bool ok = stages.back() != 0;
-    if (ok) {
-        for (GLuint s : stages) glAttachShader(prog, s);
-        glLinkProgram(prog);
-        GLint linked = 0, len = 0;
-        glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-        if (!linked) {
-            glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
-            std::string buf(len > 1 ? len : 1, '\0');
-            glGetProgramInfoLog(prog, (GLsizei)buf.size(), nullptr, buf.data());
-            raw = buf.c_str();
-            ok = false;
-        }
-    }
-    for (GLuint s : stages)
-        if (s) glDeleteShader(s);
-    if (!ok) {
-        glDeleteProgram(prog);
-        *log = MapCompileLog(raw, src);
-        if (log->empty()) *log = "shader failed to compile with no message from the driver";
-        return false;   // the previous program (if any) stays as it was
-    }
+    PendingProgram pending;
+    pending.Begin(src, path);
+    return pending.Finish(this, log);
+}
+
+void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src) {
     if (id_) glDeleteProgram(id_);
-    id_ = prog;
+    id_ = id;
     path_ = path;
     source_ = src;
     uniforms_.clear();
     GLint count = 0;
-    glGetProgramiv(prog, GL_ACTIVE_UNIFORMS, &count);
+    glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
     for (GLint i = 0; i < count; ++i) {
         char name[256];
         GLint size = 0;
         GLenum type = 0;
-        glGetActiveUniform(prog, (GLuint)i, sizeof name, nullptr, &size, &type, name);
-        uniforms_[name] = Slot{glGetUniformLocation(prog, name), type};
+        glGetActiveUniform(id, (GLuint)i, sizeof name, nullptr, &size, &type, name);
+        uniforms_[name] = Slot{glGetUniformLocation(id, name), type};
     }
+}
+
+PendingProgram::~PendingProgram() { Cancel(); }
+
+void PendingProgram::Cancel() {
+    for (unsigned s : stages_) glDeleteShader(s);
+    stages_.clear();
+    if (id_) glDeleteProgram(id_);
+    id_ = 0;
+}
+
+bool PendingProgram::ParallelCompileAvailable() {
+    static const bool available = epoxy_has_gl_extension("GL_KHR_parallel_shader_compile") ||
+                                  epoxy_has_gl_extension("GL_ARB_parallel_shader_compile");
+    return available;
+}
+
+void PendingProgram::Begin(const ShaderSource& src, RenderPath path) {
+    Cancel();
+    if (ParallelCompileAvailable()) glMaxShaderCompilerThreadsKHR(0xFFFFFFFFu);   // driver's choice
+    source_ = src;
+    path_ = path;
+    id_ = glCreateProgram();
+    auto stage = [&](GLenum kind, const char* text) {
+        GLuint s = glCreateShader(kind);
+        glShaderSource(s, 1, &text, nullptr);
+        glCompileShader(s);   // returns at once where the driver compiles in parallel
+        glAttachShader(id_, s);
+        stages_.push_back(s);
+    };
+    if (path == RenderPath::Compute) {
+        stage(GL_COMPUTE_SHADER, source_.text.c_str());
+    } else {
+        stage(GL_VERTEX_SHADER, FullscreenVertexShader());
+        stage(GL_FRAGMENT_SHADER, source_.text.c_str());
+    }
+    glLinkProgram(id_);
+}
+
+bool PendingProgram::Ready() const {
+    if (!id_) return false;
+    if (!ParallelCompileAvailable()) return true;
+    GLint done = GL_TRUE;
+    glGetProgramiv(id_, GL_COMPLETION_STATUS_KHR, &done);
+    return done == GL_TRUE;
+}
+
+bool PendingProgram::Finish(Program* into, std::string* log) {
+    if (!id_) {
+        *log = "no program was being built";
+        return false;
+    }
+    std::string raw;
+    for (unsigned s : stages_) {
+        GLint ok = 0, len = 0;
+        glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+            std::string buf(len > 1 ? len : 1, '\0');
+            glGetShaderInfoLog(s, (GLsizei)buf.size(), nullptr, buf.data());
+            raw += buf.c_str();
+        }
+    }
+    GLint linked = 0;
+    glGetProgramiv(id_, GL_LINK_STATUS, &linked);
+    if (raw.empty() && !linked) {
+        GLint len = 0;
+        glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
+        std::string buf(len > 1 ? len : 1, '\0');
+        glGetProgramInfoLog(id_, (GLsizei)buf.size(), nullptr, buf.data());
+        raw = buf.c_str();
+    }
+    for (unsigned s : stages_) glDeleteShader(s);
+    stages_.clear();
+    if (!linked || !raw.empty()) {
+        glDeleteProgram(id_);
+        id_ = 0;
+        *log = MapCompileLog(raw, source_);
+        if (log->empty()) *log = "shader failed to compile with no message from the driver";
+        return false;   // `into` keeps the program it had
+    }
+    into->Adopt(id_, path_, source_);
+    id_ = 0;
     return true;
 }
 

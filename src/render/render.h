@@ -65,6 +65,8 @@ public:
     unsigned Id() const { return id_; }
     RenderPath Path() const { return path_; }
     const ShaderSource& Source() const { return source_; }
+    // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
+    void Adopt(unsigned id, RenderPath path, const ShaderSource& src);
     // Active uniform names (after the compiler dropped unused ones).
     std::vector<std::string> ActiveUniforms() const;
     // Sets a uniform only if the program declares it; converts to its declared type.
@@ -77,6 +79,31 @@ private:
     RenderPath path_ = RenderPath::Fragment;
     ShaderSource source_;
     std::map<std::string, Slot> uniforms_;
+};
+
+// A program being compiled and linked. Where GL_KHR_parallel_shader_compile exists the driver
+// compiles on its own threads and Ready() polls without blocking, so a reload never stalls a
+// frame; elsewhere Ready() is true at once and Finish() waits.
+class PendingProgram {
+public:
+    PendingProgram() = default;
+    ~PendingProgram();
+    PendingProgram(const PendingProgram&) = delete;
+    PendingProgram& operator=(const PendingProgram&) = delete;
+    void Begin(const ShaderSource& src, RenderPath path);
+    bool Active() const { return id_ != 0; }
+    bool Ready() const;
+    // On success moves the program into `into`; on failure `into` is untouched and `log` holds
+    // file:line messages. Either way the pending program is done.
+    bool Finish(Program* into, std::string* log);
+    void Cancel();
+    const ShaderSource& Source() const { return source_; }
+    static bool ParallelCompileAvailable();
+private:
+    unsigned id_ = 0;
+    std::vector<unsigned> stages_;
+    ShaderSource source_;
+    RenderPath path_ = RenderPath::Fragment;
 };
 
 // Draws programs into an RGBA8 texture of a given size and reads it back.

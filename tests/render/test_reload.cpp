@@ -1,0 +1,178 @@
+// Hot reload through the real pieces: files on disk, inotify, LiveProgram, llvmpipe.
+// Each test works on a copy of shaders/ in a temp folder (SDFVJ_ROOT points there).
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "gl_fixture.h"
+#include "render/live_program.h"
+#include "shader/watch.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ReloadRig {
+    fs::path root;
+    FolderWatcher watcher;
+    LiveProgram live;
+    FrameRenderer fr;
+    VariantKey key;
+
+    explicit ReloadRig(const std::string& name) {
+        RequireGl();
+        root = fs::temp_directory_path() / ("sdfvj-reload-" + name + "-" + std::to_string(::getpid()));
+        fs::remove_all(root);
+        fs::create_directories(root);
+        fs::copy(fs::path(SDFVJ_SOURCE_ROOT) / "shaders", root / "shaders", fs::copy_options::recursive);
+        setenv("SDFVJ_ROOT", root.c_str(), 1);
+        std::string err;
+        for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"})
+            REQUIRE(watcher.Watch((root / d).string(), &err));
+        // A scene of our own, so the edits below are known: a sphere whose radius and colour
+        // come from an included helper file.
+        Save("shaders/lib/test_helper.glsl", "float testRadius() { return 1.0f; }\n");
+        Save("shaders/scenes/reloadme.glsl", SceneText("vec3(0.9f, 0.2f, 0.1f)"));
+        REQUIRE(fr.Resize(64, 48, &err));
+        key = VariantKey{(root / "shaders/scenes/reloadme.glsl").string(), EffectSet{}, RenderPath::Fragment};
+        live.Request(key);
+        live.Wait();
+        INFO(live.Error());
+        REQUIRE(live.Current() != nullptr);
+        watcher.Poll();   // our own set-up writes are not edits
+    }
+    ~ReloadRig() {
+        unsetenv("SDFVJ_ROOT");
+        fs::remove_all(root);
+    }
+    static std::string SceneText(const std::string& colour) {
+        return "/*{ \"NAME\": \"reloadme\", \"CAMERA\": {\"POSITION\": [0, 0, -4], \"TARGET\": [0, 0, 0]} }*/\n"
+               "#include \"lib/test_helper.glsl\"\n"
+               "vec4 map(vec3 p) {\n"
+               "    return vec4(" + colour + ", length(p) - testRadius());\n"
+               "}\n"
+               "float sceneLipschitz() { return 1.0f; }\n";
+    }
+    // Saves like an editor does: write a temp file, rename it over the original.
+    void Save(const std::string& rel, const std::string& text) {
+        fs::path tmp = root / (rel + ".tmp~");
+        std::ofstream(tmp) << text;
+        fs::rename(tmp, root / rel);
+    }
+    Image Frame() {
+        live.Update(watcher.Poll());
+        if (live.Current()) {
+            FrameInputs in;
+            fr.Draw(*live.Current(), live.Scene(), in);
+        }
+        return Image{fr.Width(), fr.Height(), fr.ReadPixels()};
+    }
+    // Renders frames until the image differs from `before` (or a few seconds pass).
+    int FramesUntilChange(const Image& before, Image* after) {
+        for (int frame = 1; frame <= 300; ++frame) {
+            *after = Frame();
+            if (CompareImages(before, *after, 8).fractionOver > 0.01) return frame;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return -1;
+    }
+    // Renders frames until no compile is pending.
+    void Settle() {
+        for (int i = 0; i < 300 && (live.Pending() || i < 3); ++i) {
+            Frame();
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+    }
+};
+
+}  // namespace
+
+TEST_CASE("reload: an edited scene file shows within a few frames", "[reload]") {
+    ReloadRig rig("edit");
+    Image before = rig.Frame(), after;
+    rig.Save("shaders/scenes/reloadme.glsl", ReloadRig::SceneText("vec3(0.1f, 0.3f, 0.9f)"));
+    int frames = rig.FramesUntilChange(before, &after);
+    INFO("frames until the new program showed: " << frames);
+    CHECK(frames > 0);
+    CHECK(rig.live.Error().empty());
+    // The sphere turned from red to blue in the middle of the frame.
+    const uint8_t* centre = &after.rgba[((size_t)24 * 64 + 32) * 4];
+    CHECK(centre[2] > centre[0]);
+}
+
+TEST_CASE("reload: a broken save keeps the last good program and names file and line; a fix recovers", "[reload]") {
+    ReloadRig rig("broken");
+    Image good = rig.Frame();
+    const int compiles = rig.live.CompilesStarted();
+
+    // Broken in the scene file itself, line 4.
+    rig.Save("shaders/scenes/reloadme.glsl",
+             "/*{ \"NAME\": \"reloadme\", \"CAMERA\": {\"POSITION\": [0, 0, -4], \"TARGET\": [0, 0, 0]} }*/\n"
+             "#include \"lib/test_helper.glsl\"\nvec4 map(vec3 p) {\n    return vec4(1.0f, 0.0f, 0.0f, fBx(p));\n}\n"
+             "float sceneLipschitz() { return 1.0f; }\n");
+    rig.Settle();
+    INFO(rig.live.Error());
+    CHECK(rig.live.CompilesStarted() > compiles);
+    CHECK(rig.live.Error().find("shaders/scenes/reloadme.glsl:4:") != std::string::npos);
+    Image during = rig.Frame();
+    CHECK(CompareImages(good, during, 0).maxAbs == 0);   // frames keep coming from the old program
+
+    // Broken inside the included file, line 2.
+    rig.Save("shaders/scenes/reloadme.glsl", ReloadRig::SceneText("vec3(0.9f, 0.2f, 0.1f)"));
+    rig.Save("shaders/lib/test_helper.glsl", "// helper\nfloat testRadius() { return 1.0f +; }\n");
+    rig.Settle();
+    INFO(rig.live.Error());
+    CHECK(rig.live.Error().find("shaders/lib/test_helper.glsl:2:") != std::string::npos);
+    CHECK(CompareImages(good, rig.Frame(), 0).maxAbs == 0);
+
+    // Fixed: the error clears and the new radius shows.
+    rig.Save("shaders/lib/test_helper.glsl", "// helper\nfloat testRadius() { return 1.4f; }\n");
+    Image fixed;
+    CHECK(rig.FramesUntilChange(good, &fixed) > 0);
+    CHECK(rig.live.Error().empty());
+
+    // A broken scene header is reported the same way and also keeps the picture.
+    rig.Save("shaders/scenes/reloadme.glsl", "/*{ \"NAME\": \"reloadme\", \"INPUTS\": 7 }*/\n");
+    rig.Settle();
+    CHECK(rig.live.Error().find("reloadme.glsl:1: INPUTS is not an array") != std::string::npos);
+    CHECK(CompareImages(fixed, rig.Frame(), 0).maxAbs == 0);
+}
+
+TEST_CASE("reload: a no-op save compiles nothing; an included file rebuilds its owners", "[reload]") {
+    ReloadRig rig("noop");
+    Image before = rig.Frame();
+    const int compiles = rig.live.CompilesStarted();
+    rig.Save("shaders/scenes/reloadme.glsl", ReloadRig::SceneText("vec3(0.9f, 0.2f, 0.1f)"));   // same bytes
+    rig.Save("shaders/lib/test_helper.glsl", "float testRadius() { return 1.0f; }\n");
+    rig.Settle();
+    CHECK(rig.live.CompilesStarted() == compiles);
+
+    rig.Save("shaders/lib/test_helper.glsl", "float testRadius() { return 0.5f; }\n");
+    Image after;
+    CHECK(rig.FramesUntilChange(before, &after) > 0);
+    CHECK(rig.live.CompilesStarted() == compiles + 1);
+}
+
+TEST_CASE("variant: switching effects compiles once, then comes from the cache", "[variant]") {
+    ReloadRig rig("variants");
+    VariantKey shadowed = rig.key;
+    shadowed.effects.shadows = 2;
+    shadowed.effects.ao = true;
+    const int compiles = rig.live.CompilesStarted();
+    rig.live.Request(shadowed);
+    rig.Settle();
+    CHECK(rig.live.CompilesStarted() == compiles + 1);
+    CHECK(rig.live.Key() == shadowed);
+    rig.live.Request(rig.key);      // back: cached, no compile
+    rig.live.Request(shadowed);     // and again
+    CHECK(rig.live.CompilesStarted() == compiles + 1);
+    REQUIRE(rig.live.Current() != nullptr);
+    auto active = rig.live.Current()->ActiveUniforms();
+    CHECK(std::find(active.begin(), active.end(), "u_aoSamples") != active.end());
+}
