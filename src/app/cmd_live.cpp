@@ -11,10 +11,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
 #include "app/commands.h"
 #include "app/live_support.h"
+#include "render/live_program.h"
+#include "shader/watch.h"
 #include "take/take.h"
 
 namespace sdfvj {
@@ -80,10 +83,26 @@ int RunLive(const LiveOptions& o) {
 
     int rc = 0;
     {   // GL objects live in this scope, so they go before the context does.
-        if (!BuildShow(&show, o.show.path, &error, true)) {
-            std::fprintf(stderr, "%s\n", error.c_str());
+        if (o.show.path == "auto") {
+            std::string log;
+            show.path = ProbeRenderPath(show.scene, &log);
+            std::fprintf(stderr, "%s\n", log.c_str());
+        } else {
+            show.path = o.show.path == "compute" ? RenderPath::Compute : RenderPath::Fragment;
+        }
+        // Hot reload: shaders, mappings and presets are watched as folders.
+        FolderWatcher watcher;
+        for (const char* dir : {"shaders/lib", "shaders/scenes", "shaders/render", "mappings", "presets"})
+            if (!watcher.Watch(DataRoot() + "/" + dir, &error)) std::fprintf(stderr, "sdfvj live: %s\n", error.c_str());
+        const std::string mappingPath = std::filesystem::weakly_canonical(ResolveMappingPath(show, o.mapping)).string();
+        LiveProgram live;
+        live.Request(VariantKey{show.scene.path, show.effects, show.path});
+        live.Wait();
+        if (!live.Current()) {
+            std::fprintf(stderr, "%s\n", live.Error().c_str());
             rc = 1;
         }
+        std::string shownError;
         const auto start = std::chrono::steady_clock::now();
         auto clock = [start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
         EventQueue queue;
@@ -130,21 +149,51 @@ int RunLive(const LiveOptions& o) {
             // Rehearsal: the take plays through the same queue a controller feeds.
             if (replay)
                 for (ControlEvent& e : replay->Until(now)) queue.Push(std::move(e));
+            actions.Clear();
             for (const ControlEvent& e : queue.DrainUntil(now)) {
                 if (recorder.IsOpen()) recorder.Record(e);
-                actions.Clear();
                 ApplyEvent(mapping, mstate, e, params, &actions);
-                for (const auto& m : actions.messages) std::fprintf(stderr, "%s\n", m.c_str());
+            }
+            for (const auto& m : actions.messages) std::fprintf(stderr, "%s\n", m.c_str());
+            // Effect pads and /sdfvj/effect/<name>: a new variant compiles while the old one renders.
+            if (!actions.effectToggles.empty()) {
+                EffectSet e = live.Key().effects;
+                for (const auto& [name, on] : actions.effectToggles) {
+                    std::string err;
+                    if (!ParseEffectList((on ? "" : "-") + name, &e, &err)) std::fprintf(stderr, "%s\n", err.c_str());
+                }
+                VariantKey key = live.Key();
+                key.effects = e;
+                live.Request(key);
+                show.effects = e;
             }
             StepSmoothing(params, dt);
             CopyParams(params, &in.params);
+
+            // Hot reload: shader files through LiveProgram, the mapping here (last good kept).
+            const std::vector<std::string> changed = watcher.Poll();
+            live.Update(changed);
+            for (const std::string& f : changed) {
+                if (std::filesystem::weakly_canonical(f).string() != mappingPath) continue;
+                Mapping next;
+                LoadResult r = LoadMapping(mappingPath, &next);
+                if (r.ok) { mapping = std::move(next); mstate = MappingState{}; std::fprintf(stderr, "reloaded %s\n", mappingPath.c_str()); }
+                else std::fprintf(stderr, "%s — keeping the previous mapping\n", r.error.c_str());
+            }
+            if (live.Error() != shownError) {
+                shownError = live.Error();
+                if (!shownError.empty()) std::fprintf(stderr, "%s\n", shownError.c_str());
+                else std::fprintf(stderr, "shader reloaded\n");
+            }
+            error = shownError;
+            if (live.Scene().params.size() != params.decls.size()) params = ShowParamState(show);
 
             int fbw = 0, fbh = 0;
             glfwGetFramebufferSize(window.get(), &fbw, &fbh);
             if (fbw > 0 && fbh > 0 && fr.Resize(fbw, fbh, &error)) {
                 in.time = now;
                 in.frame = frame++;
-                fr.Draw(*show.program, show.scene, in);
+                if (live.Current()) fr.Draw(*live.Current(), live.Scene(), in);
                 glBindFramebuffer(GL_READ_FRAMEBUFFER, fr.Framebuffer());
                 glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
                 glBlitFramebuffer(0, 0, fbw, fbh, 0, 0, fbw, fbh, GL_COLOR_BUFFER_BIT, GL_NEAREST);

@@ -110,6 +110,9 @@ bool BuildShow(Show* show, const std::string& pathOption, std::string* error, bo
 }
 
 void PrintProgress(int done, int total, double elapsed) {
+    static double lastPrinted = -1.0;   // a few updates a second are enough, also in CI logs
+    if (done < total && done > 1 && elapsed - lastPrinted < 0.25) return;
+    lastPrinted = elapsed;
     const int width = 30;
     const double frac = total > 0 ? (double)done / total : 1.0;
     const double fps = elapsed > 0 ? done / elapsed : 0.0;
