@@ -1,0 +1,265 @@
+// control: MIDI and OSC in, mapped, smoothed parameter values out.
+//
+// The one header of the input layer. The data path it serves:
+//
+//   RtMidi callback ─┐                                   (render thread, once per frame)
+//   liblo thread   ──┼─> EventQueue ─> DrainUntil(frameStart) ─> ApplyEvent ─> StepSmoothing(dt)
+//   replay         ──┘
+//
+// Threading: input threads only decode and Push(); everything else in this header (ParamState,
+// Mapping, MappingState, ApplyEvent) belongs to the render thread and takes no locks.
+//
+// Usage, per frame:
+//   for (const ControlEvent& e : queue.DrainUntil(frameStart)) ApplyEvent(map, ms, e, params, &acts);
+//   StepSmoothing(params, dt);
+//   ... upload params.value[i] as u_<params.decls[i].name> ...
+#pragma once
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/control_event.h"
+#include "core/param_decl.h"
+
+namespace sdfvj {
+
+// ---------------------------------------------------------------------------------------------
+// The queue
+// ---------------------------------------------------------------------------------------------
+
+// Many producers (input threads), one consumer (render thread). Bounded: when full, the newest
+// event is dropped and counted, so a flood can never grow memory or stall a frame.
+class EventQueue {
+public:
+    explicit EventQueue(size_t capacity = 1 << 16) : capacity_(capacity) {}
+    void Push(ControlEvent e);                               // any thread
+    std::vector<ControlEvent> DrainUntil(double time);       // events with e.time <= time, in order
+    size_t Dropped() const { return dropped_.load(); }       // events lost to a full queue
+    size_t Pushed() const { return pushed_.load(); }         // events accepted so far
+    size_t Size() const;
+
+private:
+    mutable std::mutex mutex_;
+    std::deque<ControlEvent> events_;
+    size_t capacity_;
+    std::atomic<size_t> dropped_{0};
+    std::atomic<size_t> pushed_{0};
+};
+
+// ---------------------------------------------------------------------------------------------
+// Parameter values
+// ---------------------------------------------------------------------------------------------
+
+// One entry per ParamDecl, same order. `target` is where mapping writes; `value` follows it
+// through a one-pole low-pass with time constant smoothingTau[i] (seconds, 0 = jump).
+struct ParamState {
+    std::vector<ParamDecl> decls;
+    std::vector<float> value;
+    std::vector<float> target;
+    std::vector<float> smoothingTau;
+    uint64_t clamped = 0;        // how many writes were out of range (and clamped)
+    std::string lastClamp;       // one readable line about the latest clamp, for the overlay/log
+};
+
+ParamState MakeParamState(const std::vector<ParamDecl>& decls);   // value = target = default
+int FindParam(const ParamState& s, const std::string& name);      // index or -1
+// Exponential approach to target; depends only on dt, so replays give the same values.
+void StepSmoothing(ParamState& s, double dt);
+// Sets the target of `name` to `value` in the parameter's own units. Returns false and fills
+// *error when the name is unknown or the value is not finite (nothing set), or when the value
+// was out of range (the clamped value IS set and the clamp is counted in s.clamped).
+bool SetParamByName(ParamState& s, const std::string& name, float value, std::string* error);
+// Sets target index i, clamping; returns false (and records s.lastClamp) when it clamped.
+bool SetParamTarget(ParamState& s, int index, float value);
+// Range clamp with ints/bools rounded; same contract as ClampParam in core/param_decl.h, kept
+// here so the input layer does not depend on the scene module.
+float ClampToDecl(const ParamDecl& decl, float value);
+// Valid parameter names, comma separated, for error messages.
+std::string ParamNameList(const std::vector<ParamDecl>& decls);
+
+// ---------------------------------------------------------------------------------------------
+// Mapping (data, parsed from TOML) and its pure application
+// ---------------------------------------------------------------------------------------------
+
+enum class SourceKind { Cc, Note, PitchBend, Program, Nrpn, Osc };
+enum class Curve { Linear, Exponential, Logarithmic, S };
+enum class Takeover { None, Pickup, Scale };
+enum class EncoderMode { Absolute, SignedBit, SignedBit2, BinaryOffset, TwosComplement };
+// None: a continuous control (knob, fader). The others are pad behaviours.
+enum class PadAction { None, Trigger, Toggle, Preset, Effect, TapTempo };
+
+struct MappingEntry {
+    SourceKind kind = SourceKind::Cc;
+    int channel = 0;             // 1..16, 0 = any
+    int number = 0;              // CC number, note, program (-1 = any), NRPN number (0..16383)
+    std::string oscAddress;      // kind == Osc
+    bool hiRes = false;          // CC: 14-bit pair, MSB on `number`, LSB on number+32; NRPN: 14-bit value
+    std::string target;          // parameter name (continuous, trigger, toggle)
+    bool hasRange = false;       // false: the parameter's declared range
+    float outMin = 0.0f, outMax = 1.0f;
+    Curve curve = Curve::Linear;
+    float curveAmount = -1.0f;   // steepness; < 0 = default (3 for exponential/logarithmic, 2 for s)
+    bool invert = false;         // control direction reversed (applied before the curve)
+    float smoothing = -1.0f;     // seconds; < 0 keeps the parameter's current time constant
+    Takeover takeover = Takeover::None;
+    EncoderMode encoder = EncoderMode::Absolute;
+    float step = 1.0f / 128.0f;  // relative encoders: fraction of the range per tick
+    PadAction action = PadAction::None;
+    std::string preset;          // action == Preset (empty: program number / note index)
+    std::string effect;          // action == Effect
+    int line = 0, column = 0;    // where the entry starts in its file, for messages
+};
+
+struct Mapping {
+    std::string path;            // file it came from ("" when built in code)
+    std::string name;            // [profile] name
+    std::string device;          // [profile] device: port-name substring it is meant for
+    std::vector<MappingEntry> entries;
+};
+
+struct LoadResult {
+    bool ok = false;
+    std::string error;           // "file:line:col: what is wrong, expected ..."
+};
+
+// Parses a mapping file. On failure *out is left untouched (keep the last good mapping).
+LoadResult LoadMapping(const std::string& path, Mapping* out);
+LoadResult ParseMapping(const std::string& text, const std::string& path, Mapping* out);
+// Every target must be a declared parameter; an unknown one lists the valid names.
+// Returns false with one line per problem in *error.
+bool ValidateMapping(const Mapping& m, const std::vector<ParamDecl>& decls, std::string* error);
+
+// Per-entry and per-channel state that ApplyEvent keeps between events.
+struct EntryState {
+    float position = -1.0f;      // last known control position 0..1 (-1 = never seen)
+    float lastWritten = 0.0f;    // value this entry last wrote to its target
+    bool wroteOnce = false;
+    bool engaged = false;        // takeover: control and parameter are in step
+    int msb = -1;                // 14-bit CC: last MSB
+    bool toggled = false;        // toggle pads
+};
+struct NrpnChannelState {
+    int paramMsb = -1, paramLsb = -1;   // selected NRPN number (CC 99/98); -1 = none / RPN
+    int valueMsb = 0;
+};
+struct MappingState {
+    std::vector<EntryState> entries;              // resized by ApplyEvent to match the mapping
+    std::array<NrpnChannelState, 16> nrpn{};
+    std::map<std::string, bool> effects;          // effect on/off as the pads/OSC last set it
+    uint64_t unmatched = 0;                       // events no mapping or address used
+    uint64_t rejected = 0;                        // OSC messages with wrong types / unknown names
+    std::string lastRejected;                     // one line about the latest rejection
+};
+
+// What an event asks of the world outside the parameters; the caller acts on it.
+struct MappingActions {
+    std::vector<std::string> presetSelect;        // preset names, or decimal indices
+    std::vector<std::pair<std::string, bool>> effectToggles;  // effect, new state
+    bool tapTempo = false;
+    std::vector<std::string> triggers;            // parameters a momentary pad pressed
+    std::vector<std::string> messages;            // clamp/rejection reports, one line each
+    void Clear() { *this = MappingActions{}; }
+};
+
+// Pure: applies one event. Built-in OSC addresses (/sdfvj/param/<name> f 0..1,
+// /sdfvj/raw/<name> f, /sdfvj/preset s|i, /sdfvj/effect/<name> i) work without any mapping.
+// `actions` may be null.
+void ApplyEvent(const Mapping& m, MappingState& ms, const ControlEvent& e, ParamState& params,
+                MappingActions* actions);
+
+// The mapping's transfer function pieces, exposed for tests and for MIDI learn.
+float ApplyCurve(Curve c, float x, float amount);          // 0..1 -> 0..1, monotonic
+float InverseCurve(Curve c, float y, float amount);
+int DecodeRelative(EncoderMode mode, int value7);           // ticks, signed
+
+// ---------------------------------------------------------------------------------------------
+// Decoding (input threads; fuzzed)
+// ---------------------------------------------------------------------------------------------
+
+// Byte stream -> complete short messages. Resolves running status, skips SysEx, realtime and
+// system-common bytes, counts data bytes that have no status to belong to.
+struct MidiDecoder {
+    uint8_t status = 0;          // running status (0 = none)
+    uint8_t data[2] = {0, 0};
+    int have = 0;
+    int skip = 0;                // data bytes of a system-common message still to skip
+    bool inSysex = false;
+    uint64_t stray = 0;          // data bytes without a status
+    uint64_t ignored = 0;        // SysEx, clock, active sensing, system common
+    uint64_t messages = 0;
+};
+void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double time,
+                     std::vector<ControlEvent>* out);
+
+// OSC message (already split by liblo) -> event. Returns false for messages sdfvj cannot use
+// (a /sdfvj/ address with wrong argument types); *why says what was wrong.
+bool DecodeOscMessage(const char* path, const char* types, const void* const* argv, int argc,
+                      double time, ControlEvent* out, std::string* why);
+// Raw OSC packet bytes -> events (liblo's deserialiser, then DecodeOscMessage). Counts.
+struct OscDecodeCounts { uint64_t malformed = 0, wrongType = 0, ok = 0; };
+void DecodeOscPacket(const uint8_t* data, size_t size, double time, std::vector<ControlEvent>* out,
+                     OscDecodeCounts* counts);
+
+// ---------------------------------------------------------------------------------------------
+// Devices
+// ---------------------------------------------------------------------------------------------
+
+struct InputOptions {
+    std::string midiPort;                   // name substring or index; empty = every input port
+    bool midi = true;                       // false: no MIDI at all
+    bool virtualPort = true;                // also open a virtual input port for other software
+    std::string virtualPortName = "sdfvj";
+    int oscPort = 9000;                     // 0 = let the system pick a free port; -1 = no OSC
+    std::string oscFeedback;                // "HOST:PORT"; empty = no feedback
+    double logInterval = 1.0;               // seconds between "bad input" log lines
+    bool log = true;                        // print status changes and bad-input counts on stderr
+};
+
+// Counters the input threads bump; read them from any thread.
+struct InputCounters {
+    std::atomic<uint64_t> midiMessages{0}, midiStray{0}, midiIgnored{0};
+    std::atomic<uint64_t> oscMessages{0}, oscMalformed{0}, oscWrongType{0};
+};
+
+// Owns the MIDI ports, the OSC server thread and a watcher thread that reconnects MIDI ports
+// (every 250 ms) and writes the rate-limited bad-input log. A device that cannot be opened is a
+// status line, never an exception.
+class InputSession {
+public:
+    InputSession(const InputOptions& opt, EventQueue& queue, std::function<double()> clock);
+    ~InputSession();
+    InputSession(const InputSession&) = delete;
+    InputSession& operator=(const InputSession&) = delete;
+
+    std::vector<std::string> StatusLines() const;    // one per device / problem
+    int OscPort() const;                             // bound UDP port, or -1
+    void Poll();                                     // reconnect check; the watcher calls it too
+    std::vector<std::string> OpenMidiPorts() const;  // names of the ports being listened to
+    const InputCounters& Counters() const;
+    // Sends every parameter as /sdfvj/param/<name> f (0..1) and /sdfvj/preset s to the
+    // --osc-feedback target. Call from the render thread after a preset change.
+    void SendFeedback(const ParamState& params, const std::string& presetName);
+
+    struct Impl;
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// "index: name" for every MIDI input port on the active API (JACK when a server runs, else ALSA).
+std::vector<std::string> ListMidiPorts();
+// `sdfvj learn --param NAME`: waits for the next control that moves and appends a mapping
+// entry for it to mappingPath. Returns 0 on success, 1 on timeout, 2 on a file problem.
+int RunLearn(const std::string& param, const std::string& mappingPath, double timeoutSeconds);
+// `sdfvj bench input`: event-to-frame latency and a 10,000 msg/s flood; prints medians.
+int RunInputBench(double seconds);
+
+}  // namespace sdfvj

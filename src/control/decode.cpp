@@ -1,0 +1,189 @@
+// Decoding on the input threads: MIDI bytes and OSC messages -> ControlEvents. This is the
+// code the fuzz target (fuzz_input.cpp) hammers: it must accept any bytes without crashing.
+#include <cmath>
+#include <cstring>
+
+#include <lo/lo.h>
+
+#include "control/control.h"
+
+namespace sdfvj {
+namespace {
+
+int DataBytesFor(uint8_t status) {
+    uint8_t t = status & 0xF0;
+    return (t == 0xC0 || t == 0xD0) ? 1 : 2;
+}
+
+constexpr size_t kMaxOscString = 1024;
+constexpr size_t kMaxOscAddress = 256;
+
+}  // namespace
+
+void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double time,
+                     std::vector<ControlEvent>* out) {
+    for (size_t i = 0; i < size; ++i) {
+        uint8_t b = bytes[i];
+        if (b >= 0xF8) {             // realtime (clock, start, active sensing...): may appear anywhere
+            ++d.ignored;
+            continue;
+        }
+        if (b == 0xF0) {             // SysEx start cancels running status
+            d.inSysex = true;
+            d.status = 0;
+            d.have = d.skip = 0;
+            ++d.ignored;
+            continue;
+        }
+        if (b == 0xF7) {
+            d.inSysex = false;
+            continue;
+        }
+        if (b >= 0xF1) {             // system common: cancels running status, skip its data
+            d.inSysex = false;
+            d.status = 0;
+            d.have = 0;
+            d.skip = (b == 0xF2) ? 2 : (b == 0xF1 || b == 0xF3) ? 1 : 0;
+            ++d.ignored;
+            continue;
+        }
+        if (b >= 0x80) {             // channel status
+            d.inSysex = false;
+            d.status = b;
+            d.have = d.skip = 0;
+            continue;
+        }
+        if (d.inSysex) continue;
+        if (d.skip > 0) {
+            --d.skip;
+            continue;
+        }
+        if (d.status == 0) {
+            ++d.stray;
+            continue;
+        }
+        d.data[d.have++] = b;
+        if (d.have == DataBytesFor(d.status)) {
+            ControlEvent e;
+            e.time = time;
+            e.source = EventSource::Midi;
+            e.midi[0] = d.status;
+            e.midi[1] = d.data[0];
+            e.midi[2] = d.have > 1 ? d.data[1] : 0;
+            e.midiSize = uint8_t(d.have + 1);
+            d.have = 0;               // keep status: running status
+            ++d.messages;
+            if (out) out->push_back(e);
+        }
+    }
+}
+
+bool DecodeOscMessage(const char* path, const char* types, const void* const* argvIn, int argc,
+                      double time, ControlEvent* out, std::string* why) {
+    auto fail = [&](const std::string& w) {
+        if (why) *why = w;
+        return false;
+    };
+    if (!path) return fail("no address");
+    size_t plen = strnlen(path, kMaxOscAddress + 1);
+    if (plen > kMaxOscAddress) return fail("address longer than 256 characters");
+    ControlEvent e;
+    e.time = time;
+    e.source = EventSource::Osc;
+    e.address.assign(path, plen);
+    const lo_arg* const* argv = reinterpret_cast<const lo_arg* const*>(argvIn);
+    for (int k = 0; k < argc && types && types[k]; ++k) {
+        OscArg a;
+        a.type = types[k];
+        const lo_arg* v = argv ? argv[k] : nullptr;
+        if (!v && types[k] != 'T' && types[k] != 'F' && types[k] != 'N' && types[k] != 'I')
+            return fail(e.address + ": missing argument data");
+        switch (types[k]) {
+            case 'f': a.f = v->f; break;
+            case 'd': a.type = 'f'; a.f = float(v->d); break;
+            case 'i': a.i = v->i; a.f = float(v->i); break;
+            case 'h': a.type = 'i'; a.i = int32_t(std::max<int64_t>(INT32_MIN, std::min<int64_t>(INT32_MAX, v->h))); a.f = float(a.i); break;
+            case 'T': a.type = 'i'; a.i = 1; a.f = 1.0f; break;
+            case 'F': a.type = 'i'; a.i = 0; a.f = 0.0f; break;
+            case 's': case 'S': {
+                a.type = 's';
+                const char* s = &v->s;
+                size_t n = strnlen(s, kMaxOscString + 1);
+                if (n > kMaxOscString) return fail(e.address + ": string argument longer than 1024 bytes");
+                a.s.assign(s, n);
+                break;
+            }
+            default: break;  // blobs, MIDI, timetags...: kept by tag, ignored
+        }
+        e.args.push_back(std::move(a));
+    }
+    // Check the built-in addresses here, on the OSC thread, so junk never reaches the queue.
+    const std::string& ad = e.address;
+    auto numeric = [&]() { return !e.args.empty() && (e.args[0].type == 'f' || e.args[0].type == 'i'); };
+    if (ad.rfind("/sdfvj/", 0) == 0) {
+        if (ad.rfind("/sdfvj/param/", 0) == 0 || ad.rfind("/sdfvj/raw/", 0) == 0) {
+            if (ad.size() <= (ad[7] == 'p' ? 13u : 11u)) return fail(ad + ": no parameter name in the address");
+            if (!numeric()) return fail(ad + ": expected one float argument, got '" + std::string(types ? types : "") + "'");
+            if (e.args[0].type == 'f' && !std::isfinite(e.args[0].f)) return fail(ad + ": value is not finite");
+        } else if (ad == "/sdfvj/preset") {
+            if (e.args.empty() || (e.args[0].type != 's' && e.args[0].type != 'i'))
+                return fail(ad + ": expected one string or int argument, got '" + std::string(types ? types : "") + "'");
+        } else if (ad.rfind("/sdfvj/effect/", 0) == 0) {
+            if (ad.size() <= 14) return fail(ad + ": no effect name in the address");
+            if (!numeric()) return fail(ad + ": expected one int argument, got '" + std::string(types ? types : "") + "'");
+        } else {
+            return fail(ad + ": unknown address, expected /sdfvj/param/<name>, /sdfvj/raw/<name>, "
+                             "/sdfvj/preset or /sdfvj/effect/<name>");
+        }
+    }
+    if (out) *out = std::move(e);
+    return true;
+}
+
+namespace {
+
+void DecodeOscElement(const uint8_t* data, size_t size, double time, std::vector<ControlEvent>* out,
+                      OscDecodeCounts* c, int depth) {
+    if (size >= 8 && std::memcmp(data, "#bundle", 8) == 0) {
+        if (depth > 8 || size < 16) { ++c->malformed; return; }
+        size_t pos = 16;  // "#bundle\0" + timetag
+        while (pos < size) {
+            if (size - pos < 4) { ++c->malformed; return; }
+            uint32_t n = (uint32_t(data[pos]) << 24) | (uint32_t(data[pos + 1]) << 16) |
+                         (uint32_t(data[pos + 2]) << 8) | uint32_t(data[pos + 3]);
+            pos += 4;
+            if (n > size - pos || n % 4 != 0) { ++c->malformed; return; }
+            DecodeOscElement(data + pos, n, time, out, c, depth + 1);
+            pos += n;
+        }
+        return;
+    }
+    // lo_message_deserialise wants a writable buffer (it byte-swaps in a copy it makes itself,
+    // but the prototype is not const).
+    std::vector<uint8_t> copy(data, data + size);
+    int result = 0;
+    lo_message m = copy.empty() ? nullptr : lo_message_deserialise(copy.data(), copy.size(), &result);
+    if (!m) { ++c->malformed; return; }
+    const char* path = reinterpret_cast<const char*>(copy.data());  // validated by deserialise
+    ControlEvent e;
+    std::string why;
+    if (DecodeOscMessage(path, lo_message_get_types(m),
+                         reinterpret_cast<const void* const*>(lo_message_get_argv(m)),
+                         lo_message_get_argc(m), time, &e, &why)) {
+        ++c->ok;
+        if (out) out->push_back(std::move(e));
+    } else {
+        ++c->wrongType;
+    }
+    lo_message_free(m);
+}
+
+}  // namespace
+
+void DecodeOscPacket(const uint8_t* data, size_t size, double time, std::vector<ControlEvent>* out,
+                     OscDecodeCounts* counts) {
+    OscDecodeCounts local;
+    DecodeOscElement(data, size, time, out, counts ? counts : &local, 0);
+}
+
+}  // namespace sdfvj

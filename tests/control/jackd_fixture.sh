@@ -1,0 +1,44 @@
+#!/bin/sh
+# ctest fixture: start JACK's dummy server for the MIDI tests, and stop it again.
+#   jackd_fixture.sh start STATE_PREFIX   (writes STATE_PREFIX.pid and STATE_PREFIX.log)
+#   jackd_fixture.sh stop  STATE_PREFIX
+# If a JACK server already runs, it is used and left alone.
+set -u
+cmd=$1
+state=$2
+case $cmd in
+start)
+    rm -f "$state.pid"
+    if jack_lsp >/dev/null 2>&1; then
+        echo "jackd already running; using it"
+        exit 0
+    fi
+    setsid jackd --no-realtime -d dummy -r 48000 -p 256 >"$state.log" 2>&1 </dev/null &
+    echo $! >"$state.pid"
+    i=0
+    until jack_lsp >/dev/null 2>&1; do
+        i=$((i + 1))
+        if [ $i -gt 1000 ]; then
+            echo "jackd did not come up in 10 s:"; cat "$state.log"; exit 1
+        fi
+        sleep 0.01
+    done
+    echo "jackd ready (pid $(cat "$state.pid"))"
+    ;;
+stop)
+    [ -f "$state.pid" ] || { echo "no jackd of ours to stop"; exit 0; }
+    pid=$(cat "$state.pid")
+    kill "$pid" 2>/dev/null
+    i=0
+    while kill -0 "$pid" 2>/dev/null; do
+        i=$((i + 1))
+        if [ $i -gt 500 ]; then kill -9 "$pid" 2>/dev/null; break; fi
+        sleep 0.01
+    done
+    rm -f "$state.pid"
+    echo "jackd stopped"
+    ;;
+*)
+    echo "usage: $0 start|stop STATE_PREFIX"; exit 2
+    ;;
+esac

@@ -1,0 +1,173 @@
+// MIDI end to end through JACK's dummy server (the `jackd` ctest fixture starts it): an RtMidiOut
+// on the JACK API sends into InputSession's ports; the tests assert the parameter values that
+// come out of the mapping. Unique port names per process keep parallel runs apart.
+#include <rtmidi/RtMidi.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+
+#include "test_util.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+
+namespace {
+
+std::string Unique(const char* base) { return std::string(base) + "-" + std::to_string(getpid()); }
+
+// Opens an RtMidiOut connected to the first port whose name contains `needle`.
+std::unique_ptr<RtMidiOut> ConnectTo(const std::string& needle) {
+    auto out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("midi-test"));
+    for (unsigned i = 0; i < out->getPortCount(); ++i)
+        if (out->getPortName(i).find(needle) != std::string::npos) {
+            out->openPort(i, "out");
+            return out;
+        }
+    FAIL("no JACK MIDI port contains '" << needle << "'");
+    return nullptr;
+}
+
+void Send(RtMidiOut& out, std::vector<unsigned char> bytes) { out.sendMessage(&bytes); }
+
+struct MidiRig {
+    EventQueue queue;
+    std::unique_ptr<InputSession> session;
+    Mapping mapping;
+    MappingState ms;
+    ParamState params = MakeParamState(MidiSceneDecls());
+    MappingActions acts;
+    MidiRig(const std::string& midiPort, const std::string& virtualName) {
+        InputOptions o;
+        o.midiPort = midiPort;
+        o.virtualPortName = virtualName;
+        o.oscPort = -1;
+        session = std::make_unique<InputSession>(o, queue, &Now);
+    }
+    bool Frame(size_t n) {
+        bool ok = WaitFor([&] { return queue.Pushed() >= n; }, 3.0);
+        for (const ControlEvent& e : queue.DrainUntil(Now())) ApplyEvent(mapping, ms, e, params, &acts);
+        StepSmoothing(params, 1.0 / 60.0);
+        return ok;
+    }
+};
+
+}  // namespace
+
+TEST_CASE("midi end to end: CC, 14-bit, NRPN, relative encoder and notes through JACK") {
+    std::string vname = Unique("sdfvj-e2e");
+    MidiRig r("no-controller-here", vname);
+    bool jack = false;
+    for (const std::string& s : r.session->StatusLines()) jack = jack || s.rfind("MIDI (JACK)", 0) == 0;
+    INFO(r.session->StatusLines()[0]);
+    REQUIRE(jack);
+    REQUIRE(ParseMapping(R"(
+[[map]]
+cc = 1
+target = "scale"
+[[map]]
+cc14 = 2
+target = "twist"
+[[map]]
+nrpn = 300
+target = "displacement"
+[[map]]
+cc = 16
+encoder = "binary_offset"
+step = 0.1
+target = "smoothness"
+[[pad]]
+note = 36
+action = "toggle"
+target = "flag"
+[[pad]]
+note = 37
+action = "effect"
+effect = "shadows"
+[[pad]]
+note = 38
+action = "preset"
+preset = "intro"
+)", "e2e.toml", &r.mapping).ok);
+
+    auto out = ConnectTo(vname);
+    // JACK connects asynchronously: resend a harmless message until the first one arrives.
+    REQUIRE(WaitFor([&] { Send(*out, {0xB0, 1, 0}); return r.queue.Pushed() > 0; }, 3.0));
+    REQUIRE(r.Frame(1));
+    size_t base = r.queue.Pushed();
+
+    Send(*out, {0xB0, 1, 127});                                  // CC -> scale max
+    Send(*out, {0xB0, 2, 64});                                   // 14-bit MSB
+    Send(*out, {0xB0, 34, 0});                                   //        LSB
+    Send(*out, {0xB0, 99, 2});                                   // NRPN 300 = 2 * 128 + 44
+    Send(*out, {0xB0, 98, 44});
+    Send(*out, {0xB0, 6, 100});
+    Send(*out, {0xB0, 38, 5});
+    Send(*out, {0xB0, 16, 67});                                  // encoder +3 ticks
+    Send(*out, {0x90, 36, 100});                                 // toggle on
+    Send(*out, {0x80, 36, 0});
+    Send(*out, {0x90, 37, 100});                                 // effect toggle
+    Send(*out, {0x90, 38, 100});                                 // preset
+    REQUIRE(r.Frame(base + 12));
+    CHECK(Param(r.params, "scale") == Approx(2.0f));
+    CHECK(Param(r.params, "twist") == Approx(-3.0f + 6.0f * 8192 / 16383.0f));
+    CHECK(Param(r.params, "displacement") == Approx((100 * 128 + 5) / 16383.0f));
+    CHECK(Param(r.params, "smoothness") == Approx(0.25f));       // 0.2 + 3 * 0.1 of [0, 0.5]
+    CHECK(Param(r.params, "flag") == 1.0f);
+    CHECK(r.acts.effectToggles == std::vector<std::pair<std::string, bool>>{{"shadows", true}});
+    CHECK(r.acts.presetSelect == std::vector<std::string>{"intro"});
+
+    // Running status inside one JACK event, and a stray data byte.
+    base = r.queue.Pushed();
+    Send(*out, {0xB0, 1, 0, 16, 61});                            // scale min, encoder -3
+    Send(*out, {0xF6, 0x05});                                    // tune request + a stray byte
+    REQUIRE(r.Frame(base + 2));
+    CHECK(Param(r.params, "scale") == Approx(0.5f));
+    CHECK(Param(r.params, "smoothness") == Approx(0.1f));
+    REQUIRE(WaitFor([&] { return r.session->Counters().midiStray >= 1; }, 2.0));
+    CHECK(r.session->Counters().midiStray == 1);
+    // The smoothed value follows over frames, never jumps past the target.
+    for (int i = 0; i < 120; ++i) StepSmoothing(r.params, 1.0 / 60.0);
+    CHECK(r.params.value[FindParam(r.params, "scale")] == Approx(0.5f));
+}
+
+TEST_CASE("midi reconnect: a controller plugged in later and replugged is picked up within a second") {
+    std::string dev = Unique("Fake LPD8");
+    MidiRig r(dev, Unique("sdfvj-rc"));
+    REQUIRE(ParseMapping("[[map]]\ncc = 1\ntarget = \"displacement\"\n", "t.toml", &r.mapping).ok);
+    CHECK(r.session->StatusLines()[0].find("waiting for it") != std::string::npos);
+    CHECK(r.session->OpenMidiPorts().empty());
+
+    for (int round = 0; round < 2; ++round) {
+        auto out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("fake-device"));
+        out->openVirtualPort(dev);                                // "plug in"
+        double plugged = Now();
+        REQUIRE(WaitFor([&] { return !r.session->OpenMidiPorts().empty(); }, 1.0));
+        double connectedAfter = Now() - plugged;
+        CHECK(connectedAfter < 1.0);
+        size_t base = r.queue.Pushed();
+        REQUIRE(WaitFor([&] { Send(*out, {0xB0, 1, uint8_t(64 + round)}); return r.queue.Pushed() > base; }, 2.0));
+        r.Frame(base + 1);
+        CHECK(Param(r.params, "displacement") == Approx((64 + round) / 127.0f));
+        out.reset();                                              // "unplug"
+        REQUIRE(WaitFor([&] { return r.session->OpenMidiPorts().empty(); }, 1.0));
+    }
+}
+
+TEST_CASE("midi list shows JACK ports, and a missing device is a status line") {
+    std::string dev = Unique("Lister");
+    RtMidiOut out(RtMidi::UNIX_JACK, Unique("lister-client"));
+    out.openVirtualPort(dev);
+    bool found = false;
+    REQUIRE(WaitFor([&] {
+        for (const std::string& p : ListMidiPorts()) found = found || p.find(dev) != std::string::npos;
+        return found;
+    }, 2.0));
+    // Index selection: "--midi N" picks the N-th port of that list.
+    std::vector<std::string> ports = ListMidiPorts();
+    std::string index;
+    for (const std::string& p : ports)
+        if (p.find(dev) != std::string::npos) index = p.substr(0, p.find(':'));
+    MidiRig r(index, Unique("sdfvj-idx"));
+    REQUIRE(WaitFor([&] { return !r.session->OpenMidiPorts().empty(); }, 1.0));
+    CHECK(r.session->OpenMidiPorts()[0].find(dev) != std::string::npos);
+}
