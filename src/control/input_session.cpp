@@ -102,6 +102,7 @@ struct InputSession::Impl {
     std::vector<std::unique_ptr<MidiPort>> alsaPorts;
     std::vector<std::string> connected;            // sources we listen to
     std::string midiStatus;
+    int pollsWithoutMidi = 0;
 
     // OSC.
     lo_server_thread osc = nullptr;
@@ -206,7 +207,8 @@ struct InputSession::Impl {
     // Caller holds `mutex`.
     void Reconnect() {
         if (api == Api::None) {
-            if (opt.midi && JackServerRunning()) StartMidi();  // a server came up after us
+            // A JACK server that came up after us: look once a second.
+            if (opt.midi && ++pollsWithoutMidi % 4 == 0 && JackServerRunning()) StartMidi();
             return;
         }
         std::vector<std::string> wanted;

@@ -4,6 +4,9 @@
 #include <rtmidi/RtMidi.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <thread>
+
 #include <catch2/catch.hpp>
 
 #include "test_util.h"
@@ -170,4 +173,28 @@ TEST_CASE("midi list shows JACK ports, and a missing device is a status line") {
     MidiRig r(index, Unique("sdfvj-idx"));
     REQUIRE(WaitFor([&] { return !r.session->OpenMidiPorts().empty(); }, 1.0));
     CHECK(r.session->OpenMidiPorts()[0].find(dev) != std::string::npos);
+}
+
+TEST_CASE("midi learn: the next control that moves is written to the mapping file") {
+    std::string path = "/tmp/sdfvj-learn-" + std::to_string(getpid()) + ".toml";
+    std::remove(path.c_str());
+    int rc = -1;
+    std::thread learner([&] { rc = RunLearn("twist", path, 5.0); });
+    RtMidiOut out(RtMidi::UNIX_JACK, Unique("learn-client"));
+    out.openVirtualPort(Unique("learn-src"));
+    uint8_t v = 0;
+    // A pad-like single value does not count; a knob sending different values does.
+    WaitFor([&] { Send(out, {0xB2, 5, uint8_t(v++ % 2 ? 10 : 20)}); return rc != -1; }, 6.0);
+    learner.join();
+    REQUIRE(rc == 0);
+    Mapping m;
+    LoadResult r = LoadMapping(path, &m);
+    INFO(r.error);
+    REQUIRE(r.ok);
+    REQUIRE(m.entries.size() == 1);
+    CHECK(m.entries[0].kind == SourceKind::Cc);
+    CHECK(m.entries[0].number == 5);
+    CHECK(m.entries[0].channel == 3);
+    CHECK(m.entries[0].target == "twist");
+    std::remove(path.c_str());
 }
