@@ -1,0 +1,42 @@
+// common.glsl - constants and small scalar/vector helpers used by every SDF file.
+//
+// Usage: #include "lib/common.glsl", then PI, TAU, saturate(x), dot2(v), vmax(v), vmin(v),
+// sgn(x) (never 0), square(x), safeNormalize(v).
+// Written in the GLSL subset that also compiles as C++ (src/sdf/glsl_prelude.h): no
+// swizzles, no inout/out, float literals with `f`.
+#ifndef SDF_LIB_COMMON_GLSL
+#define SDF_LIB_COMMON_GLSL
+
+// Irrational constants are computed from exactly representable literals: a `f` literal
+// is rounded to float even in the double build, an expression of 3.0f is not.
+const float PI = acos(-1.0f);
+const float TAU = 2.0f * acos(-1.0f);
+const float SQRT3 = sqrt(3.0f);
+
+// clamp to [0, 1]
+float saturate(float x) { return clamp(x, 0.0f, 1.0f); }
+vec3 saturate(vec3 v) { return clamp(v, 0.0f, 1.0f); }
+
+// squared length
+float dot2(vec2 v) { return dot(v, v); }
+float dot2(vec3 v) { return dot(v, v); }
+
+// largest / smallest component
+float vmax(vec2 v) { return max(v.x, v.y); }
+float vmax(vec3 v) { return max(max(v.x, v.y), v.z); }
+float vmin(vec2 v) { return min(v.x, v.y); }
+float vmin(vec3 v) { return min(min(v.x, v.y), v.z); }
+
+// sign that is never 0 (sign(0) = 0 breaks mirror and fold operators)
+float sgn(float x) { return x < 0.0f ? -1.0f : 1.0f; }
+
+float square(float x) { return x * x; }
+
+// normalize that returns (0, 1, 0) instead of NaN for a zero vector (flat fields, the
+// inside of a degenerate primitive)
+vec3 safeNormalize(vec3 v) {
+    float l = length(v);
+    return l > 1e-20f ? v / l : vec3(0.0f, 1.0f, 0.0f);
+}
+
+#endif

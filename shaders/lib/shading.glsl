@@ -1,0 +1,203 @@
+// shading.glsl - everything that looks at the scene from a surface point: normals,
+// shadows, ambient occlusion, lighting models, sky/fog, tone mapping, debug colours.
+//
+// Include it AFTER the scene: it calls the scene's `vec4 map(vec3 p)` (albedo, distance)
+// and `float sceneLipschitz()`, dividing distances by the latter so shadow and AO probes
+// stay valid on twisted or displaced fields.
+// Usage: vec3 n = calcNormalTetra(p, 1e-3f);
+//        float s = shadowSoftImproved(p + n * 2e-3f, l, 0.01f, 20.0f, 64, 8.0f);
+//        vec3 c = cookTorrance(n, v, l, albedo, metalness, roughness) * lightColor * s;
+//        vec3 display = linearToSRGB(toneMapACES(c));
+#ifndef SDF_LIB_SHADING_GLSL
+#define SDF_LIB_SHADING_GLSL
+#include "lib/common.glsl"
+
+// 1 / (the step correction the scene asks for)
+float sceneStepScale() { return 1.0f / max(1.0f, sceneLipschitz()); }
+
+// ---- normals --------------------------------------------------------------------------
+// Central differences: 6 map calls, second-order accurate.
+vec3 calcNormalCentral(vec3 p, float eps) {
+    vec3 ex = vec3(eps, 0.0f, 0.0f);
+    vec3 ey = vec3(0.0f, eps, 0.0f);
+    vec3 ez = vec3(0.0f, 0.0f, eps);
+    return safeNormalize(vec3(map(p + ex).w - map(p - ex).w,
+                              map(p + ey).w - map(p - ey).w,
+                              map(p + ez).w - map(p - ez).w));
+}
+
+// Forward differences: 4 map calls, first-order accurate.
+vec3 calcNormalForward(vec3 p, float eps) {
+    float d = map(p).w;
+    return safeNormalize(vec3(map(p + vec3(eps, 0.0f, 0.0f)).w - d,
+                              map(p + vec3(0.0f, eps, 0.0f)).w - d,
+                              map(p + vec3(0.0f, 0.0f, eps)).w - d));
+}
+
+// Tetrahedron: 4 map calls at the corners of a tetrahedron, second-order-ish accurate.
+vec3 calcNormalTetra(vec3 p, float eps) {
+    vec3 k0 = vec3(1.0f, -1.0f, -1.0f);
+    vec3 k1 = vec3(-1.0f, -1.0f, 1.0f);
+    vec3 k2 = vec3(-1.0f, 1.0f, -1.0f);
+    vec3 k3 = vec3(1.0f, 1.0f, 1.0f);
+    return safeNormalize(k0 * map(p + k0 * eps).w + k1 * map(p + k1 * eps).w +
+                         k2 * map(p + k2 * eps).w + k3 * map(p + k3 * eps).w);
+}
+
+// ---- shadows: ro is the (offset) surface point, rd the unit direction to the light -----
+// Hard: 0 if anything is hit before tmax, else 1.
+float shadowHard(vec3 ro, vec3 rd, float tmin, float tmax, int steps) {
+    float stepScale = sceneStepScale();
+    float t = tmin;
+    for (int i = 0; i < steps; i++) {
+        float h = map(ro + rd * t).w * stepScale;
+        if (h < 1e-4f * t) return 0.0f;
+        t += h;
+        if (t > tmax) break;
+    }
+    return 1.0f;
+}
+
+// Soft: penumbra from the closest miss along the ray, k = hardness (8 soft .. 64 sharp).
+float shadowSoft(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
+    float stepScale = sceneStepScale();
+    float res = 1.0f;
+    float t = tmin;
+    for (int i = 0; i < steps; i++) {
+        float h = map(ro + rd * t).w * stepScale;
+        res = min(res, k * h / t);
+        if (res < 1e-3f) return 0.0f;
+        t += clamp(h, 0.005f, 0.5f);
+        if (t > tmax) break;
+    }
+    return saturate(res);
+}
+
+// Improved soft (iq): estimates the closest approach between two samples by intersecting
+// their spheres, which removes the banding of shadowSoft near sharp corners.
+float shadowSoftImproved(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
+    float stepScale = sceneStepScale();
+    float res = 1.0f;
+    float t = tmin;
+    float ph = 1e10f;
+    for (int i = 0; i < steps; i++) {
+        float h = map(ro + rd * t).w * stepScale;
+        float y = h * h / (2.0f * ph);
+        float d = sqrt(max(h * h - y * y, 0.0f));
+        res = min(res, k * d / max(t - y, 1e-4f));
+        ph = max(h, 1e-6f);
+        if (res < 1e-3f) return 0.0f;
+        t += clamp(h, 0.005f, 0.5f);
+        if (t > tmax) break;
+    }
+    return saturate(res);
+}
+
+// ---- ambient occlusion ------------------------------------------------------------------
+// Samples the field along the normal; 1 = open, 0 = fully occluded.
+float ambientOcclusion(vec3 p, vec3 n, int samples) {
+    float stepScale = sceneStepScale();
+    float occ = 0.0f;
+    float weight = 1.0f;
+    float denom = max(float(samples - 1), 1.0f);
+    for (int i = 0; i < samples; i++) {
+        float h = 0.01f + 0.15f * float(i) / denom;
+        float d = map(p + n * h).w * stepScale;
+        occ += (h - d) * weight;
+        weight *= 0.9f;
+    }
+    // normalised so 5 samples give iq's classic 1 - 3 * occ
+    return saturate(1.0f - 15.0f * occ / max(float(samples), 1.0f));
+}
+
+// ---- lighting (n, l, v unit length; l towards the light, v towards the eye) -----------
+float lambert(vec3 n, vec3 l) { return max(dot(n, l), 0.0f); }
+
+// Normalised Blinn-Phong specular term (energy roughly constant across shininess).
+float blinnPhong(vec3 n, vec3 l, vec3 v, float shininess) {
+    vec3 h = safeNormalize(l + v);
+    return (shininess + 8.0f) / (8.0f * PI) * pow(max(dot(n, h), 0.0f), shininess) * lambert(n, l);
+}
+// The Blinn-Phong exponent that looks like a given GGX roughness.
+float roughnessToShininess(float roughness) {
+    float a = max(roughness * roughness, 1e-3f);
+    return clamp(2.0f / (a * a) - 2.0f, 1.0f, 4096.0f);
+}
+
+// GGX / Trowbridge-Reitz normal distribution, alpha = roughness^2.
+float distributionGGX(float NdotH, float roughness) {
+    float a = max(roughness * roughness, 1e-3f);
+    float a2 = a * a;
+    float q = NdotH * NdotH * (a2 - 1.0f) + 1.0f;
+    return a2 / (PI * q * q);
+}
+// Smith geometry term with Schlick-GGX, k = (roughness + 1)^2 / 8 (direct lighting).
+float geometrySmith(float NdotV, float NdotL, float roughness) {
+    float k = (roughness + 1.0f) * (roughness + 1.0f) / 8.0f;
+    return NdotV / (NdotV * (1.0f - k) + k) * (NdotL / (NdotL * (1.0f - k) + k));
+}
+// Fresnel-Schlick.
+vec3 fresnelSchlick(float cosTheta, vec3 F0) {
+    float f = pow(1.0f - saturate(cosTheta), 5.0f);
+    return F0 + (vec3(1.0f) - F0) * f;
+}
+// Base reflectance: 0.04 for dielectrics, the albedo for metals.
+vec3 baseReflectance(vec3 albedo, float metalness) {
+    return mix(vec3(0.04f), albedo, metalness);
+}
+// Cook-Torrance BRDF times cos(theta_l): multiply by the light colour (and shadow).
+vec3 cookTorrance(vec3 n, vec3 v, vec3 l, vec3 albedo, float metalness, float roughness) {
+    float r = clamp(roughness, 0.03f, 1.0f);
+    vec3 h = safeNormalize(v + l);
+    float NdotL = max(dot(n, l), 0.0f);
+    float NdotV = max(dot(n, v), 1e-4f);
+    float NdotH = max(dot(n, h), 0.0f);
+    vec3 F = fresnelSchlick(max(dot(h, v), 0.0f), baseReflectance(albedo, metalness));
+    vec3 specular = distributionGGX(NdotH, r) * geometrySmith(NdotV, NdotL, r) * F /
+                    (4.0f * NdotV * max(NdotL, 1e-4f));
+    vec3 kd = (vec3(1.0f) - F) * (1.0f - metalness);
+    return (kd * albedo / PI + specular) * NdotL;
+}
+
+// ---- environment ---------------------------------------------------------------------
+// Hemisphere ambient: sky colour from above, warm ground bounce from below.
+vec3 ambientLight(vec3 n) {
+    return mix(vec3(0.10f, 0.08f, 0.06f), vec3(0.30f, 0.38f, 0.50f), 0.5f + 0.5f * n.y);
+}
+// Sky gradient with a sun disc and glow in the light direction.
+vec3 skyColor(vec3 rd, vec3 lightDir, vec3 lightColor) {
+    float y = max(rd.y, 0.0f);
+    vec3 col = mix(vec3(0.55f, 0.62f, 0.72f), vec3(0.18f, 0.32f, 0.60f), sqrt(y));
+    col = mix(col, vec3(0.30f, 0.28f, 0.26f), saturate(-rd.y * 4.0f));
+    float sun = max(dot(rd, lightDir), 0.0f);
+    col += lightColor * (0.25f * pow(sun, 8.0f) + 4.0f * pow(sun, 800.0f));
+    return col;
+}
+// Exponential distance fog towards fogColor.
+vec3 applyFog(vec3 col, float t, vec3 fogColor, float density) {
+    return mix(fogColor, col, exp(-density * t));
+}
+
+// ---- display ---------------------------------------------------------------------------
+// ACES filmic fit (Narkowicz 2015) and Reinhard; both expect linear radiance.
+vec3 toneMapACES(vec3 x) {
+    return saturate((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f));
+}
+vec3 toneMapReinhard(vec3 x) { return x / (x + vec3(1.0f)); }
+
+float linearToSRGB(float c) {
+    float x = saturate(c);
+    return x <= 0.0031308f ? 12.92f * x : 1.055f * pow(x, 1.0f / 2.4f) - 0.055f;
+}
+vec3 linearToSRGB(vec3 c) {
+    return vec3(linearToSRGB(c.x), linearToSRGB(c.y), linearToSRGB(c.z));
+}
+
+// Debug heatmap: 0 blue -> green -> yellow -> 1 red.
+vec3 heatmap(float t) {
+    float x = saturate(t);
+    return saturate(vec3(1.5f - abs(4.0f * x - 3.0f), 1.5f - abs(4.0f * x - 2.0f),
+                         1.5f - abs(4.0f * x - 1.0f)));
+}
+
+#endif

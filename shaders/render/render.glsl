@@ -1,0 +1,215 @@
+// render.glsl - the raymarcher and shader body shared by the fragment and compute paths.
+//
+// The host includes it after render/uniforms.glsl, the scene's `uniform float u_<input>;`
+// lines and the scene (which defines `vec4 map(vec3 p)` and `float sceneLipschitz()`).
+// It defines `vec4 render(vec2 fragCoord)`: fragCoord in pixels (pixel centres at +0.5,
+// origin bottom-left as gl_FragCoord), returns the display colour (tone mapped, sRGB,
+// alpha 1). Written in the GLSL/C++ subset, so the CPU reference renderer runs it too.
+//
+// Compile-time switches (the host emits #defines; 0 compiles the effect out entirely):
+//   SHADOWS     0 none / 1 hard / 2 soft / 3 improved soft
+//   AO          0 / 1            SPECULAR  0 / 1 (Blinn-Phong)
+//   PBR         0 / 1 (Cook-Torrance replaces Lambert + Blinn-Phong)
+//   REFLECTIONS number of mirror bounces (0 = none)
+//   FOG         0 / 1 (distance fog + sky background)
+//   DEBUG_VIEW  0 shaded / 1 step-count heatmap / 2 depth / 3 normals
+//   NORMALS     0 central / 1 forward / 2 tetrahedron differences
+//   MARCH_FIXED 0 sphere tracing / 1 fixed step of u_fixedStep
+#ifndef SDF_RENDER_RENDER_GLSL
+#define SDF_RENDER_RENDER_GLSL
+
+#ifndef SHADOWS
+#define SHADOWS 2
+#endif
+#ifndef AO
+#define AO 1
+#endif
+#ifndef SPECULAR
+#define SPECULAR 1
+#endif
+#ifndef PBR
+#define PBR 0
+#endif
+#ifndef REFLECTIONS
+#define REFLECTIONS 0
+#endif
+#ifndef FOG
+#define FOG 1
+#endif
+#ifndef DEBUG_VIEW
+#define DEBUG_VIEW 0
+#endif
+#ifndef NORMALS
+#define NORMALS 0
+#endif
+#ifndef MARCH_FIXED
+#define MARCH_FIXED 0
+#endif
+
+#include "render/uniforms.glsl"
+#include "lib/shading.glsl"
+
+// Result of marching one ray.
+struct Hit {
+    float t;       // distance along the ray (u_maxDist on a miss)
+    float steps;   // map evaluations used
+    bool hit;
+    vec3 albedo;   // from map() at the hit
+};
+
+// Unit ray direction through a pixel for the look-at camera (vertical fov u_fov).
+vec3 cameraRay(vec2 fragCoord) {
+    vec3 forward = safeNormalize(u_camTarget - u_camPos);
+    vec3 up = abs(forward.y) > 0.999f ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f, 1.0f, 0.0f);
+    // x is screen-right when looking down +Z (the Unity-style convention of the seeds and
+    // the scene headers: a camera at z = -6 looking at the origin sees +X on the right)
+    vec3 right = normalize(cross(up, forward));
+    vec3 camUp = cross(forward, right);
+    vec2 uv = (fragCoord - 0.5f * u_resolution) / max(u_resolution.y, 1.0f);
+    float tanHalf = tan(radians(clamp(u_fov, 1.0f, 179.0f)) * 0.5f);
+    return normalize(forward + (uv.x * right + uv.y * camUp) * (2.0f * tanHalf));
+}
+
+// Hit threshold grows with distance so far surfaces need no more precision than a pixel.
+float hitEpsilon(float t) { return u_hitEps * max(1.0f, t); }
+
+Hit march(vec3 ro, vec3 rd, float tmin) {
+    float t = tmin;
+    float steps = 0.0f;
+#if MARCH_FIXED
+    float prevT = t;
+    for (int i = 0; i < u_maxSteps; i++) {
+        steps += 1.0f;
+        float d = map(ro + rd * t).w;
+        if (d < hitEpsilon(t)) {
+            // crossed the surface: bisect between the last two samples
+            float a = prevT;
+            float b = t;
+            for (int j = 0; j < 8; j++) {
+                float m = 0.5f * (a + b);
+                if (map(ro + rd * m).w < hitEpsilon(m)) b = m; else a = m;
+            }
+            vec4 m = map(ro + rd * b);
+            return Hit(b, steps, true, vec3(m.x, m.y, m.z));
+        }
+        prevT = t;
+        t += max(u_fixedStep, 1e-4f);
+        if (t > u_maxDist) break;
+    }
+#else
+    float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
+    for (int i = 0; i < u_maxSteps; i++) {
+        steps += 1.0f;
+        vec4 m = map(ro + rd * t);
+        if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+        t += m.w * stepScale;
+        if (t > u_maxDist) break;
+    }
+#endif
+    return Hit(u_maxDist, steps, false, vec3(0.0f));
+}
+
+vec3 surfaceNormal(vec3 p, float t) {
+    float eps = u_normalEps * max(1.0f, t);
+#if NORMALS == 1
+    return calcNormalForward(p, eps);
+#elif NORMALS == 2
+    return calcNormalTetra(p, eps);
+#else
+    return calcNormalCentral(p, eps);
+#endif
+}
+
+// What a ray that hits nothing sees.
+vec3 background(vec3 rd) {
+#if FOG
+    return skyColor(rd, u_lightDir, u_lightColor);
+#else
+    return mix(vec3(0.02f, 0.02f, 0.025f), vec3(0.08f, 0.09f, 0.11f), saturate(rd.y * 0.5f + 0.5f));
+#endif
+}
+
+// Direct light plus ambient at a surface point (linear radiance).
+vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
+    vec3 l = u_lightDir;
+    vec3 v = -rd;
+    float shadow = 1.0f;
+    vec3 ro = p + n * (2.0f * hitEpsilon(t));
+#if SHADOWS == 1
+    shadow = shadowHard(ro, l, 0.01f, u_maxDist, u_shadowSteps);
+#elif SHADOWS == 2
+    shadow = shadowSoft(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
+#elif SHADOWS == 3
+    shadow = shadowSoftImproved(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
+#endif
+    float occlusion = 1.0f;
+#if AO
+    occlusion = ambientOcclusion(p, n, u_aoSamples);
+#endif
+#if PBR
+    vec3 col = cookTorrance(n, v, l, albedo, u_metalness, u_roughness) * u_lightColor * (PI * shadow);
+    col += ambientLight(n) * albedo * (1.0f - 0.8f * u_metalness) * occlusion;
+#else
+    vec3 col = albedo * (lambert(n, l) * shadow * u_lightColor + ambientLight(n) * occlusion);
+#if SPECULAR
+    col += u_lightColor * (blinnPhong(n, l, v, roughnessToShininess(u_roughness)) * shadow *
+                           (1.0f - 0.7f * u_roughness));
+#endif
+#endif
+    return col;
+}
+
+// Shaded colour of one marched ray, with fog.
+vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n) {
+    if (!h.hit) return background(rd);
+    vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t);
+#if FOG
+    col = applyFog(col, h.t, background(rd), 0.03f);
+#endif
+    return col;
+}
+
+// Tiny per-pixel dither (+-0.5 / 255) against banding in 8-bit output; deterministic
+// per frame so replays match.
+float ditherNoise(vec2 fragCoord) {
+    return fract(52.9829189f * fract(0.06711056f * fragCoord.x + 0.00583715f * fragCoord.y +
+                                     0.1f * float(u_frame % 16))) - 0.5f;
+}
+
+vec4 render(vec2 fragCoord) {
+    vec3 ro = u_camPos;
+    vec3 rd = cameraRay(fragCoord);
+    Hit h = march(ro, rd, 0.0f);
+    vec3 n = vec3(0.0f, 1.0f, 0.0f);
+    if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
+
+#if DEBUG_VIEW == 1
+    return vec4(heatmap(h.steps / max(float(u_maxSteps), 1.0f)), 1.0f);
+#elif DEBUG_VIEW == 2
+    float depth = h.hit ? 1.0f - h.t / max(u_maxDist, 1e-3f) : 0.0f;
+    return vec4(vec3(depth), 1.0f);
+#elif DEBUG_VIEW == 3
+    return vec4(h.hit ? n * 0.5f + 0.5f : vec3(0.0f), 1.0f);
+#else
+    vec3 col = shadeRay(ro, rd, h, n);
+#if REFLECTIONS > 0
+    vec3 throughput = vec3(1.0f);
+    for (int bounce = 0; bounce < REFLECTIONS; bounce++) {
+        if (!h.hit) break;
+        vec3 p = ro + rd * h.t;
+        throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) *
+                      (1.0f - u_roughness);
+        ro = p + n * (4.0f * hitEpsilon(h.t));
+        rd = reflect(rd, n);
+        h = march(ro, rd, 0.0f);
+        if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
+        col += throughput * shadeRay(ro, rd, h, n);
+    }
+#endif
+    col = linearToSRGB(toneMapACES(col));
+    col += vec3(ditherNoise(fragCoord) / 255.0f);
+    return vec4(col, 1.0f);
+#endif
+}
+
+#endif

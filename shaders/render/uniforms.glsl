@@ -1,0 +1,30 @@
+// uniforms.glsl - the built-in uniforms of every sdfvj program.
+//
+// The host includes this BEFORE the scene (so scenes may use u_time, u_beat), then its
+// generated `uniform float u_<input>;` lines, then the scene, then render/render.glsl.
+// In C++ (src/sdf/glsl_prelude.h) `uniform` is `static`: assign ns::u_time etc. directly.
+#ifndef SDF_RENDER_UNIFORMS_GLSL
+#define SDF_RENDER_UNIFORMS_GLSL
+
+uniform float u_time;        // seconds since start (replay: frame / fps)
+uniform int u_frame;         // frame index
+uniform vec2 u_resolution;   // output size in pixels
+uniform float u_beat;        // beat phase from the clock / MIDI, 0..1 per beat
+uniform vec3 u_camPos;       // camera position
+uniform vec3 u_camTarget;    // point the camera looks at
+uniform float u_fov;         // vertical field of view, degrees
+uniform vec3 u_lightDir;     // unit direction TOWARDS the directional light
+uniform vec3 u_lightColor;   // light colour/intensity (linear)
+uniform int u_maxSteps;      // primary-ray march steps (default 128)
+uniform float u_hitEps;      // hit threshold at distance 1; scaled by max(1, t)
+uniform float u_maxDist;     // far plane (default 50)
+uniform float u_stepFactor;  // step multiplier (<= 1 is safe), divided by sceneLipschitz()
+uniform float u_fixedStep;   // step length when MARCH_FIXED == 1
+uniform int u_shadowSteps;   // shadow-ray steps
+uniform float u_shadowK;     // shadow penumbra hardness (8 soft .. 64 hard)
+uniform int u_aoSamples;     // ambient occlusion samples
+uniform float u_normalEps;   // normal finite-difference step at distance 1; scaled like u_hitEps
+uniform float u_roughness;   // material roughness 0..1 (Blinn-Phong exponent or GGX)
+uniform float u_metalness;   // material metalness 0..1 (PBR and reflection tint)
+
+#endif

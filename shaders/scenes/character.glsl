@@ -1,0 +1,87 @@
+/*{
+  "NAME": "character", "DESCRIPTION": "A humanoid of 15 spheres and capsules blended into each other and into the floor, walking in place and waving.",
+  "INPUTS": [
+    {"NAME": "speed", "TYPE": "float", "DEFAULT": 1.0, "MIN": 0.0, "MAX": 3.0, "LABEL": "Walk speed"},
+    {"NAME": "wave", "TYPE": "float", "DEFAULT": 1.0, "MIN": 0.0, "MAX": 1.0, "LABEL": "Wave"},
+    {"NAME": "blend", "TYPE": "float", "DEFAULT": 0.06, "MIN": 0.0, "MAX": 0.25, "LABEL": "Joint blend"},
+    {"NAME": "floorBlend", "TYPE": "float", "DEFAULT": 0.12, "MIN": 0.0, "MAX": 0.5, "LABEL": "Floor blend"}
+  ],
+  "EFFECTS": {"SHADOWS": "improved", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true},
+  "CAMERA": {"POSITION": [1.2, 1.5, -4.0], "TARGET": [0, 0.95, 0], "FOV": 40},
+  "LIGHT": {"DIRECTION": [0.5, 0.8, -0.35], "COLOR": [1, 0.95, 0.88]},
+  "MATERIAL": {"ROUGHNESS": 0.5, "METALNESS": 0.0}
+}*/
+// character.glsl - a 15-part humanoid (head, torso, pelvis, upper arms, forearms, hands,
+// thighs, shins, feet) of spheres and capsules, smooth-unioned at the joints
+// (u_blend) and into the floor (u_floorBlend). u_time drives a walk cycle (u_speed) and a
+// right-arm wave (u_wave, 0 = swings with the walk, 1 = waves). Faces -Z (the camera).
+#include "lib/common.glsl"
+#include "lib/primitives.glsl"
+#include "lib/domain.glsl"
+#include "lib/combinators.glsl"
+
+// Unit direction of a limb hanging down and swung forward (towards -Z) by angle a.
+vec3 limbDir(float a) { return vec3(0.0f, -cos(a), -sin(a)); }
+
+vec4 map(vec3 p) {
+    const vec3 skin = vec3(0.80f, 0.52f, 0.38f);
+    const vec3 shirt = vec3(0.75f, 0.12f, 0.10f);
+    const vec3 jeans = vec3(0.10f, 0.16f, 0.42f);
+    const vec3 shoes = vec3(0.06f, 0.05f, 0.05f);
+    float k = u_blend;
+
+    float phase = u_time * u_speed * 4.0f;
+    float swing = 0.45f * sin(phase);
+    float bob = 0.03f * abs(cos(phase));
+    vec3 up = vec3(0.0f, bob, 0.0f);
+
+    // legs: thigh swings, knee bends on the back swing
+    vec3 hipL = vec3(0.12f, 0.92f, 0.0f) + up;
+    vec3 hipR = vec3(-0.12f, 0.92f, 0.0f) + up;
+    float kneeBendL = 0.6f * max(0.0f, -sin(phase - 0.8f));
+    float kneeBendR = 0.6f * max(0.0f, sin(phase - 0.8f));
+    vec3 kneeL = hipL + 0.42f * limbDir(swing);
+    vec3 kneeR = hipR + 0.42f * limbDir(-swing);
+    vec3 ankleL = kneeL + 0.40f * limbDir(swing - kneeBendL);
+    vec3 ankleR = kneeR + 0.40f * limbDir(-swing - kneeBendR);
+
+    // arms: the left swings against its leg; the right swings or waves
+    vec3 shoulderL = vec3(0.26f, 1.42f, 0.0f) + up;
+    vec3 shoulderR = vec3(-0.26f, 1.42f, 0.0f) + up;
+    vec3 elbowL = shoulderL + 0.30f * limbDir(-0.8f * swing);
+    vec3 handL = elbowL + 0.28f * limbDir(-0.8f * swing + 0.3f);
+    vec3 elbowSwing = shoulderR + 0.30f * limbDir(0.8f * swing);
+    vec3 handSwing = elbowSwing + 0.28f * limbDir(0.8f * swing + 0.3f);
+    float waveAngle = 0.45f * sin(u_time * 7.0f);
+    vec3 elbowWave = shoulderR + 0.30f * normalize(vec3(-0.8f, 0.5f, -0.1f));
+    vec3 handWave = elbowWave + 0.28f * vec3(-sin(waveAngle), cos(waveAngle), 0.0f);
+    vec3 elbowR = mix(elbowSwing, elbowWave, u_wave);
+    vec3 handR = mix(handSwing, handWave, u_wave);
+
+    vec3 pelvis = vec3(0.0f, 0.98f, 0.0f) + up;
+    vec3 chest = vec3(0.0f, 1.36f, 0.0f) + up;
+    vec3 head = vec3(0.0f, 1.70f, 0.0f) + up;
+
+    vec4 body = vec4(skin, fSphere(p - head, 0.14f));
+    body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, pelvis + vec3(0.0f, 0.1f, 0.0f), chest, 0.19f)), k);
+    body = fOpUnionSmoothColor(body, vec4(jeans, fSphere(p - pelvis, 0.17f)), k);
+    body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, shoulderL, elbowL, 0.065f)), k);
+    body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, shoulderR, elbowR, 0.065f)), k);
+    body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, elbowL, handL, 0.05f)), k);
+    body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, elbowR, handR, 0.05f)), k);
+    body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - handL, 0.06f)), k);
+    body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - handR, 0.06f)), k);
+    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, hipL, kneeL, 0.085f)), k);
+    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, hipR, kneeR, 0.085f)), k);
+    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, kneeL, ankleL, 0.07f)), k);
+    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, kneeR, ankleR, 0.07f)), k);
+    body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, ankleL, ankleL + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
+    body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, ankleR, ankleR + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
+
+    float grid = max(smoothstep(0.46f, 0.5f, abs(fract(p.x) - 0.5f)), smoothstep(0.46f, 0.5f, abs(fract(p.z) - 0.5f)));
+    vec4 ground = vec4(mix(vec3(0.45f), vec3(0.25f), grid), fPlane(p, vec3(0.0f, 1.0f, 0.0f), 0.0f));
+    return fOpUnionSmoothColor(ground, body, u_floorBlend);
+}
+
+// Spheres and capsules are exact; smooth unions keep |grad| <= 1.
+float sceneLipschitz() { return 1.0f; }

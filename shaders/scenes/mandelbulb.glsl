@@ -1,0 +1,36 @@
+/*{
+  "NAME": "mandelbulb", "DESCRIPTION": "The power-n Mandelbulb fractal, coloured by its orbit trap, inside a bounding sphere.",
+  "INPUTS": [
+    {"NAME": "power", "TYPE": "float", "DEFAULT": 8.0, "MIN": 2.0, "MAX": 12.0, "LABEL": "Power"},
+    {"NAME": "iterations", "TYPE": "int", "DEFAULT": 8, "MIN": 1, "MAX": 16, "LABEL": "Iterations"},
+    {"NAME": "hue", "TYPE": "float", "DEFAULT": 0.55, "MIN": 0.0, "MAX": 1.0, "LABEL": "Hue"},
+    {"NAME": "colorSpread", "TYPE": "float", "DEFAULT": 0.8, "MIN": 0.0, "MAX": 3.0, "LABEL": "Colour spread"},
+    {"NAME": "spin", "TYPE": "float", "DEFAULT": 0.15, "MIN": 0.0, "MAX": 1.0, "LABEL": "Spin speed"}
+  ],
+  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true},
+  "CAMERA": {"POSITION": [0, 1.3, -2.9], "TARGET": [0, 0, 0], "FOV": 45},
+  "LIGHT": {"DIRECTION": [0.55, 0.75, -0.35], "COLOR": [1, 0.95, 0.88]},
+  "MATERIAL": {"ROUGHNESS": 0.45, "METALNESS": 0.0}
+}*/
+// mandelbulb.glsl - the Mandelbulb (lib/mandelbulb.glsl) spinning around Y; u_power is
+// the exponent, u_iterations the iteration count (an int input, uploaded as float),
+// u_hue/u_colorSpread map the orbit trap to a cosine palette.
+#include "lib/common.glsl"
+#include "lib/domain.glsl"
+#include "lib/mandelbulb.glsl"
+
+vec3 bulbPalette(float trap) {
+    float t = u_hue + u_colorSpread * trap;
+    vec3 c = 0.5f + 0.5f * cos(TAU * (vec3(t) + vec3(0.0f, 0.33f, 0.67f)));
+    return c * c * (0.25f + 0.75f * saturate(trap * 1.5f));
+}
+
+vec4 map(vec3 p) {
+    vec3 q = pRotateY(p, u_time * u_spin);
+    int iterations = int(clamp(u_iterations, 1.0f, 32.0f) + 0.5f);
+    vec2 dt = fMandelbulbTrap(q, u_power, iterations);
+    return vec4(bulbPalette(dt.y), dt.x);
+}
+
+// The distance estimate overshoots a little close to the surface.
+float sceneLipschitz() { return 1.1f; }

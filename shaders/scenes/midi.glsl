@@ -1,0 +1,57 @@
+/*{
+  "NAME": "midi", "DESCRIPTION": "Five primitives melted together by a smooth union; knobs scale, twist, displace and soften them (the MIDI scale/twist scenes). The top of each range is a stress case for the marcher.",
+  "INPUTS": [
+    {"NAME": "scale", "TYPE": "float", "DEFAULT": 1.0, "MIN": 0.25, "MAX": 2.0, "LABEL": "Scale"},
+    {"NAME": "twist", "TYPE": "float", "DEFAULT": 0.5, "MIN": -3.0, "MAX": 3.0, "LABEL": "Twist"},
+    {"NAME": "displacement", "TYPE": "float", "DEFAULT": 0.04, "MIN": 0.0, "MAX": 0.25, "LABEL": "Displacement"},
+    {"NAME": "smoothness", "TYPE": "float", "DEFAULT": 0.35, "MIN": 0.0, "MAX": 1.0, "LABEL": "Smoothness"},
+    {"NAME": "spin", "TYPE": "float", "DEFAULT": 0.3, "MIN": 0.0, "MAX": 2.0, "LABEL": "Spin speed"}
+  ],
+  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true},
+  "CAMERA": {"POSITION": [0, 2, -6], "TARGET": [0, 1.1, 0], "FOV": 45},
+  "LIGHT": {"DIRECTION": [0.6, 0.8, -0.4], "COLOR": [1, 0.96, 0.9]},
+  "MATERIAL": {"ROUGHNESS": 0.35, "METALNESS": 0.0}
+}*/
+// midi.glsl - sphere, box, torus, capsule and hexagonal prism blended by a smooth union,
+// then scaled (u_scale), twisted around Y (u_twist, radians per unit), displaced by a
+// sine pattern (u_displacement, amplitude) and blended (u_smoothness, blend radius).
+// The twist and displacement break the distance property; sceneLipschitz() reports the
+// gradient bound for the current knob values so the marcher never oversteps.
+#include "lib/common.glsl"
+#include "lib/primitives.glsl"
+#include "lib/domain.glsl"
+#include "lib/combinators.glsl"
+
+const float MIDI_RADIUS = 1.45f;         // the blob lies within this distance of the Y axis (unscaled)
+const float MIDI_DISPLACE_FREQ = 6.0f;   // spatial frequency of the displacement
+
+// The unscaled, untwisted blob around the origin.
+vec4 midiBlob(vec3 q) {
+    float k = u_smoothness;
+    float pulse = 0.06f * sin(TAU * u_beat);
+    vec4 res = vec4(0.95f, 0.30f, 0.12f, fSphere(pTranslate(q, vec3(0.0f, 0.55f, 0.0f)), 0.5f + pulse));
+    res = fOpUnionSmoothColor(res, vec4(0.15f, 0.45f, 0.95f, fRoundBox(pTranslate(q, vec3(0.75f, -0.1f, 0.0f)), vec3(0.4f), 0.05f)), k);
+    res = fOpUnionSmoothColor(res, vec4(0.95f, 0.80f, 0.15f, fTorus(pRotateZ(pTranslate(q, vec3(-0.8f, -0.1f, 0.0f)), 0.5f * PI), 0.14f, 0.42f)), k);
+    res = fOpUnionSmoothColor(res, vec4(0.20f, 0.80f, 0.40f, fCapsule(q, vec3(0.0f, -0.75f, 0.55f), vec3(0.0f, -0.2f, 0.7f), 0.2f)), k);
+    res = fOpUnionSmoothColor(res, vec4(0.75f, 0.25f, 0.85f, fHexPrism(pTranslate(q, vec3(0.0f, -0.45f, -0.6f)), vec2(0.3f, 0.3f))), k);
+    return res;
+}
+
+vec4 map(vec3 p) {
+    float s = u_scale;
+    vec3 centre = vec3(0.0f, 0.15f + 1.0f * s, 0.0f);
+    vec3 q = pScale(pTranslate(p, centre), s);
+    q = pRotateY(q, u_time * u_spin);
+    vec4 blob = midiBlob(pTwistY(q, u_twist));
+    blob.w += fDisplacement(q, u_displacement, MIDI_DISPLACE_FREQ);
+    blob.w = fOpScale(blob.w, s);
+    vec4 ground = vec4(vec3(0.32f), fPlane(p, vec3(0.0f, 1.0f, 0.0f), 0.0f));
+    return fOpUnionColor(ground, blob);
+}
+
+// Twist: shear k*R at the blob's radius; displacement adds amplitude * frequency. The
+// scale multiplies the distance back, so it leaves the bound unchanged.
+float sceneLipschitz() {
+    return lipschitzTwist(u_twist, MIDI_RADIUS) +
+           lipschitzDisplacement(u_displacement, MIDI_DISPLACE_FREQ);
+}
