@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 
@@ -125,6 +126,13 @@ int RunLive(const LiveOptions& o) {
         }
 
         ParamState params = ShowParamState(show);
+        // SDFVJ_LOG_PARAMS=FILE appends one line per frame, "time name=value ...", with the values
+        // the frame renders (after mapping and smoothing): for tests and for debugging a mapping.
+        std::unique_ptr<FILE, int (*)(FILE*)> paramLog(nullptr, &std::fclose);
+        if (const char* logPath = std::getenv("SDFVJ_LOG_PARAMS"); logPath && *logPath) {
+            paramLog.reset(std::fopen(logPath, "a"));
+            if (!paramLog) std::fprintf(stderr, "sdfvj live: cannot write %s (SDFVJ_LOG_PARAMS)\n", logPath);
+        }
         MappingState mstate;
         MappingActions actions;
         FrameRenderer fr;
@@ -134,6 +142,19 @@ int RunLive(const LiveOptions& o) {
         bool tabWasDown = false;
         double last = clock(), fps = 0;
         int frame = 0;
+        bool shotWritten = false;
+        auto saveScreenshot = [&](GLenum buffer, int fbw, int fbh) {
+            std::vector<uint8_t> rgba((size_t)fbw * fbh * 4);
+            glReadBuffer(buffer);
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+            glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+            std::vector<uint8_t> flipped(rgba.size());
+            for (int y = 0; y < fbh; ++y)
+                std::copy_n(&rgba[(size_t)(fbh - 1 - y) * fbw * 4], (size_t)fbw * 4, &flipped[(size_t)y * fbw * 4]);
+            std::string err;
+            if (!WritePng(o.screenshot, fbw, fbh, flipped, &err)) std::fprintf(stderr, "sdfvj live: %s\n", err.c_str());
+            return true;
+        };
         while (rc == 0 && !glfwWindowShouldClose(window.get())) {
             glfwPollEvents();
             const double now = clock();
@@ -169,6 +190,11 @@ int RunLive(const LiveOptions& o) {
             }
             StepSmoothing(params, dt);
             CopyParams(params, &in.params);
+            if (paramLog) {
+                std::fprintf(paramLog.get(), "%.4f", now);
+                for (const auto& [name, value] : in.params) std::fprintf(paramLog.get(), " %s=%g", name.c_str(), value);
+                std::fputc('\n', paramLog.get());
+            }
 
             // Hot reload: shader files through LiveProgram, the mapping here (last good kept).
             const std::vector<std::string> changed = watcher.Poll();
@@ -206,17 +232,16 @@ int RunLive(const LiveOptions& o) {
             ImGui::Render();
             glViewport(0, 0, fbw, fbh);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-            if (!o.screenshot.empty() && o.seconds > 0 && clock() + 0.05 >= o.seconds) {
-                std::vector<uint8_t> rgba((size_t)fbw * fbh * 4);
-                glReadBuffer(GL_BACK);
-                glPixelStorei(GL_PACK_ALIGNMENT, 1);
-                glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-                std::vector<uint8_t> flipped(rgba.size());
-                for (int y = 0; y < fbh; ++y)
-                    std::copy_n(&rgba[(size_t)(fbh - 1 - y) * fbw * 4], (size_t)fbw * 4, &flipped[(size_t)y * fbw * 4]);
-                WritePng(o.screenshot, fbw, fbh, flipped, &error);
-            }
+            if (!o.screenshot.empty() && o.seconds > 0 && clock() + 0.05 >= o.seconds)
+                shotWritten = saveScreenshot(GL_BACK, fbw, fbh);
             glfwSwapBuffers(window.get());
+        }
+        // Slow frames (software GL) or a closed window can end the loop before the check above
+        // fired: then the front buffer holds the last frame shown.
+        if (!o.screenshot.empty() && !shotWritten && frame > 0) {
+            int fbw = 0, fbh = 0;
+            glfwGetFramebufferSize(window.get(), &fbw, &fbh);
+            if (fbw > 0 && fbh > 0) saveScreenshot(GL_FRONT, fbw, fbh);
         }
         if (recorder.IsOpen()) {
             recorder.Close(clock());

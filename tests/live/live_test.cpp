@@ -1,0 +1,219 @@
+// `sdfvj live` as a user runs it: a real GLFW window on Xvfb (ctest fixture `xvfb`), OSC from
+// the `oscsend` tool, a screenshot, a recorded take. The frame values come from the
+// SDFVJ_LOG_PARAMS log ("time name=value ..." per frame).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "app/replay_driver.h"
+#include "app/show.h"
+#include "gl_fixture.h"
+#include "proc_util.h"
+#include "take/take.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const int kW = 480, kH = 270;   // the overlay (~320x190) sits top-left; the right third stays clear
+
+std::string Display() {
+    std::string n = ReadText(std::string(SDFVJ_XVFB_STATE) + ".display");
+    while (!n.empty() && (n.back() == '\n' || n.back() == ' ')) n.pop_back();
+    INFO("no Xvfb display number in " << SDFVJ_XVFB_STATE << ".display (is the live_xvfb_start fixture running?)");
+    REQUIRE(!n.empty());
+    return ":" + n;
+}
+
+struct LiveRun {
+    std::string dir, log, shot, params;
+    pid_t pid = -1;
+    int oscPort = 0;
+    LiveRun(const std::string& name, std::vector<std::string> extra = {}) {
+        dir = FreshDir(SDFVJ_LIVE_OUT, name);
+        log = dir + "/live.log";
+        shot = dir + "/shot.png";
+        params = dir + "/params.txt";
+        oscPort = FreeUdpPort();
+        std::vector<std::string> argv = {SDFVJ_BIN, "live", "--scene", "midi", "--size", std::to_string(kW) + "x" + std::to_string(kH),
+                                         "--seconds", "3", "--path", "fragment", "--effects", "none", "--osc-port", std::to_string(oscPort),
+                                         "--midi", "no-such-controller", "--screenshot", shot};
+        argv.insert(argv.end(), extra.begin(), extra.end());
+        pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"SDFVJ_LOG_PARAMS", params}, {"JACK_NO_START_SERVER", "1"}});
+    }
+    // Waits until the log holds `text` (the program got that far).
+    bool WaitForLog(const std::string& text, double seconds) const {
+        for (double t = 0; t < seconds; t += 0.01) {
+            if (ReadText(log).find(text) != std::string::npos) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
+    void Osc(const std::string& address, const std::string& type, const std::string& value) const {
+        int rc = Run({"oscsend", "localhost", std::to_string(oscPort), address, type, value}, dir + "/oscsend.log", 10);
+        INFO(ReadText(dir + "/oscsend.log"));
+        REQUIRE(rc == 0);
+    }
+    int Wait() { return WaitExit(pid, 40); }
+};
+
+using Frame = std::pair<double, std::map<std::string, float>>;
+std::vector<Frame> ReadParamLog(const std::string& path) {
+    std::vector<Frame> frames;
+    std::istringstream in(ReadText(path));
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream ls(line);
+        Frame f;
+        ls >> f.first;
+        std::string kv;
+        while (ls >> kv) {
+            size_t eq = kv.find('=');
+            if (eq != std::string::npos) f.second[kv.substr(0, eq)] = std::stof(kv.substr(eq + 1));
+        }
+        frames.push_back(f);
+    }
+    return frames;
+}
+
+// Standard deviation of luma in the right third of the image (the overlay never reaches it).
+double RightThirdLumaSpread(const Image& img) {
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = img.width * 2 / 3; x < img.width; ++x) {
+            const uint8_t* p = &img.rgba[((size_t)y * img.width + x) * 4];
+            double l = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            sum += l;
+            sum2 += l * l;
+            ++n;
+        }
+    double mean = sum / n;
+    return std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+}
+
+Image RightThird(const Image& img) {
+    Image out;
+    out.width = img.width - img.width * 2 / 3;
+    out.height = img.height;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = img.width * 2 / 3; x < img.width; ++x)
+            for (int c = 0; c < 4; ++c) out.rgba.push_back(img.rgba[((size_t)y * img.width + x) * 4 + c]);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("live osc: oscsend /sdfvj/param/twist moves the running scene (window under Xvfb)") {
+    // Two runs side by side: one gets the OSC message about 1 s in, the other nothing.
+    LiveRun with("osc-twist"), without("no-osc");
+    INFO(ReadText(with.log));
+    REQUIRE(with.WaitForLog("OSC: listening on UDP port " + std::to_string(with.oscPort), 20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+    with.Osc("/sdfvj/param/twist", "f", "1.0");
+    const int rcWith = with.Wait(), rcWithout = without.Wait();
+    INFO("with OSC:\n" << ReadText(with.log) << "without:\n" << ReadText(without.log));
+    REQUIRE(rcWith == 0);
+    REQUIRE(rcWithout == 0);
+
+    // Parameter log: twist starts at the scene default 0.5 and ends at 3 (1.0 of [-3, 3]).
+    std::vector<Frame> a = ReadParamLog(with.params), b = ReadParamLog(without.params);
+    REQUIRE(a.size() >= 5);   // software GL under load: a few frames per second is enough
+    REQUIRE(b.size() >= 5);
+    CHECK(a.front().second["twist"] == Approx(0.5f));
+    CHECK(a.back().second["twist"] == Approx(3.0f).margin(1e-3));
+    CHECK(a.back().first == Approx(3.0).margin(0.5));
+    double changedAt = -1;
+    for (const Frame& f : a)
+        if (changedAt < 0 && f.second.at("twist") != a.front().second.at("twist")) changedAt = f.first;
+    INFO("twist started to move at " << changedAt << " s of the live clock");
+    CHECK(changedAt > 0.3);
+    CHECK(changedAt < 2.7);
+    for (const Frame& f : b) CHECK(f.second.at("twist") == 0.5f);
+
+    // Screenshots: the size of the window, a real scene (not one flat colour) in the part the
+    // overlay leaves free, and the twisted scene differs from the untouched one there.
+    Image sa, sb;
+    REQUIRE(LoadPng(with.shot, &sa));
+    REQUIRE(LoadPng(without.shot, &sb));
+    CHECK(sa.width == kW);
+    CHECK(sa.height == kH);
+    CHECK(RightThirdLumaSpread(sa) > 5.0);
+    CHECK(RightThirdLumaSpread(sb) > 5.0);
+    ImageDiff d = CompareImages(RightThird(sa), RightThird(sb), 8);
+    INFO("right third, twist 3 vs 0.5: " << d.fractionOver * 100 << "% of pixels differ by more than 8/255");
+    CHECK(d.fractionOver > 0.01);
+}
+
+TEST_CASE("live record: OSC messages during `live --record` read back from the .mid and replay") {
+    LiveRun run("record", {"--record", std::string(SDFVJ_LIVE_OUT) + "/record/take.mid"});
+    const std::string take = run.dir + "/take.mid";
+    INFO(ReadText(run.log));
+    REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    run.Osc("/sdfvj/param/twist", "f", "1.0");
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    run.Osc("/sdfvj/raw/scale", "f", "1.5");
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    run.Osc("/sdfvj/param/displacement", "f", "0.5");
+    REQUIRE(run.Wait() == 0);
+    CHECK(run.WaitForLog("recorded 3 events to", 1));
+
+    Take t;
+    TakeReadResult r = ReadTake(take, &t);
+    INFO(r.error);
+    REQUIRE(r.ok);
+    REQUIRE(t.events.size() == 3);
+    const char* addresses[] = {"/sdfvj/param/twist", "/sdfvj/raw/scale", "/sdfvj/param/displacement"};
+    const float sent[] = {1.0f, 1.5f, 0.5f};
+    for (int i = 0; i < 3; ++i) {
+        INFO("event " << i);
+        CHECK(t.events[i].source == EventSource::Osc);
+        CHECK(t.events[i].address == addresses[i]);
+        REQUIRE(t.events[i].args.size() == 1);
+        CHECK(t.events[i].args[0].type == 'f');
+        CHECK(t.events[i].args[0].f == sent[i]);
+        if (i > 0) CHECK(t.events[i].time - t.events[i - 1].time == Approx(0.3).margin(0.2));
+    }
+    CHECK(t.events[0].time > 0.2);
+    CHECK(t.duration >= 2.9);   // End-of-Track at the clock when the loop ended: --seconds plus the last frame
+    CHECK(t.duration < 6.0);
+
+    // The take drives `render --replay` to the values the live run ended with.
+    std::vector<Frame> live = ReadParamLog(run.params);
+    REQUIRE(!live.empty());
+    ShowOptions opts;
+    opts.scene = "midi";
+    Show show;
+    std::string error;
+    REQUIRE(PrepareShow(opts, &show, &error));
+    auto driver = MakeReplayDriver(show, take, "", &error);
+    INFO(error);
+    REQUIRE(driver);
+    std::vector<std::pair<std::string, float>> values;
+    for (int i = 0; i <= 90; ++i) driver->Advance(i / 30.0, 1 / 30.0, &values);
+    for (const auto& [name, v] : values) {
+        INFO(name);
+        CHECK(v == Approx(live.back().second.at(name)).margin(1e-3));
+    }
+    CHECK(live.back().second.at("twist") == Approx(3.0f).margin(1e-3));
+    CHECK(live.back().second.at("scale") == Approx(1.5f).margin(1e-3));
+    CHECK(live.back().second.at("displacement") == Approx(0.125f).margin(1e-3));
+}
+
+TEST_CASE("live without a display exits 2 with one clear line") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "no-display");
+    int rc = Run({SDFVJ_BIN, "live", "--scene", "midi", "--seconds", "1"}, dir + "/live.log", 20,
+                 {{"DISPLAY", "", true}, {"WAYLAND_DISPLAY", "", true}, {"JACK_NO_START_SERVER", "1"}});
+    const std::string out = ReadText(dir + "/live.log");
+    INFO(out);
+    CHECK(rc == 2);
+    CHECK(std::count(out.begin(), out.end(), '\n') == 1);
+    CHECK(out.find("no display") != std::string::npos);
+}
