@@ -138,7 +138,9 @@ int RunLive(const LiveOptions& o) {
         FrameRenderer fr;
         FrameInputs in;
         in.quality = show.quality;
-        bool overlay = true;
+        // SDFVJ_HIDE_OVERLAY=1 starts with the overlay hidden (as after Tab): clean screenshots.
+        const char* hideOverlay = std::getenv("SDFVJ_HIDE_OVERLAY");
+        bool overlay = !(hideOverlay && *hideOverlay && std::string(hideOverlay) != "0");
         bool tabWasDown = false;
         double last = clock(), fps = 0;
         int frame = 0;
