@@ -45,6 +45,7 @@ TEST_CASE("replay determinism: the demo take renders byte-identical frames twice
     auto args = [](const std::string& out) {
         return std::vector<std::string>{SDFVJ_BIN, "render", "--preset", "demo", "--replay", "presets/demo_take.mid",
                                         "--frames", "30", "--size", "96x54", "--path", "fragment", "--quiet",
+                                        "--param", "spin=0",
                                         "--out", out};
     };
     // Both runs at once: each is its own process, GL context and compile.
@@ -60,10 +61,10 @@ TEST_CASE("replay determinism: the demo take renders byte-identical frames twice
         INFO("frame " << i);
         CHECK(ha[i] == hb[i]);
     }
-    // The take moves knobs (and the scene spins): the frames are not all alike.
+    // The spin is stopped (--param spin=0): what changes between frames is the take moving knobs.
     std::set<uint64_t> distinct(ha.begin(), ha.end());
     INFO(distinct.size() << " distinct frames of 30");
-    CHECK(distinct.size() >= 20);
+    CHECK(distinct.size() >= 8);   // 11 here: the demo take starts moving knobs a third of a second in
 }
 
 TEST_CASE("replay video: --video pipes frames to ffmpeg, ffprobe reads 10 frames of 96x54 h264") {
