@@ -98,13 +98,18 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
     }
 #else
     float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
+    vec4 m = vec4(0.0f);
     for (int i = 0; i < u_maxSteps; i++) {
         steps += 1.0f;
-        vec4 m = map(ro + rd * t);
+        m = map(ro + rd * t);
         if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
         t += m.w * stepScale;
-        if (t > u_maxDist) break;
+        if (t > u_maxDist) return Hit(u_maxDist, steps, false, vec3(0.0f));
     }
+    // Out of steps short of the far plane: the ray is creeping along a surface (grazing
+    // silhouettes, a floor at the horizon, a heavily twisted field). Calling it a hit
+    // avoids sky-coloured holes; DEBUG_VIEW 1 shows where it happens.
+    if (steps > 0.0f) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
 #endif
     return Hit(u_maxDist, steps, false, vec3(0.0f));
 }

@@ -3,7 +3,7 @@
   "INPUTS": [
     {"NAME": "power", "TYPE": "float", "DEFAULT": 8.0, "MIN": 2.0, "MAX": 12.0, "LABEL": "Power"},
     {"NAME": "iterations", "TYPE": "int", "DEFAULT": 8, "MIN": 1, "MAX": 16, "LABEL": "Iterations"},
-    {"NAME": "hue", "TYPE": "float", "DEFAULT": 0.55, "MIN": 0.0, "MAX": 1.0, "LABEL": "Hue"},
+    {"NAME": "hue", "TYPE": "float", "DEFAULT": 0.5, "MIN": 0.0, "MAX": 1.0, "LABEL": "Hue"},
     {"NAME": "colorSpread", "TYPE": "float", "DEFAULT": 0.8, "MIN": 0.0, "MAX": 3.0, "LABEL": "Colour spread"},
     {"NAME": "spin", "TYPE": "float", "DEFAULT": 0.15, "MIN": 0.0, "MAX": 1.0, "LABEL": "Spin speed"}
   ],
@@ -21,8 +21,9 @@
 
 vec3 bulbPalette(float trap) {
     float t = u_hue + u_colorSpread * trap;
-    vec3 c = 0.5f + 0.5f * cos(TAU * (vec3(t) + vec3(0.0f, 0.33f, 0.67f)));
-    return c * c * (0.25f + 0.75f * saturate(trap * 1.5f));
+    vec3 c = 0.5f + 0.5f * cos(TAU * (vec3(t) + vec3(0.0f, 0.12f, 0.25f)));
+    // deep orbits (small trap) are crevices: darken them like cheap occlusion
+    return c * c * (0.2f + 0.8f * saturate(trap * 2.0f));
 }
 
 vec4 map(vec3 p) {

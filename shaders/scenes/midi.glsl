@@ -45,7 +45,8 @@ vec4 map(vec3 p) {
     vec4 blob = midiBlob(pTwistY(q, u_twist));
     blob.w += fDisplacement(q, u_displacement, MIDI_DISPLACE_FREQ);
     blob.w = fOpScale(blob.w, s);
-    vec4 ground = vec4(vec3(0.32f), fPlane(p, vec3(0.0f, 1.0f, 0.0f), 0.0f));
+    float checker = mod(floor(p.x) + floor(p.z), 2.0f);
+    vec4 ground = vec4(vec3(0.26f + 0.08f * checker), fPlane(p, vec3(0.0f, 1.0f, 0.0f), 0.0f));
     return fOpUnionColor(ground, blob);
 }
 
