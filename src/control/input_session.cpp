@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -97,9 +98,11 @@ struct InputSession::Impl {
     mutable std::mutex mutex;
     enum class Api { None, Jack, Alsa } api = Api::None;
     jack_client_t* jackControl = nullptr;          // for the port list and jack_connect
+    std::atomic<bool> jackDied{false};             // set by JACK's shutdown callback
     std::unique_ptr<MidiPort> virtualIn;
     std::string virtualFullName;                   // "sdfvj:sdfvj" on JACK
     std::vector<std::unique_ptr<MidiPort>> alsaPorts;
+    std::unique_ptr<RtMidiIn> alsaProbe;           // kept: one sequencer client for the port list
     std::vector<std::string> connected;            // sources we listen to
     std::string midiStatus;
     int pollsWithoutMidi = 0;
@@ -171,6 +174,8 @@ struct InputSession::Impl {
                 jack_status_t st;
                 jackControl = jack_client_open("sdfvj-control", JackNoStartServer, &st);
                 if (!jackControl) throw std::runtime_error("cannot open a JACK client");
+                jackDied = false;
+                jack_on_shutdown(jackControl, [](void* u) { static_cast<Impl*>(u)->jackDied = true; }, this);
                 jack_activate(jackControl);
                 std::set<std::string> before = JackInputs();
                 virtualIn = MakePort(RtMidi::UNIX_JACK, opt.virtualPortName);
@@ -204,8 +209,28 @@ struct InputSession::Impl {
         Reconnect();
     }
 
-    // Caller holds `mutex`.
+    // Caller holds `mutex`. Runs on the watcher thread, so nothing may escape it.
     void Reconnect() {
+        try {
+            ReconnectOrThrow();
+        } catch (const std::exception& e) {
+            midiStatus = std::string("MIDI: port scan failed (") + e.what() + ")";
+        }
+    }
+
+    // After the JACK server went away, closing a port or client crashes inside libjack, so the
+    // dead RtMidiIn and client are abandoned (a few KB) and MIDI waits for a server again.
+    void AbandonDeadJack() {
+        (void)virtualIn.release();
+        jackControl = nullptr;
+        connected.clear();
+        api = Api::None;
+        midiStatus = "MIDI: the JACK server stopped; waiting for it to come back";
+        if (opt.log) std::fprintf(stderr, "sdfvj: %s\n", midiStatus.c_str());
+    }
+
+    void ReconnectOrThrow() {
+        if (api == Api::Jack && jackDied) AbandonDeadJack();
         if (api == Api::None) {
             // A JACK server that came up after us: look once a second.
             if (opt.midi && ++pollsWithoutMidi % 4 == 0 && JackServerRunning()) StartMidi();
@@ -221,15 +246,18 @@ struct InputSession::Impl {
                 connected.push_back(src);
             }
         } else {
-            RtMidiIn probe(RtMidi::LINUX_ALSA, "sdfvj-probe");
-            probe.setErrorCallback(QuietRtMidiError, nullptr);
+            if (!alsaProbe) {
+                alsaProbe = std::make_unique<RtMidiIn>(RtMidi::LINUX_ALSA, "sdfvj-probe");
+                alsaProbe->setErrorCallback(QuietRtMidiError, nullptr);
+            }
             std::vector<std::string> names;
-            for (unsigned i = 0; i < probe.getPortCount(); ++i) names.push_back(probe.getPortName(i));
-            // Never listen to our own virtual port through the sequencer as well.
-            names.erase(std::remove_if(names.begin(), names.end(), [&](const std::string& n) {
-                            return n.find(opt.virtualPortName) != std::string::npos && n.find("sdfvj") != std::string::npos;
-                        }), names.end());
+            for (unsigned i = 0; i < alsaProbe->getPortCount(); ++i) names.push_back(alsaProbe->getPortName(i));
+            // Select first (so "--midi 2" means entry 2 of `sdfvj list`), then never listen to
+            // our own virtual port through the sequencer as well.
             wanted = SelectPorts(names, opt.midiPort);
+            wanted.erase(std::remove_if(wanted.begin(), wanted.end(), [&](const std::string& n) {
+                             return virtualIn && n.find(opt.virtualPortName) != std::string::npos;
+                         }), wanted.end());
             alsaPorts.erase(std::remove_if(alsaPorts.begin(), alsaPorts.end(), [&](const auto& p) {
                                 return std::find(wanted.begin(), wanted.end(), p->name) == wanted.end();
                             }), alsaPorts.end());
@@ -386,7 +414,9 @@ InputSession::~InputSession() {
     if (impl_->osc) lo_server_thread_free(impl_->osc);   // stops and joins the liblo thread
     if (impl_->feedback) lo_address_free(impl_->feedback);
     std::lock_guard<std::mutex> g(impl_->mutex);
+    if (impl_->api == Impl::Api::Jack && impl_->jackDied) impl_->AbandonDeadJack();
     impl_->alsaPorts.clear();
+    impl_->alsaProbe.reset();
     impl_->virtualIn.reset();
     if (impl_->jackControl) jack_client_close(impl_->jackControl);
 }

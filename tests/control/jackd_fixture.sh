@@ -1,19 +1,22 @@
 #!/bin/sh
 # ctest fixture: start JACK's dummy server for the MIDI tests, and stop it again.
-#   jackd_fixture.sh start STATE_PREFIX   (writes STATE_PREFIX.pid and STATE_PREFIX.log)
-#   jackd_fixture.sh stop  STATE_PREFIX
-# If a JACK server already runs, it is used and left alone.
+#   jackd_fixture.sh start STATE_PREFIX SERVER_NAME   (writes STATE_PREFIX.pid and .log)
+#   jackd_fixture.sh stop  STATE_PREFIX SERVER_NAME
+# The server runs under its own name (jackd -n; clients find it through JACK_DEFAULT_SERVER),
+# so it never collides with another test run or a performer's default server. If a server of
+# that name already answers (a run that was interrupted), it is used.
 set -u
 cmd=$1
 state=$2
+export JACK_DEFAULT_SERVER=${3:-default}
 case $cmd in
 start)
     rm -f "$state.pid"
     if jack_lsp >/dev/null 2>&1; then
-        echo "jackd already running; using it"
+        echo "jackd \"$JACK_DEFAULT_SERVER\" already running; using it"
         exit 0
     fi
-    setsid jackd --no-realtime -d dummy -r 48000 -p 256 >"$state.log" 2>&1 </dev/null &
+    setsid jackd -n "$JACK_DEFAULT_SERVER" --no-realtime -d dummy -r 48000 -p 256 >"$state.log" 2>&1 </dev/null &
     echo $! >"$state.pid"
     i=0
     until jack_lsp >/dev/null 2>&1; do
@@ -23,7 +26,7 @@ start)
         fi
         sleep 0.01
     done
-    echo "jackd ready (pid $(cat "$state.pid"))"
+    echo "jackd \"$JACK_DEFAULT_SERVER\" ready (pid $(cat "$state.pid"))"
     ;;
 stop)
     [ -f "$state.pid" ] || { echo "no jackd of ours to stop"; exit 0; }
