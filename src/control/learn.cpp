@@ -12,7 +12,7 @@ namespace {
 
 // The TOML source line for a learned event, or "" if the event is not something to learn.
 // Takes the MSB of NRPN/14-bit pairs into account by waiting: the caller passes every event.
-std::string LearnSource(const ControlEvent& e, std::map<int, int>* ccFirst) {
+std::string LearnSource(const ControlEvent& e, std::map<int, int>* ccFirst, std::map<int, int>* nrpnSelected) {
     if (e.source == EventSource::Osc) {
         if (e.address.rfind("/sdfvj/", 0) == 0) return "";
         return "osc = \"" + e.address + "\"";
@@ -22,7 +22,13 @@ std::string LearnSource(const ControlEvent& e, std::map<int, int>* ccFirst) {
     std::string chan = "\nchannel = " + std::to_string(ch);
     if (type == 0xB0) {
         int cc = e.midi[1];
-        if (cc == 6 || cc == 38 || cc == 98 || cc == 99 || cc == 100 || cc == 101) return "";  // (N)RPN plumbing
+        // NRPN: CC 99/98 select a number, CC 6 carries its value. RPN (101/100) deselects.
+        int& sel = (*nrpnSelected)[ch];
+        if (cc == 99) { sel = (sel < 0 ? 0 : (sel & 0x7F)) | (e.midi[2] << 7) | (1 << 20); return ""; }
+        if (cc == 98) { sel = (sel < 0 ? 0 : (sel & ~0x7F)) | e.midi[2] | (1 << 21); return ""; }
+        if (cc == 101 || cc == 100) { sel = 0; return ""; }
+        if (cc == 6 && (sel & (3 << 20)) == (3 << 20)) return "nrpn = " + std::to_string(sel & 0x3FFF) + chan;
+        if (cc == 6 || cc == 38) return "";
         // "Moves": a second, different value on the same CC (a pad press sends one 127).
         int key = ch * 128 + cc;
         auto it = ccFirst->find(key);
@@ -60,10 +66,10 @@ int RunLearn(const std::string& param, const std::string& mappingPath, double ti
     InputSession session(opt, queue, clock);
     for (const std::string& s : session.StatusLines()) std::fprintf(stderr, "%s\n", s.c_str());
     std::fprintf(stderr, "learn: move the control for '%s' (%.0f s)...\n", param.c_str(), timeoutSeconds);
-    std::map<int, int> ccFirst;
+    std::map<int, int> ccFirst, nrpnSelected;
     while (clock() < timeoutSeconds) {
         for (const ControlEvent& e : queue.DrainUntil(clock())) {
-            std::string src = LearnSource(e, &ccFirst);
+            std::string src = LearnSource(e, &ccFirst, &nrpnSelected);
             if (src.empty()) continue;
             std::ofstream out(mappingPath, std::ios::app);
             if (!out) {

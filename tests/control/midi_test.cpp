@@ -119,11 +119,16 @@ preset = "intro"
     CHECK(r.acts.effectToggles == std::vector<std::pair<std::string, bool>>{{"shadows", true}});
     CHECK(r.acts.presetSelect == std::vector<std::string>{"intro"});
 
+    // SysEx, clock and active sensing never reach the queue (RtMidi ignoreTypes).
+    Send(*out, {0xF0, 0x7E, 0x7F, 0x06, 0x01, 0xF7});
+    Send(*out, {0xF8});
+    Send(*out, {0xFE});
     // Running status inside one JACK event, and a stray data byte.
     base = r.queue.Pushed();
     Send(*out, {0xB0, 1, 0, 16, 61});                            // scale min, encoder -3
     Send(*out, {0xF6, 0x05});                                    // tune request + a stray byte
     REQUIRE(r.Frame(base + 2));
+    CHECK(r.queue.Pushed() == base + 2);
     CHECK(Param(r.params, "scale") == Approx(0.5f));
     CHECK(Param(r.params, "smoothness") == Approx(0.1f));
     REQUIRE(WaitFor([&] { return r.session->Counters().midiStray >= 1; }, 2.0));
@@ -196,5 +201,28 @@ TEST_CASE("midi learn: the next control that moves is written to the mapping fil
     CHECK(m.entries[0].number == 5);
     CHECK(m.entries[0].channel == 3);
     CHECK(m.entries[0].target == "twist");
+    std::remove(path.c_str());
+}
+
+TEST_CASE("midi learn: an NRPN control is learned as nrpn") {
+    std::string path = "/tmp/sdfvj-learn-nrpn-" + std::to_string(getpid()) + ".toml";
+    std::remove(path.c_str());
+    int rc = -1;
+    std::thread learner([&] { rc = RunLearn("displacement", path, 5.0); });
+    RtMidiOut out(RtMidi::UNIX_JACK, Unique("learn-nrpn-client"));
+    out.openVirtualPort(Unique("learn-nrpn-src"));
+    WaitFor([&] {
+        Send(out, {0xB0, 99, 3});
+        Send(out, {0xB0, 98, 1});
+        Send(out, {0xB0, 6, 50});
+        return rc != -1;
+    }, 6.0);
+    learner.join();
+    REQUIRE(rc == 0);
+    Mapping m;
+    REQUIRE(LoadMapping(path, &m).ok);
+    REQUIRE(m.entries.size() == 1);
+    CHECK(m.entries[0].kind == SourceKind::Nrpn);
+    CHECK(m.entries[0].number == 3 * 128 + 1);
     std::remove(path.c_str());
 }
