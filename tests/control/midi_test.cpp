@@ -95,6 +95,7 @@ preset = "intro"
     auto out = ConnectTo(vname);
     // JACK connects asynchronously: resend a harmless message until the first one arrives.
     REQUIRE(WaitFor([&] { Send(*out, {0xB0, 1, 0}); return r.queue.Pushed() > 0; }, 3.0));
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));  // let resent ones land (JACK period 5.3 ms)
     REQUIRE(r.Frame(1));
     size_t base = r.queue.Pushed();
 
