@@ -31,6 +31,7 @@ double Percentile(std::vector<double> v, double p) {
 }
 
 struct FrameLoop {
+    explicit FrameLoop(EventQueue& q) : queue(q) {}
     EventQueue& queue;
     Mapping mapping;
     MappingState ms;
@@ -105,7 +106,7 @@ int RunInputBench(double seconds) {
         std::fprintf(stderr, "bench input: no OSC port\n");
         return 1;
     }
-    FrameLoop loop{queue};
+    FrameLoop loop(queue);
     loop.now = &Now;
     loop.params = MakeParamState(decls);
     ParseMapping("[[map]]\nosc = \"/bench/seq\"\ntarget = \"twist\"\n[[map]]\ncc = 1\ntarget = \"scale\"\n",
