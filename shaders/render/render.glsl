@@ -141,15 +141,15 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
 #if SHADOWS == 1
-    shadow = shadowHard(ro, l, 0.01f, u_maxDist, u_shadowSteps);
+    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0) shadow = shadowHard(ro, l, 0.01f, u_maxDist, u_shadowSteps);
 #elif SHADOWS == 2
-    shadow = shadowSoft(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
+    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0) shadow = shadowSoft(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
 #elif SHADOWS == 3
-    shadow = shadowSoftImproved(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
+    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0) shadow = shadowSoftImproved(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
 #endif
     float occlusion = 1.0f;
 #if AO
-    occlusion = ambientOcclusion(p, n, u_aoSamples);
+    if ((u_effectsOff & EFFECT_OFF_AO) == 0) occlusion = ambientOcclusion(p, n, u_aoSamples);
 #endif
 #if PBR
     vec3 col = cookTorrance(n, v, l, albedo, u_metalness, u_roughness) * u_lightColor * (PI * shadow);
@@ -157,7 +157,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
 #else
     vec3 col = albedo * (lambert(n, l) * shadow * u_lightColor + ambientLight(n) * occlusion);
 #if SPECULAR
-    col += u_lightColor * (blinnPhong(n, l, v, roughnessToShininess(u_roughness)) * shadow *
+    if ((u_effectsOff & EFFECT_OFF_SPECULAR) == 0) col += u_lightColor * (blinnPhong(n, l, v, roughnessToShininess(u_roughness)) * shadow *
                            (1.0f - 0.7f * u_roughness));
 #endif
 #endif
@@ -169,7 +169,7 @@ vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n) {
     if (!h.hit) return background(rd);
     vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t);
 #if FOG
-    col = applyFog(col, h.t, background(rd), 0.03f);
+    if ((u_effectsOff & EFFECT_OFF_FOG) == 0) col = applyFog(col, h.t, background(rd), 0.03f);
 #endif
     return col;
 }
@@ -200,7 +200,7 @@ vec4 render(vec2 fragCoord) {
 #if REFLECTIONS > 0
     vec3 throughput = vec3(1.0f);
     for (int bounce = 0; bounce < REFLECTIONS; bounce++) {
-        if (!h.hit) break;
+        if (!h.hit || (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0) break;
         vec3 p = ro + rd * h.t;
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) *
                       (1.0f - u_roughness);

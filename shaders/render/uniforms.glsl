@@ -26,5 +26,13 @@ uniform int u_aoSamples;     // ambient occlusion samples
 uniform float u_normalEps;   // normal finite-difference step at distance 1; scaled like u_hitEps
 uniform float u_roughness;   // material roughness 0..1 (Blinn-Phong exponent or GGX)
 uniform float u_metalness;   // material metalness 0..1 (PBR and reflection tint)
+// Runtime switches for effects that ARE compiled in: a set bit skips that effect. Only the
+// effects benchmark sets it, to show what a uniform branch costs against compiling out.
+uniform int u_effectsOff;
+const int EFFECT_OFF_SHADOWS = 1;
+const int EFFECT_OFF_AO = 2;
+const int EFFECT_OFF_SPECULAR = 4;
+const int EFFECT_OFF_REFLECTIONS = 8;
+const int EFFECT_OFF_FOG = 16;
 
 #endif

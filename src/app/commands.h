@@ -33,6 +33,18 @@ struct BenchOptions {
 };
 int RunBench(const BenchOptions& o);
 
+// `sdfvj bench effects --scene S`: each effect (a) compiled out, (b) compiled in but switched
+// off by a uniform, (c) on — GPU time of each, interleaved in one run.
+struct EffectsBenchOptions {
+    std::string scene = "midi";
+    std::string size = "1920x1080";
+    std::string path = "auto";
+    int frames = 20;
+    int warmup = 3;
+    std::string markdown;
+};
+int RunEffectsBench(const EffectsBenchOptions& o);
+
 int RunList();
 
 #ifdef SDFVJ_HAS_LIVE

@@ -66,6 +66,20 @@ int main(int argc, char** argv) {
     cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->capture_default_str();
     cmdBench->add_option("--markdown", bench.markdown, "also write the table to this file");
 
+    EffectsBenchOptions effectsBench;
+    auto* cmdEffects = cmdBench->add_subcommand("effects", "each effect compiled out / compiled in but off / on");
+    cmdEffects->add_option("--scene", effectsBench.scene, "scene")->capture_default_str();
+    cmdEffects->add_option("--size", effectsBench.size, "frame size")->capture_default_str();
+    cmdEffects->add_option("--path", effectsBench.path, "auto, compute or fragment")->capture_default_str();
+    cmdEffects->add_option("--frames", effectsBench.frames, "timed rotations (median)")->capture_default_str();
+    cmdEffects->add_option("--warmup", effectsBench.warmup, "untimed rotations first")->capture_default_str();
+    cmdEffects->add_option("--markdown", effectsBench.markdown, "also write the table to this file");
+#ifdef SDFVJ_HAS_LIVE
+    double inputSeconds = 60;
+    auto* cmdInput = cmdBench->add_subcommand("input", "event-to-frame latency and a 10,000 msg/s flood (OSC + MIDI)");
+    cmdInput->add_option("--seconds", inputSeconds, "flood duration")->capture_default_str();
+#endif
+
     app.add_subcommand("list", "list scenes, presets and MIDI ports");
 
 #ifdef SDFVJ_HAS_LIVE
@@ -100,6 +114,10 @@ int main(int argc, char** argv) {
     render.framesGiven = framesOpt->count() > 0;
 
     if (cmdRender->parsed()) return RunRender(render);
+    if (cmdEffects->parsed()) return RunEffectsBench(effectsBench);
+#ifdef SDFVJ_HAS_LIVE
+    if (cmdInput->parsed()) return RunInputBench(inputSeconds);
+#endif
     if (cmdBench->parsed()) return RunBench(bench);
 #ifdef SDFVJ_HAS_LIVE
     if (cmdLive->parsed()) return RunLive(live);

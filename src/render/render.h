@@ -50,6 +50,7 @@ struct FrameInputs {
     float beat = 0.0f;
     Quality quality;
     std::vector<std::pair<std::string, float>> params;   // scene parameters by name (no u_ prefix)
+    int effectsOff = 0;   // u_effectsOff: compiled-in effects switched off at run time (benchmark only)
 };
 
 // A linked program and the uniforms it actually declares.
