@@ -9,7 +9,9 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -24,6 +26,49 @@
 namespace sdfvj {
 
 namespace {
+
+// Tap tempo: the beat the performer taps on a pad drives u_beat (phase 0..1 per beat).
+struct TapTempo {
+    double bpm = 120.0;
+    double origin = 0.0;            // time of a beat
+    std::vector<double> taps;
+    void Tap(double now) {
+        if (!taps.empty() && now - taps.back() > 2.0) taps.clear();   // a pause starts a new count
+        taps.push_back(now);
+        if (taps.size() > 5) taps.erase(taps.begin());
+        if (taps.size() >= 2) {
+            std::vector<double> gaps;
+            for (size_t i = 1; i < taps.size(); ++i) gaps.push_back(taps[i] - taps[i - 1]);
+            std::sort(gaps.begin(), gaps.end());
+            double gap = gaps[gaps.size() / 2];
+            if (gap > 0.2 && gap < 2.0) bpm = 60.0 / gap;
+        }
+        origin = now;
+    }
+    float Phase(double now) const {
+        double beats = (now - origin) * bpm / 60.0;
+        return (float)(beats - std::floor(beats));
+    }
+};
+
+// Resolves a preset request from a pad or OSC: a name, a file name, an index into
+// `sdfvj list`'s presets, or next/prev.
+std::string ResolvePresetRequest(const std::string& request, const std::string& current) {
+    const std::vector<std::string> presets = ListPresets();
+    if (presets.empty()) return "";
+    int at = 0;
+    for (size_t i = 0; i < presets.size(); ++i)
+        if (presets[i] == current) at = (int)i;
+    if (request == "next") return presets[(size_t)(at + 1) % presets.size()];
+    if (request == "prev") return presets[(size_t)(at + (int)presets.size() - 1) % presets.size()];
+    if (!request.empty() && std::all_of(request.begin(), request.end(), ::isdigit)) {
+        size_t i = std::stoul(request);
+        return i < presets.size() ? presets[i] : "";
+    }
+    for (const auto& p : presets)
+        if (p == request || p == request + ".json") return p;
+    return "";
+}
 
 struct WindowCloser { void operator()(GLFWwindow* w) const { glfwDestroyWindow(w); glfwTerminate(); } };
 
@@ -135,6 +180,10 @@ int RunLive(const LiveOptions& o) {
         }
         MappingState mstate;
         MappingActions actions;
+        TapTempo tempo;
+        std::string currentPreset = std::filesystem::path(show.preset.path).filename().string();
+        double lastMessageTime = -1.0;
+        size_t suppressedMessages = 0;
         FrameRenderer fr;
         FrameInputs in;
         in.quality = show.quality;
@@ -177,7 +226,47 @@ int RunLive(const LiveOptions& o) {
                 if (recorder.IsOpen()) recorder.Record(e);
                 ApplyEvent(mapping, mstate, e, params, &actions);
             }
-            for (const auto& m : actions.messages) std::fprintf(stderr, "%s\n", m.c_str());
+            // Bad-input reports: at most one line a second, so a flood cannot stall the frame.
+            if (!actions.messages.empty()) {
+                if (now - lastMessageTime >= 1.0) {
+                    std::fprintf(stderr, "%s", actions.messages.back().c_str());
+                    if (suppressedMessages + actions.messages.size() > 1)
+                        std::fprintf(stderr, " (and %zu more in the last second)", suppressedMessages + actions.messages.size() - 1);
+                    std::fputc('\n', stderr);
+                    lastMessageTime = now;
+                    suppressedMessages = 0;
+                } else {
+                    suppressedMessages += actions.messages.size();
+                }
+            }
+            if (actions.tapTempo) tempo.Tap(now);
+            // Preset pads and /sdfvj/preset: values glide there through smoothing; a new scene or
+            // effect set compiles while the current one keeps rendering.
+            for (const std::string& request : actions.presetSelect) {
+                const std::string name = ResolvePresetRequest(request, currentPreset);
+                ShowOptions so = o.show;
+                so.scene.clear();
+                so.params.clear();
+                so.preset = name;
+                Show next;
+                std::string err;
+                if (name.empty() || !PrepareShow(so, &next, &err)) {
+                    std::fprintf(stderr, "sdfvj live: preset '%s': %s\n", request.c_str(), name.empty() ? "no such preset" : err.c_str());
+                    continue;
+                }
+                next.path = show.path;
+                const bool sameScene = next.scene.path == show.scene.path;
+                show = std::move(next);
+                currentPreset = name;
+                if (!sameScene) params = ShowParamState(show);
+                for (const auto& [pname, value] : show.params) {
+                    int i = FindParam(params, pname);
+                    if (i >= 0) SetParamTarget(params, i, value);
+                }
+                live.Request(VariantKey{show.scene.path, show.effects, show.path});
+                input.SendFeedback(params, name);
+                std::fprintf(stderr, "preset %s (%s)\n", name.c_str(), show.scene.name.c_str());
+            }
             // Effect pads and /sdfvj/effect/<name>: a new variant compiles while the old one renders.
             if (!actions.effectToggles.empty()) {
                 EffectSet e = live.Key().effects;
@@ -221,6 +310,7 @@ int RunLive(const LiveOptions& o) {
             if (fbw > 0 && fbh > 0 && fr.Resize(fbw, fbh, &error)) {
                 in.time = now;
                 in.frame = frame++;
+                in.beat = tempo.Phase(now);
                 if (live.Current()) fr.Draw(*live.Current(), live.Scene(), in);
                 glBindFramebuffer(GL_READ_FRAMEBUFFER, fr.Framebuffer());
                 glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

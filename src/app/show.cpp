@@ -25,10 +25,10 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
     std::string sceneName = opts.scene;
     if (!opts.preset.empty()) {
         std::string p = opts.preset;
-        if (!fs::exists(p)) {
+        if (!fs::is_regular_file(p)) {
             fs::path inPresets = fs::path(DataRoot()) / "presets" / p;
-            if (fs::exists(inPresets)) p = inPresets.string();
-            else if (fs::exists(inPresets.string() + ".json")) p = inPresets.string() + ".json";
+            if (fs::is_regular_file(inPresets)) p = inPresets.string();
+            else if (fs::is_regular_file(inPresets.string() + ".json")) p = inPresets.string() + ".json";
             else {
                 *error = "unknown preset '" + opts.preset + "', expected a file or one of presets/*.json";
                 return false;
