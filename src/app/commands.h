@@ -45,6 +45,15 @@ struct EffectsBenchOptions {
 };
 int RunEffectsBench(const EffectsBenchOptions& o);
 
+// `sdfvj bench reload`: save -> first frame with the new program, and the longest frame meanwhile.
+struct ReloadBenchOptions {
+    std::string scene = "midi";
+    std::string size = "640x360";
+    std::string path = "auto";
+    int rounds = 5;
+};
+int RunReloadBench(const ReloadBenchOptions& o);
+
 int RunList();
 
 #ifdef SDFVJ_HAS_LIVE

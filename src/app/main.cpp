@@ -74,6 +74,12 @@ int main(int argc, char** argv) {
     cmdEffects->add_option("--frames", effectsBench.frames, "timed rotations (median)")->capture_default_str();
     cmdEffects->add_option("--warmup", effectsBench.warmup, "untimed rotations first")->capture_default_str();
     cmdEffects->add_option("--markdown", effectsBench.markdown, "also write the table to this file");
+    ReloadBenchOptions reloadBench;
+    auto* cmdReload = cmdBench->add_subcommand("reload", "hot reload: save -> new program on screen, longest frame meanwhile");
+    cmdReload->add_option("--scene", reloadBench.scene, "scene")->capture_default_str();
+    cmdReload->add_option("--size", reloadBench.size, "frame size")->capture_default_str();
+    cmdReload->add_option("--path", reloadBench.path, "auto, compute or fragment")->capture_default_str();
+    cmdReload->add_option("--rounds", reloadBench.rounds, "saves to time")->capture_default_str();
 #ifdef SDFVJ_HAS_LIVE
     double inputSeconds = 60;
     auto* cmdInput = cmdBench->add_subcommand("input", "event-to-frame latency and a 10,000 msg/s flood (OSC + MIDI)");
@@ -115,6 +121,7 @@ int main(int argc, char** argv) {
 
     if (cmdRender->parsed()) return RunRender(render);
     if (cmdEffects->parsed()) return RunEffectsBench(effectsBench);
+    if (cmdReload->parsed()) return RunReloadBench(reloadBench);
 #ifdef SDFVJ_HAS_LIVE
     if (cmdInput->parsed()) return RunInputBench(inputSeconds);
 #endif
