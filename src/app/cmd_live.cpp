@@ -211,7 +211,7 @@ int RunLive(const LiveOptions& o) {
             const double now = clock();
             const double dt = now - last;
             last = now;
-            fps = fps == 0 ? 1.0 / std::max(dt, 1e-6) : 0.95 * fps + 0.05 / std::max(dt, 1e-6);
+            if (frame >= 2) fps = fps == 0 ? 1.0 / std::max(dt, 1e-6) : 0.95 * fps + 0.05 / std::max(dt, 1e-6);  // first frames include start-up
             if (o.seconds > 0 && now >= o.seconds) break;
             if (glfwGetKey(window.get(), GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
             const bool tabDown = glfwGetKey(window.get(), GLFW_KEY_TAB) == GLFW_PRESS;
