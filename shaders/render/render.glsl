@@ -13,8 +13,13 @@
 //   REFLECTIONS number of mirror bounces (0 = none)
 //   FOG         0 / 1 (distance fog + sky background)
 //   DEBUG_VIEW  0 shaded / 1 step-count heatmap / 2 depth / 3 normals
+//               4 geometry for the accuracy bench (float target): vec4(t or -1 on a miss,
+//                 octahedral normal x, y, steps + 0.5 if the ray ran out of steps)
+//               5 linear radiance before tone mapping (float target; NaN/Inf scans)
 //   NORMALS     0 central / 1 forward / 2 tetrahedron differences
 //   MARCH_FIXED 0 sphere tracing / 1 fixed step of u_fixedStep
+//   EPS_MODE    hit threshold: 0 u_hitEps * max(1, t) / 1 fixed u_hitEps /
+//               2 u_hitEps pixel footprints (u_hitEps * t * pixel angle)
 #ifndef SDF_RENDER_RENDER_GLSL
 #define SDF_RENDER_RENDER_GLSL
 
@@ -45,6 +50,9 @@
 #ifndef MARCH_FIXED
 #define MARCH_FIXED 0
 #endif
+#ifndef EPS_MODE
+#define EPS_MODE 0
+#endif
 
 #include "render/uniforms.glsl"
 #include "lib/shading.glsl"
@@ -70,8 +78,21 @@ vec3 cameraRay(vec2 fragCoord) {
     return normalize(forward + (uv.x * right + uv.y * camUp) * (2.0f * tanHalf));
 }
 
+// Angle subtended by one pixel (vertically) at the camera.
+float pixelAngle() {
+    return 2.0f * tan(radians(clamp(u_fov, 1.0f, 179.0f)) * 0.5f) / max(u_resolution.y, 1.0f);
+}
+
 // Hit threshold grows with distance so far surfaces need no more precision than a pixel.
-float hitEpsilon(float t) { return u_hitEps * max(1.0f, t); }
+float hitEpsilon(float t) {
+#if EPS_MODE == 1
+    return u_hitEps;
+#elif EPS_MODE == 2
+    return u_hitEps * t * pixelAngle();
+#else
+    return u_hitEps * max(1.0f, t);
+#endif
+}
 
 Hit march(vec3 ro, vec3 rd, float tmin) {
     float t = tmin;
@@ -174,6 +195,20 @@ vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n) {
     return col;
 }
 
+// Octahedral encoding of a unit vector into two floats (DEBUG_VIEW 4).
+vec2 octEncode(vec3 n) {
+    float s = abs(n.x) + abs(n.y) + abs(n.z);
+    float x = n.x / max(s, 1e-20f);
+    float y = n.y / max(s, 1e-20f);
+    if (n.z < 0.0f) {
+        float ox = (1.0f - abs(y)) * sgn(x);
+        float oy = (1.0f - abs(x)) * sgn(y);
+        x = ox;
+        y = oy;
+    }
+    return vec2(x, y);
+}
+
 // Tiny per-pixel dither (+-0.5 / 255) against banding in 8-bit output; deterministic
 // per frame so replays match.
 float ditherNoise(vec2 fragCoord) {
@@ -195,6 +230,15 @@ vec4 render(vec2 fragCoord) {
     return vec4(vec3(depth), 1.0f);
 #elif DEBUG_VIEW == 3
     return vec4(h.hit ? n * 0.5f + 0.5f : vec3(0.0f), 1.0f);
+#elif DEBUG_VIEW == 4
+    float outOfSteps = 0.0f;
+#if MARCH_FIXED
+    if (!h.hit && h.steps >= float(u_maxSteps) && max(u_fixedStep, 1e-4f) * float(u_maxSteps) < u_maxDist) outOfSteps = 0.5f;
+#else
+    if (h.hit && h.steps >= float(u_maxSteps) && map(ro + rd * h.t).w >= hitEpsilon(h.t)) outOfSteps = 0.5f;
+#endif
+    vec2 oct = octEncode(n);
+    return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
 #else
     vec3 col = shadeRay(ro, rd, h, n);
 #if REFLECTIONS > 0
@@ -210,6 +254,9 @@ vec4 render(vec2 fragCoord) {
         if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
         col += throughput * shadeRay(ro, rd, h, n);
     }
+#endif
+#if DEBUG_VIEW == 5
+    return vec4(col, 1.0f);
 #endif
     col = linearToSRGB(toneMapACES(col));
     col += vec3(ditherNoise(fragCoord) / 255.0f);

@@ -45,6 +45,25 @@ struct EffectsBenchOptions {
 };
 int RunEffectsBench(const EffectsBenchOptions& o);
 
+// `sdfvj bench accuracy --scene S`: every quality knob swept; GPU time and error against the CPU
+// double reference (geometry) and a 4096-step GPU render (image). CSV, plots, docs/accuracy.md.
+struct AccuracyBenchOptions {
+    std::vector<std::string> scenes = {"midi"};   // --scene, comma-separated; "all" = the four
+    std::string size = "1920x1080";
+    std::string refSize;                          // CPU reference size (default: --size)
+    std::string path = "auto";
+    std::string sweep = "full";                   // full | tiny
+    int frames = 10;
+    int warmup = 3;
+    double time = 1.0;
+    std::vector<std::string> params;              // NAME=VALUE
+    int threads = 0;
+    std::string out = "out/accuracy";             // accuracy.csv, accuracy_<scene>.png/.svg, accuracy.md
+    std::string markdown;                         // also write the report here (e.g. docs/accuracy.md)
+    std::string commandLine;                      // recorded in the report
+};
+int RunAccuracyBench(const AccuracyBenchOptions& o);
+
 // `sdfvj bench reload`: save -> first frame with the new program, and the longest frame meanwhile.
 struct ReloadBenchOptions {
     std::string scene = "midi";

@@ -74,6 +74,20 @@ int main(int argc, char** argv) {
     cmdEffects->add_option("--frames", effectsBench.frames, "timed rotations (median)")->capture_default_str();
     cmdEffects->add_option("--warmup", effectsBench.warmup, "untimed rotations first")->capture_default_str();
     cmdEffects->add_option("--markdown", effectsBench.markdown, "also write the table to this file");
+    AccuracyBenchOptions accuracyBench;
+    auto* cmdAccuracy = cmdBench->add_subcommand("accuracy", "quality knobs: GPU time against error vs a CPU double reference");
+    cmdAccuracy->add_option("--scene", accuracyBench.scenes, "scenes, comma-separated, or all")->capture_default_str()->delimiter(',');
+    cmdAccuracy->add_option("--size", accuracyBench.size, "frame size for timing and images")->capture_default_str();
+    cmdAccuracy->add_option("--ref-size", accuracyBench.refSize, "size of the CPU double reference (geometry is compared there; default --size)");
+    cmdAccuracy->add_option("--path", accuracyBench.path, "auto, compute or fragment")->capture_default_str();
+    cmdAccuracy->add_option("--sweep", accuracyBench.sweep, "full or tiny")->capture_default_str();
+    cmdAccuracy->add_option("--frames", accuracyBench.frames, "timed frames per setting (median)")->capture_default_str();
+    cmdAccuracy->add_option("--warmup", accuracyBench.warmup, "untimed frames first")->capture_default_str();
+    cmdAccuracy->add_option("--time", accuracyBench.time, "scene time in seconds")->capture_default_str();
+    cmdAccuracy->add_option("--param", accuracyBench.params, "scene parameter NAME=VALUE (repeatable, clamped)");
+    cmdAccuracy->add_option("--threads", accuracyBench.threads, "CPU reference threads (0: all cores)")->capture_default_str();
+    cmdAccuracy->add_option("--out", accuracyBench.out, "folder for accuracy.csv, plots and accuracy.md")->capture_default_str();
+    cmdAccuracy->add_option("--markdown", accuracyBench.markdown, "also write the report here (docs/accuracy.md)");
     ReloadBenchOptions reloadBench;
     auto* cmdReload = cmdBench->add_subcommand("reload", "hot reload: save -> new program on screen, longest frame meanwhile");
     cmdReload->add_option("--scene", reloadBench.scene, "scene")->capture_default_str();
@@ -120,6 +134,10 @@ int main(int argc, char** argv) {
     render.framesGiven = framesOpt->count() > 0;
 
     if (cmdRender->parsed()) return RunRender(render);
+    if (cmdAccuracy->parsed()) {
+        for (int i = 0; i < argc; ++i) accuracyBench.commandLine += (i ? " " : "") + std::string(i ? argv[i] : "sdfvj");
+        return RunAccuracyBench(accuracyBench);
+    }
     if (cmdEffects->parsed()) return RunEffectsBench(effectsBench);
     if (cmdReload->parsed()) return RunReloadBench(reloadBench);
 #ifdef SDFVJ_HAS_LIVE

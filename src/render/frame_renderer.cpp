@@ -16,8 +16,8 @@ void FrameRenderer::Release() {
     fbo_ = texture_ = vao_ = query_ = 0;
 }
 
-bool FrameRenderer::Resize(int width, int height, std::string* error) {
-    if (width == width_ && height == height_ && fbo_) return true;
+bool FrameRenderer::Resize(int width, int height, std::string* error, bool floatTarget) {
+    if (width == width_ && height == height_ && floatTarget == floatTarget_ && fbo_) return true;
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (width <= 0 || height <= 0 || width > maxSize || height > maxSize) {
@@ -28,7 +28,7 @@ bool FrameRenderer::Resize(int width, int height, std::string* error) {
     Release();
     glGenTextures(1, &texture_);
     glBindTexture(GL_TEXTURE_2D, texture_);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
+    glTexStorage2D(GL_TEXTURE_2D, 1, floatTarget ? GL_RGBA32F : GL_RGBA8, width, height);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glGenFramebuffers(1, &fbo_);
@@ -43,6 +43,7 @@ bool FrameRenderer::Resize(int width, int height, std::string* error) {
     glGenQueries(1, &query_);
     width_ = width;
     height_ = height;
+    floatTarget_ = floatTarget;
     return true;
 }
 
@@ -81,7 +82,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     if (timeGpu) glBeginQuery(GL_TIME_ELAPSED, query_);
     glUseProgram(p.Id());
     if (p.Path() == RenderPath::Compute) {
-        glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatTarget_ ? GL_RGBA32F : GL_RGBA8);
         glDispatchCompute((GLuint)(width_ + 7) / 8, (GLuint)(height_ + 7) / 8, 1);
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {
@@ -115,6 +116,14 @@ std::vector<uint8_t> FrameRenderer::ReadPixels() const {
         std::memcpy(a, b, row);
         std::memcpy(b, tmp.data(), row);
     }
+    return rgba;
+}
+
+std::vector<float> FrameRenderer::ReadPixelsFloat() const {
+    std::vector<float> rgba((size_t)width_ * height_ * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, rgba.data());
     return rgba;
 }
 

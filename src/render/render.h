@@ -107,15 +107,18 @@ private:
     RenderPath path_ = RenderPath::Fragment;
 };
 
-// Draws programs into an RGBA8 texture of a given size and reads it back.
+// Draws programs into an RGBA8 texture of a given size and reads it back. With a float target
+// (Resize(..., true)) the texture is RGBA32F: programs with DEBUG_VIEW 4/5 (geometry, linear
+// radiance) write unclamped floats there, read back with ReadPixelsFloat.
 class FrameRenderer {
 public:
     FrameRenderer() = default;
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
-    bool Resize(int width, int height, std::string* error);
+    bool Resize(int width, int height, std::string* error, bool floatTarget = false);
     int Width() const { return width_; }
+    bool FloatTarget() const { return floatTarget_; }
     int Height() const { return height_; }
     // Sets built-in, scene and quality uniforms, then draws. With `timeGpu` the GPU time of the
     // draw is measured by a GL timer query (see LastGpuMs; costs a sync, use in benchmarks only).
@@ -123,11 +126,14 @@ public:
     double LastGpuMs() const { return lastGpuMs_; }
     // RGBA rows, top row first.
     std::vector<uint8_t> ReadPixels() const;
+    // RGBA32F rows of a float target, BOTTOM row first (row y is fragCoord.y = y + 0.5).
+    std::vector<float> ReadPixelsFloat() const;
     unsigned Framebuffer() const { return fbo_; }
     unsigned Texture() const { return texture_; }
 private:
     void Release();
     int width_ = 0, height_ = 0;
+    bool floatTarget_ = false;
     unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
     double lastGpuMs_ = 0.0;
 };

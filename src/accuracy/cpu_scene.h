@@ -1,0 +1,43 @@
+// cpu_scene.h - one scene plus render/render.glsl compiled as C++ (float or double), reached
+// through pointers to its uniforms and std::functions for map, march and normals. The CPU
+// double build is the accuracy reference; the float build mirrors the GPU's precision.
+// Instantiated by scene_instance.inc (one namespace per scene and precision).
+#pragma once
+#include "sdf/glsl_glm.h"
+
+#include <functional>
+#include <map>
+#include <string>
+
+namespace sdfvj::accuracy {
+
+// One marched ray as the renderer sees it.
+template <class S>
+struct CpuRay {
+    S t = 0;          // distance along the ray (u_maxDist on a miss)
+    S steps = 0;      // map evaluations
+    bool hit = false;
+};
+
+template <class S>
+struct CpuScene {
+    using V2 = glm::vec<2, S>;
+    using V3 = glm::vec<3, S>;
+    using V4 = glm::vec<4, S>;
+    std::string name;
+    std::function<V4(V3)> map;
+    std::function<S()> lipschitz;
+    std::function<V4(V2)> render;                   // render.glsl at its default switches
+    std::function<V3(V2)> cameraRay;                // unit ray through a pixel
+    std::function<CpuRay<S>(V3, V3, S)> march;      // ro, rd, tmin (sphere tracing, EPS_MODE 0)
+    std::function<S(S)> hitEpsilon;
+    std::function<V3(V3, S)> normalCentral, normalForward, normalTetra;  // p, eps
+    std::function<V3(V3, S)> surfaceNormal;         // p, t (central, u_normalEps * max(1, t))
+    std::map<std::string, S*> inputs;               // u_<name> of every header input
+    S* time; int* frame; V2* resolution; S* beat; V3* camPos; V3* camTarget; S* fov;
+    V3* lightDir; V3* lightColor; int* maxSteps; S* hitEps; S* maxDist; S* stepFactor;
+    S* fixedStep; int* shadowSteps; S* shadowK; int* aoSamples; S* normalEps; S* roughness;
+    S* metalness; int* effectsOff;
+};
+
+}  // namespace sdfvj::accuracy

@@ -1,0 +1,283 @@
+// The quality sweep: each setting timed on the GPU and compared with the references.
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "accuracy/accuracy.h"
+
+namespace sdfvj::accuracy {
+
+namespace {
+
+std::string Fmt(const char* f, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return b;
+}
+
+Setting Make(const std::string& knob, const std::string& label) {
+    Setting s;
+    s.knob = knob;
+    s.label = label;
+    return s;
+}
+
+double Median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+std::vector<Setting> SweepSettings(const std::string& which) {
+    std::vector<Setting> out;
+    Setting def = Make("default", "sdfvj default");
+    def.role = "default";
+    out.push_back(def);
+    // The seed-style raymarcher: 128 steps, eps 1e-3, step factor 1 NOT divided by the scene's
+    // Lipschitz bound (the sweep multiplies the bound back in for this row).
+    Setting plain = Make("plain", "plain (128 steps, eps 1e-3, factor 1, no Lipschitz)");
+    plain.role = "plain";
+    plain.naiveStep = true;
+    out.push_back(plain);
+    if (which == "tiny") {
+        Setting s = Make("steps", "steps=32");
+        s.q.maxSteps = 32;
+        out.push_back(s);
+        s = Make("eps_pixel", "eps=1px");
+        s.epsMode = 2;
+        s.q.hitEps = 1.0f;
+        out.push_back(s);
+        s = Make("normals", "tetrahedron eps=1e-3");
+        s.normals = 2;
+        out.push_back(s);
+        s = Make("fixed_step", "fixed step 0.1");
+        s.marchFixed = true;
+        s.q.fixedStep = 0.1f;
+        s.q.maxSteps = 500;
+        out.push_back(s);
+        return out;
+    }
+    for (int n : {16, 32, 64, 96, 128, 192, 256, 512, 1024}) {
+        Setting s = Make("steps", "steps=" + std::to_string(n));
+        s.q.maxSteps = n;
+        out.push_back(s);
+    }
+    for (double e : {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5, 1e-6}) {
+        Setting s = Make("eps_relative", "eps=" + Fmt("%g", e) + "*max(1,t)");
+        s.q.hitEps = (float)e;
+        out.push_back(s);
+    }
+    for (double e : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
+        Setting s = Make("eps_fixed", "eps=" + Fmt("%g", e) + " fixed");
+        s.q.hitEps = (float)e;
+        s.epsMode = 1;
+        out.push_back(s);
+    }
+    for (double e : {4.0, 2.0, 1.0, 0.5, 0.25, 0.1}) {
+        Setting s = Make("eps_pixel", "eps=" + Fmt("%g", e) + "px");
+        s.q.hitEps = (float)e;
+        s.epsMode = 2;
+        out.push_back(s);
+    }
+    const char* methods[] = {"central", "forward", "tetrahedron"};
+    for (int m = 0; m < 3; ++m)
+        for (double e : {1e-2, 1e-3, 1e-4}) {
+            Setting s = Make("normals", std::string(methods[m]) + " eps=" + Fmt("%g", e));
+            s.normals = m;
+            s.q.normalEps = (float)e;
+            out.push_back(s);
+        }
+    for (int n : {8, 16, 32, 64, 128, 256}) {
+        Setting s = Make("shadow_steps", "shadow steps=" + std::to_string(n));
+        s.q.shadowSteps = n;
+        out.push_back(s);
+    }
+    for (double k : {4.0, 16.0, 32.0}) {
+        Setting s = Make("penumbra", "shadow k=" + Fmt("%g", k));
+        s.q.shadowK = (float)k;
+        out.push_back(s);
+    }
+    for (int n : {1, 2, 3, 8, 16}) {
+        Setting s = Make("ao_samples", "ao samples=" + std::to_string(n));
+        s.q.aoSamples = n;
+        out.push_back(s);
+    }
+    for (double f : {0.5, 0.6, 0.7, 0.8, 0.9, 1.1, 1.25, 1.5}) {
+        Setting s = Make("step_factor", "step factor=" + Fmt("%g", f));
+        s.q.stepFactor = (float)f;
+        out.push_back(s);
+    }
+    for (double st : {0.2, 0.1, 0.05, 0.02}) {
+        Setting s = Make("fixed_step", "fixed step " + Fmt("%g", st));
+        s.marchFixed = true;
+        s.q.fixedStep = (float)st;
+        s.q.maxSteps = std::min(4096, (int)std::ceil(s.q.maxDist / st));
+        out.push_back(s);
+    }
+    // Combinations a default could move to.
+    struct Combo { int steps; int epsMode; float eps; float factor; };
+    for (Combo c : {Combo{192, 0, 1e-3f, 1.0f}, Combo{256, 0, 1e-3f, 1.0f}, Combo{128, 2, 0.5f, 1.0f},
+                    Combo{192, 2, 0.5f, 1.0f}, Combo{256, 2, 0.5f, 1.0f}, Combo{256, 2, 1.0f, 1.0f},
+                    Combo{192, 2, 0.5f, 0.9f}, Combo{256, 2, 0.5f, 0.8f}, Combo{256, 0, 3e-4f, 0.9f}}) {
+        Setting s = Make("combo", "steps=" + std::to_string(c.steps) + " eps=" + Fmt("%g", c.eps) +
+                                      (c.epsMode == 2 ? "px" : "*max(1,t)") + " factor=" + Fmt("%g", c.factor));
+        s.q.maxSteps = c.steps;
+        s.epsMode = c.epsMode;
+        s.q.hitEps = c.eps;
+        s.q.stepFactor = c.factor;
+        out.push_back(s);
+    }
+    return out;
+}
+
+bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, std::string* error) {
+    auto log = [&](const std::string& s) { if (o.log) o.log(s); };
+    info->wallClock = IsSoftwareRenderer();
+    info->device = GlRendererName();
+    const int rw = o.refWidth > 0 ? o.refWidth : o.width;
+    const int rh = o.refHeight > 0 ? o.refHeight : o.height;
+    std::vector<Setting> settings = SweepSettings(o.sweep);
+    FrameRenderer colour, geom;
+    for (const std::string& name : o.scenes) {
+        SceneInfo scene;
+        if (!FindScene(name, &scene, error)) return false;
+        if (!HasCpuScene(scene.name)) {
+            *error = "no CPU reference build of scene '" + scene.name + "', expected primitives, midi, character or mandelbulb";
+            return false;
+        }
+        RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
+                                                                                          : ProbeRenderPath(scene, nullptr);
+        info->path = RenderPathName(path);
+        FrameInputs base;
+        base.time = o.time;
+        base.frame = 0;
+        for (const ParamDecl& d : scene.params) base.params.emplace_back(d.name, d.defaultValue);
+        for (const auto& [n, v] : o.params)
+            for (auto& [bn, bv] : base.params)
+                if (bn == n) bv = v;
+
+        // CPU double reference geometry.
+        auto t0 = std::chrono::steady_clock::now();
+        Geometry ref = CpuReferenceGeometry(scene, base, rw, rh, ReferenceSettings{}, o.threads);
+        double refS = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        info->refSeconds += refS;
+        log(scene.name + ": CPU double reference " + std::to_string(rw) + "x" + std::to_string(rh) + " in " +
+            Fmt("%.1f", refS) + " s");
+        double lipschitz = 1.0;
+        {
+            CpuScene<float> s32 = MakeCpuScene32(scene.name);
+            ApplyFrame(s32, scene, base, rw, rh);
+            lipschitz = std::max(1.0, (double)s32.lipschitz());
+        }
+
+        std::map<std::string, std::unique_ptr<Program>> programs;
+        auto program = [&](const EffectSet& e, int epsMode, Program** out) {
+            std::string key = DescribeEffects(e) + "|n" + std::to_string(e.normals) + "|f" + std::to_string(e.marchFixed) +
+                              "|d" + std::to_string(e.debugView) + "|e" + std::to_string(epsMode);
+            auto it = programs.find(key);
+            if (it == programs.end()) {
+                auto p = std::make_unique<Program>();
+                if (!BuildProgram(scene, e, path, {"EPS_MODE " + std::to_string(epsMode)}, p.get(), error)) return false;
+                it = programs.emplace(key, std::move(p)).first;
+            }
+            *out = it->second.get();
+            return true;
+        };
+
+        // High-quality GPU images, one per look (penumbra and AO samples change the look).
+        std::map<std::pair<float, int>, std::vector<uint8_t>> hq;
+        auto hqImage = [&](const Quality& look, std::vector<uint8_t>** out) {
+            auto key = std::make_pair(look.shadowK, look.aoSamples);
+            auto it = hq.find(key);
+            if (it == hq.end()) {
+                FrameInputs in = base;
+                in.quality = Quality{};
+                in.quality.maxSteps = 4096;
+                in.quality.hitEps = 1e-5f;
+                in.quality.normalEps = 2e-4f;
+                in.quality.shadowSteps = 1024;
+                in.quality.shadowK = look.shadowK;
+                in.quality.aoSamples = look.aoSamples;
+                EffectSet e = scene.effects;
+                e.normals = 0;
+                e.marchFixed = false;
+                Program* p = nullptr;
+                if (!program(e, 0, &p)) return false;
+                if (!colour.Resize(o.width, o.height, error)) return false;
+                colour.Draw(*p, scene, in, false);
+                it = hq.emplace(key, colour.ReadPixels()).first;
+            }
+            *out = &it->second;
+            return true;
+        };
+
+        for (const Setting& st : settings) {
+            FrameInputs in = base;
+            in.quality = st.q;
+            if (st.naiveStep) in.quality.stepFactor = (float)(st.q.stepFactor * lipschitz);
+            EffectSet e = scene.effects;
+            e.normals = st.normals;
+            e.marchFixed = st.marchFixed;
+            Program* shaded = nullptr;
+            if (!program(e, st.epsMode, &shaded)) return false;
+            if (!colour.Resize(o.width, o.height, error)) return false;
+            std::vector<double> ms;
+            for (int i = 0; i < o.warmup + o.frames; ++i) {
+                auto c0 = std::chrono::steady_clock::now();
+                colour.Draw(*shaded, scene, in, !info->wallClock);
+                if (info->wallClock) glFinish();
+                double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count();
+                if (i >= o.warmup) ms.push_back(info->wallClock ? wall : colour.LastGpuMs());
+            }
+            Row r;
+            r.scene = scene.name;
+            r.s = st;
+            r.gpuMs = Median(ms);
+            std::vector<uint8_t> img = colour.ReadPixels();
+            std::vector<uint8_t>* ref8 = nullptr;
+            if (!hqImage(st.q, &ref8)) return false;
+            r.img = CompareRgba8(img, *ref8);
+
+            EffectSet eg = e;
+            eg.debugView = 4;
+            Program* gp = nullptr;
+            if (!program(eg, st.epsMode, &gp)) return false;
+            if (!geom.Resize(rw, rh, error, true)) return false;
+            geom.Draw(*gp, scene, in, false);
+            Geometry g = DecodeGeometry(geom.ReadPixelsFloat(), rw, rh);
+            r.g = CompareGeometry(g, ref, PixelAngle(scene, rh));
+            rows->push_back(r);
+            char line[512];
+            std::snprintf(line, sizeof line,
+                          "%s | %-44s | %8.3f ms | %6.3f%% >8/255, %5.1f dB | t err p50 %.3g p99 %.3g px | sil %.3f%% | "
+                          "normal p50 %.3g p99 %.3g deg | out of steps %.2f%%",
+                          scene.name.c_str(), st.label.c_str(), r.gpuMs, r.img.pctOver8, r.img.psnr, r.g.tErrP50,
+                          r.g.tErrP99, r.g.silhouettePct, r.g.normalP50, r.g.normalP99, r.g.outOfStepsPct);
+            log(line);
+        }
+    }
+    MarkPareto(rows);
+    return true;
+}
+
+void MarkPareto(std::vector<Row>* rows) {
+    for (Row& a : *rows) {
+        a.pareto = true;
+        for (const Row& b : *rows) {
+            if (&a == &b || b.scene != a.scene) continue;
+            bool noWorse = b.gpuMs <= a.gpuMs && b.img.pctOver8 <= a.img.pctOver8;
+            bool better = b.gpuMs < a.gpuMs || b.img.pctOver8 < a.img.pctOver8;
+            if (noWorse && better) { a.pareto = false; break; }
+        }
+    }
+}
+
+}  // namespace sdfvj::accuracy
