@@ -74,7 +74,10 @@ struct ReferenceSettings {
     int maxSteps = 20000;
     double hitEps = 1e-6;        // relative (EPS_MODE 0): eps * max(1, t)
     double stepFactor = 0.5;     // under-relaxed on top of the scene's Lipschitz bound
-    double normalEps = 1e-6;     // central differences
+    // Central differences at the renderer's default offset (1e-3 * max(1, t)), in double: on smooth
+    // surfaces within 1e-4 deg of the analytic normal (MeasureNormals), and on the Mandelbulb, whose
+    // DE normal depends on the scale it is taken at, the same scale as the default renderer.
+    double normalEps = 1e-3;
 };
 // The CPU double reference of a frame's primary rays.
 Geometry CpuReferenceGeometry(const SceneInfo& scene, const FrameInputs& in, int width, int height,

@@ -76,6 +76,7 @@ TEST_CASE("stability: hard geometry in the CPU builds matches analytic intersect
     auto s64 = Hard64();
     struct Case { const char* what; float shape, offset, radius, eps, maxDist; Vec3f cam, target; int steps; };
     for (Case c : {Case{"sphere", 1, 0, 1, 1e-3f, 50, {0, 1, -5}, {0, 1, 0}, 128},
+                   Case{"box", 2, 0, 1, 1e-3f, 50, {1.5f, 2.5f, -4}, {0, 1, 0}, 128},
                    Case{"sphere 10^4 away", 1, 1e4f, 2000, 1e-3f, 2e4f, {0, 1, -5}, {0, 1, 1e4f}, 256},
                    Case{"eps below float resolution at 10^4", 1, 1e4f, 2000, 1e-12f, 2e4f, {0, 1, -5}, {0, 1, 1e4f}, 256},
                    Case{"grazing floor", 0, 0, 1, 1e-3f, 50, {0, 0.01f, -5}, {0, 0.01f, 0}, 128}}) {
@@ -103,6 +104,16 @@ TEST_CASE("stability: hard geometry in the CPU builds matches analytic intersect
                     if (disc >= 0) t = -b - std::sqrt(disc);
                     double tf = rd.y < 0 ? -ro.y / rd.y : -1;
                     if (tf >= 0 && (t < 0 || tf < t)) t = -1;   // the floor is in front: not compared
+                } else if (c.shape == 2) {
+                    // slab test against the box of half-extents (1, 0.6, 0.8) centred at (0, 1, 0)
+                    glm::dvec3 lo = glm::dvec3(-1.0, 0.4, -0.8), hi = glm::dvec3(1.0, 1.6, 0.8);
+                    double t0 = 0, t1 = 1e30;
+                    for (int i = 0; i < 3; ++i) {
+                        double a = (lo[i] - ro[i]) / rd[i], b = (hi[i] - ro[i]) / rd[i];
+                        t0 = std::max(t0, std::min(a, b));
+                        t1 = std::min(t1, std::max(a, b));
+                    }
+                    if (t0 <= t1) t = t0;
                 } else if (rd.y < 0) {
                     t = -ro.y / rd.y;
                 }
