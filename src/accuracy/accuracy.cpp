@@ -12,6 +12,8 @@ CpuScene<float> MakeCpuScene32_primitives();
 CpuScene<double> MakeCpuScene64_primitives();
 CpuScene<float> MakeCpuScene32_midi();
 CpuScene<double> MakeCpuScene64_midi();
+CpuScene<float> MakeCpuScene32_midi_global();
+CpuScene<double> MakeCpuScene64_midi_global();
 CpuScene<float> MakeCpuScene32_character();
 CpuScene<double> MakeCpuScene64_character();
 CpuScene<float> MakeCpuScene32_mandelbulb();
@@ -27,6 +29,7 @@ bool HasCpuScene(const std::string& name) {
 CpuScene<float> MakeCpuScene32(const std::string& name) {
     if (name == "primitives") return MakeCpuScene32_primitives();
     if (name == "midi") return MakeCpuScene32_midi();
+    if (name == "midi_global") return MakeCpuScene32_midi_global();
     if (name == "character") return MakeCpuScene32_character();
     if (name == "mandelbulb") return MakeCpuScene32_mandelbulb();
     throw std::runtime_error("no CPU build of scene '" + name + "', expected primitives, midi, character or mandelbulb");
@@ -34,6 +37,7 @@ CpuScene<float> MakeCpuScene32(const std::string& name) {
 CpuScene<double> MakeCpuScene64(const std::string& name) {
     if (name == "primitives") return MakeCpuScene64_primitives();
     if (name == "midi") return MakeCpuScene64_midi();
+    if (name == "midi_global") return MakeCpuScene64_midi_global();
     if (name == "character") return MakeCpuScene64_character();
     if (name == "mandelbulb") return MakeCpuScene64_mandelbulb();
     throw std::runtime_error("no CPU build of scene '" + name + "', expected primitives, midi, character or mandelbulb");

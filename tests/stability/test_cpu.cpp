@@ -200,7 +200,10 @@ TEST_CASE("stability: on the twisted, displaced midi scene the naive step overst
     SceneInfo scene;
     std::string error;
     REQUIRE(FindScene("midi", &scene, &error));
-    auto s = accuracy::MakeCpuScene64("midi");
+    // The raw field (SCENE_GLOBAL_LIPSCHITZ build): what a plain raymarcher marches. The shipped
+    // scene divides the blob by the same bound inside map(), checked at the end.
+    auto s = accuracy::MakeCpuScene64("midi_global");
+    auto shipped = accuracy::MakeCpuScene64("midi");
     const int w = 48, h = 36;
     const double maxDist = 15, dt = 2e-3;
     for (auto params : {Params{{"twist", 3.0f}, {"displacement", 0.25f}, {"scale", 2.0f}, {"smoothness", 0.0f}},
@@ -209,8 +212,10 @@ TEST_CASE("stability: on the twisted, displaced midi scene the naive step overst
         in.time = 1.0;
         in.params = params;
         accuracy::ApplyFrame(s, scene, in, w, h);
+        accuracy::ApplyFrame(shipped, scene, in, w, h);
         const double L = std::max(1.0, s.lipschitz());
-        std::atomic<int> naiveOver{0}, correctedOver{0}, rays{0};
+        REQUIRE(shipped.lipschitz() == Approx(1.0));   // the shipped field is corrected inside map()
+        std::atomic<int> naiveOver{0}, correctedOver{0}, shippedOver{0}, rays{0};
         accuracy::ParallelRows(h, 0, [&](int y) {
             for (int x = 0; x < w; ++x) {
                 glm::dvec3 ro = *s.camPos, rd = s.cameraRay(glm::dvec2(x + 0.5, y + 0.5));
@@ -221,6 +226,7 @@ TEST_CASE("stability: on the twisted, displaced midi scene the naive step overst
                 auto over = [&](const MarchOut& m) { return first >= 0 && (!m.hit || m.t > first + 2 * dt + 1e-3 * first); };
                 if (over(naive)) ++naiveOver;
                 if (over(corrected)) ++correctedOver;
+                if (over(MarchWith(shipped, ro, rd, 1.0, maxDist))) ++shippedOver;
                 ++rays;
             }
         });
@@ -230,6 +236,7 @@ TEST_CASE("stability: on the twisted, displaced midi scene the naive step overst
         INFO(Describe(params) << " L=" << L << ": naive " << naiveOver << ", corrected " << correctedOver);
         CHECK(naiveOver > 0);
         CHECK(correctedOver == 0);
+        CHECK(shippedOver == 0);
     }
 }
 
