@@ -184,6 +184,7 @@ int RunLive(const LiveOptions& o) {
         std::string currentPreset = std::filesystem::path(show.preset.path).filename().string();
         double lastMessageTime = -1.0;
         size_t suppressedMessages = 0;
+        std::vector<std::string> presetReloads;   // presets saved on disk, applied next frame
         FrameRenderer fr;
         FrameInputs in;
         in.quality = show.quality;
@@ -222,6 +223,7 @@ int RunLive(const LiveOptions& o) {
             if (replay)
                 for (ControlEvent& e : replay->Until(now)) queue.Push(std::move(e));
             actions.Clear();
+            actions.presetSelect.swap(presetReloads);
             for (const ControlEvent& e : queue.DrainUntil(now)) {
                 if (recorder.IsOpen()) recorder.Record(e);
                 ApplyEvent(mapping, mstate, e, params, &actions);
@@ -291,6 +293,11 @@ int RunLive(const LiveOptions& o) {
             const std::vector<std::string> changed = watcher.Poll();
             live.Update(changed);
             for (const std::string& f : changed) {
+                // The preset on stage was edited: apply it again next frame (a broken save is
+                // reported and the current values stay).
+                if (!currentPreset.empty() && std::filesystem::path(f).filename() == currentPreset &&
+                    std::filesystem::path(f).parent_path().filename() == "presets")
+                    presetReloads.push_back(currentPreset);
                 if (std::filesystem::weakly_canonical(f).string() != mappingPath) continue;
                 Mapping next;
                 LoadResult r = LoadMapping(mappingPath, &next);
