@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "app/commands.h"
+#include "render/compile_worker.h"
 #include "render/live_program.h"
 #include "shader/watch.h"
 
@@ -40,6 +41,17 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     setenv("SDFVJ_ROOT", root.c_str(), 1);
     const fs::path sceneFile = root / "shaders" / "scenes" / fs::path(scene.path).filename();
 
+    // Two rounds of the same measurement: compiling through the driver on the render thread
+    // (with GL_KHR_parallel_shader_compile where it exists), then on a CompileWorker.
+    for (int mode = 0; mode < 2; ++mode) {
+    HeadlessContext shared;
+    std::unique_ptr<CompileWorker> worker;
+    if (mode == 1) {
+        if (!shared.CreateShared(gl, &error)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); break; }
+        worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); });
+        if (!worker->Ok()) { std::fprintf(stderr, "sdfvj bench reload: the worker's context failed\n"); break; }
+        PendingProgram::SetWorker(worker.get());
+    }
     FolderWatcher watcher;
     for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"}) watcher.Watch((root / d).string(), &error);
     RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
@@ -66,8 +78,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     for (int i = 0; i < 20; ++i) steady.push_back(frameOnce(&swapped));
     std::sort(steady.begin(), steady.end());
 
-    std::printf("# sdfvj bench reload: %s at %dx%d, %s path, on %s; parallel shader compile: %s\n", scene.name.c_str(), w, h,
-                RenderPathName(path), gl.Description().c_str(), PendingProgram::ParallelCompileAvailable() ? "yes" : "no");
+    std::printf("# sdfvj bench reload: %s at %dx%d, %s path, on %s; compile %s\n", scene.name.c_str(), w, h,
+                RenderPathName(path), gl.Description().c_str(),
+                worker ? "on a worker thread with a shared context"
+                       : (PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
+                                                                     : "on the render thread"));
     std::printf("| round | save -> new program on screen ms | frames meanwhile | longest frame ms |\n|---:|---:|---:|---:|\n");
     std::vector<double> latencies, longest;
     for (int round = 1; round <= o.rounds; ++round) {
@@ -92,6 +107,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::sort(longest.begin(), longest.end());
     std::printf("median: save -> screen %.1f ms, longest frame during a reload %.1f ms (steady frame median %.2f ms)\n",
                 latencies[latencies.size() / 2], longest[longest.size() / 2], steady[steady.size() / 2]);
+    PendingProgram::SetWorker(nullptr);
+    }
     setenv("SDFVJ_ROOT", oldRoot.c_str(), 1);
     fs::remove_all(root);
     return 0;

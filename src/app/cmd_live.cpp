@@ -19,6 +19,7 @@
 
 #include "app/commands.h"
 #include "app/live_support.h"
+#include "render/compile_worker.h"
 #include "render/live_program.h"
 #include "shader/watch.h"
 #include "take/take.h"
@@ -136,6 +137,25 @@ int RunLive(const LiveOptions& o) {
         } else {
             show.path = o.show.path == "compute" ? RenderPath::Compute : RenderPath::Fragment;
         }
+        // Shader compiles run on a worker thread with a hidden window's context, which shares
+        // programs with this one: a reload or a variant switch never stalls a frame.
+        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+        GLFWwindow* compileWindow = glfwCreateWindow(1, 1, "sdfvj compiler", nullptr, window.get());
+        glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+        std::unique_ptr<CompileWorker> worker;
+        if (compileWindow) {
+            worker = std::make_unique<CompileWorker>([compileWindow] {
+                glfwMakeContextCurrent(compileWindow);
+                return glfwGetCurrentContext() == compileWindow;
+            });
+            if (worker->Ok()) PendingProgram::SetWorker(worker.get());
+            else std::fprintf(stderr, "sdfvj live: no compile thread; shaders compile on the render thread\n");
+        }
+        struct WorkerStop {   // runs first at scope exit: no compile may outlive the windows
+            std::unique_ptr<CompileWorker>& w;
+            GLFWwindow* win;
+            ~WorkerStop() { PendingProgram::SetWorker(nullptr); w.reset(); if (win) glfwDestroyWindow(win); }
+        } workerStop{worker, compileWindow};
         // Hot reload: shaders, mappings and presets are watched as folders.
         FolderWatcher watcher;
         for (const char* dir : {"shaders/lib", "shaders/scenes", "shaders/render", "mappings", "presets"})

@@ -67,8 +67,35 @@ bool HeadlessContext::Create(std::string* error) {
     return false;
 }
 
+bool HeadlessContext::CreateShared(const HeadlessContext& main, std::string* error) {
+    if (!main.display_) {
+        *error = "no main context to share with";
+        return false;
+    }
+    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    EGLContext ctx = eglCreateContext((EGLDisplay)main.display_, EGL_NO_CONFIG_KHR, (EGLContext)main.context_, ctxAttribs);
+    if (ctx == EGL_NO_CONTEXT) {
+        *error = "cannot create a shared OpenGL context";
+        return false;
+    }
+    display_ = main.display_;
+    context_ = ctx;
+    shared_ = true;
+    description_ = main.description_ + " (shared)";
+    return true;
+}
+
+bool HeadlessContext::MakeCurrent() {
+    return display_ && eglMakeCurrent((EGLDisplay)display_, EGL_NO_SURFACE, EGL_NO_SURFACE, (EGLContext)context_);
+}
+
 HeadlessContext::~HeadlessContext() {
     if (!display_) return;
+    if (shared_) {   // the display belongs to the main context
+        eglDestroyContext((EGLDisplay)display_, (EGLContext)context_);
+        return;
+    }
     eglMakeCurrent((EGLDisplay)display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext((EGLDisplay)display_, (EGLContext)context_);
     eglTerminate((EGLDisplay)display_);

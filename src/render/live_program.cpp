@@ -34,8 +34,11 @@ void LiveProgram::Rebuild() {
     }
     auto it = cache_.find(key_);
     if (it != cache_.end() && it->second.program->Source().hash == src.hash) {
-        current_ = it->second.program.get();   // a no-op save: nothing to compile
+        // A no-op save, or a broken save undone: the cached program is the right one again.
+        pending_.Cancel();
+        current_ = it->second.program.get();
         scene_ = it->second.scene;
+        error_.clear();
         return;
     }
     if (pending_.Active() && pendingKey_ == key_ && pendingHash_ == src.hash) return;

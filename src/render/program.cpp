@@ -1,6 +1,10 @@
 #include <epoxy/gl.h>
 
 #include "render/render.h"
+#include "render/compile_worker.h"
+
+#include <chrono>
+#include <thread>
 
 namespace sdfvj {
 
@@ -32,9 +36,25 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src) {
     }
 }
 
+namespace {
+CompileWorker* g_worker = nullptr;   // set by the render thread before any PendingProgram runs
+}  // namespace
+
+void PendingProgram::SetWorker(CompileWorker* worker) { g_worker = worker; }
+
 PendingProgram::~PendingProgram() { Cancel(); }
 
 void PendingProgram::Cancel() {
+    if (ticket_) {
+        if (workerDone_) {
+            if (workerProgram_) glDeleteProgram(workerProgram_);
+        } else if (g_worker) {
+            g_worker->Forget(ticket_);
+        }
+        ticket_ = 0;
+        workerDone_ = false;
+        workerProgram_ = 0;
+    }
     for (unsigned s : stages_) glDeleteShader(s);
     stages_.clear();
     if (id_) glDeleteProgram(id_);
@@ -49,6 +69,12 @@ bool PendingProgram::ParallelCompileAvailable() {
 
 void PendingProgram::Begin(const ShaderSource& src, RenderPath path) {
     Cancel();
+    if (g_worker) {
+        source_ = src;
+        path_ = path;
+        ticket_ = g_worker->Submit(source_.text, path);
+        return;
+    }
     if (ParallelCompileAvailable()) glMaxShaderCompilerThreadsKHR(0xFFFFFFFFu);   // driver's choice
     source_ = src;
     path_ = path;
@@ -70,6 +96,10 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path) {
 }
 
 bool PendingProgram::Ready() const {
+    if (ticket_) {
+        if (!workerDone_ && g_worker) workerDone_ = g_worker->Poll(ticket_, &workerProgram_, &workerLog_);
+        return workerDone_;
+    }
     if (!id_) return false;
     if (!ParallelCompileAvailable()) return true;
     GLint done = GL_TRUE;
@@ -78,6 +108,19 @@ bool PendingProgram::Ready() const {
 }
 
 bool PendingProgram::Finish(Program* into, std::string* log) {
+    if (ticket_) {
+        while (!Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        ticket_ = 0;
+        workerDone_ = false;
+        if (!workerProgram_) {
+            *log = MapCompileLog(workerLog_, source_);
+            return false;
+        }
+        // The worker's glFinish happened before it reported, so the program is complete.
+        into->Adopt(workerProgram_, path_, source_);
+        workerProgram_ = 0;
+        return true;
+    }
     if (!id_) {
         *log = "no program was being built";
         return false;

@@ -23,10 +23,15 @@ public:
     HeadlessContext& operator=(const HeadlessContext&) = delete;
     // False with one readable line when no GL is available.
     bool Create(std::string* error);
+    // A second context on the same display that shares programs with `main` (for a
+    // CompileWorker). Created on the render thread; MakeCurrent() it on the worker.
+    bool CreateShared(const HeadlessContext& main, std::string* error);
+    bool MakeCurrent();
     std::string Description() const { return description_; }  // "EGL device platform: llvmpipe (...)"
 private:
     void* display_ = nullptr;
     void* context_ = nullptr;
+    bool shared_ = false;
     std::string description_;
 };
 
@@ -85,14 +90,17 @@ private:
 // A program being compiled and linked. Where GL_KHR_parallel_shader_compile exists the driver
 // compiles on its own threads and Ready() polls without blocking, so a reload never stalls a
 // frame; elsewhere Ready() is true at once and Finish() waits.
+class CompileWorker;
 class PendingProgram {
 public:
+    // With a worker, Begin() queues the compile on the worker's thread and context instead.
+    static void SetWorker(CompileWorker* worker);
     PendingProgram() = default;
     ~PendingProgram();
     PendingProgram(const PendingProgram&) = delete;
     PendingProgram& operator=(const PendingProgram&) = delete;
     void Begin(const ShaderSource& src, RenderPath path);
-    bool Active() const { return id_ != 0; }
+    bool Active() const { return id_ != 0 || ticket_ != 0; }
     bool Ready() const;
     // On success moves the program into `into`; on failure `into` is untouched and `log` holds
     // file:line messages. Either way the pending program is done.
@@ -103,6 +111,10 @@ public:
 private:
     unsigned id_ = 0;
     std::vector<unsigned> stages_;
+    uint64_t ticket_ = 0;                 // job on the CompileWorker
+    mutable bool workerDone_ = false;
+    mutable unsigned workerProgram_ = 0;
+    mutable std::string workerLog_;
     ShaderSource source_;
     RenderPath path_ = RenderPath::Fragment;
 };

@@ -10,9 +10,14 @@
 
 namespace sdfvj::test {
 
+namespace {
+std::unique_ptr<HeadlessContext> ctx;
+std::string error;
+}  // namespace
+
+HeadlessContext* TestContext() { return ctx.get(); }
+
 void RequireGl() {
-    static std::unique_ptr<HeadlessContext> ctx;
-    static std::string error;
     if (!ctx && error.empty()) {
         auto c = std::make_unique<HeadlessContext>();
         if (c->Create(&error)) ctx = std::move(c);

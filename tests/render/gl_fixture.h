@@ -11,6 +11,8 @@ namespace sdfvj::test {
 
 // The process-wide context; FAILs the test with the reason when no GL is available.
 void RequireGl();
+// The process-wide context RequireGl() made (null when there is none).
+HeadlessContext* TestContext();
 
 struct Image {
     int width = 0, height = 0;

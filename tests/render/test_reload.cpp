@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "gl_fixture.h"
+#include "render/compile_worker.h"
 #include "render/live_program.h"
 #include "shader/watch.h"
 
@@ -175,4 +176,38 @@ TEST_CASE("variant: switching effects compiles once, then comes from the cache",
     REQUIRE(rig.live.Current() != nullptr);
     auto active = rig.live.Current()->ActiveUniforms();
     CHECK(std::find(active.begin(), active.end(), "u_aoSamples") != active.end());
+}
+
+TEST_CASE("reload: on a compile thread, edits, errors and fixes behave the same and frames keep coming", "[reload]") {
+    RequireGl();
+    // The worker's context shares programs with the test's context.
+    HeadlessContext shared;
+    std::string err;
+    REQUIRE(shared.CreateShared(*TestContext(), &err));
+    CompileWorker worker([&shared] { return shared.MakeCurrent(); });
+    REQUIRE(worker.Ok());
+    PendingProgram::SetWorker(&worker);
+    struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
+
+    ReloadRig rig("worker");
+    Image good = rig.Frame(), after;
+    rig.Save("shaders/scenes/reloadme.glsl", ReloadRig::SceneText("vec3(0.1f, 0.3f, 0.9f)"));
+    int frames = rig.FramesUntilChange(good, &after);
+    INFO("frames until the new program showed: " << frames);
+    CHECK(frames > 0);
+    CHECK(rig.live.Error().empty());
+
+    rig.Save("shaders/lib/test_helper.glsl", "// helper\nfloat testRadius() { return 1.0f +; }\n");
+    rig.Settle();
+    INFO(rig.live.Error());
+    CHECK(rig.live.Error().find("shaders/lib/test_helper.glsl:2:") != std::string::npos);
+    CHECK(CompareImages(after, rig.Frame(), 0).maxAbs == 0);
+    // Undoing the broken save brings back the cached program and clears the error.
+    rig.Save("shaders/lib/test_helper.glsl", "float testRadius() { return 1.0f; }\n");
+    rig.Settle();
+    CHECK(rig.live.Error().empty());
+    rig.Save("shaders/lib/test_helper.glsl", "float testRadius() { return 0.6f; }\n");
+    Image fixed;
+    CHECK(rig.FramesUntilChange(after, &fixed) > 0);
+    CHECK(rig.live.Error().empty());
 }

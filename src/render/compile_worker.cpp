@@ -1,0 +1,168 @@
+#include "render/compile_worker.h"
+
+#include <epoxy/gl.h>
+
+namespace sdfvj {
+
+namespace {
+
+// Compiles and links on the calling thread's context; 0 and the raw log on failure.
+unsigned CompileLink(const std::string& text, RenderPath path, std::string* rawLog) {
+    GLuint prog = glCreateProgram();
+    std::vector<GLuint> stages;
+    auto stage = [&](GLenum kind, const char* src) {
+        GLuint s = glCreateShader(kind);
+        glShaderSource(s, 1, &src, nullptr);
+        glCompileShader(s);
+        GLint ok = 0, len = 0;
+        glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+            std::string buf(len > 1 ? len : 1, '\0');
+            glGetShaderInfoLog(s, (GLsizei)buf.size(), nullptr, buf.data());
+            *rawLog += buf.c_str();
+        }
+        glAttachShader(prog, s);
+        stages.push_back(s);
+    };
+    if (path == RenderPath::Compute) {
+        stage(GL_COMPUTE_SHADER, text.c_str());
+    } else {
+        stage(GL_VERTEX_SHADER, FullscreenVertexShader());
+        stage(GL_FRAGMENT_SHADER, text.c_str());
+    }
+    GLint linked = 0;
+    if (rawLog->empty()) {
+        glLinkProgram(prog);
+        glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+        if (!linked) {
+            GLint len = 0;
+            glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
+            std::string buf(len > 1 ? len : 1, '\0');
+            glGetProgramInfoLog(prog, (GLsizei)buf.size(), nullptr, buf.data());
+            *rawLog = buf.c_str();
+        }
+    }
+    for (GLuint s : stages) glDeleteShader(s);
+    if (!linked) {
+        glDeleteProgram(prog);
+        if (rawLog->empty()) *rawLog = "shader failed to compile with no message from the driver";
+        return 0;
+    }
+    return prog;
+}
+
+// Runs the program once into a 1x1 target so the driver finishes its lazy back-end compile
+// here rather than on the render thread's first draw. Uniforms are zero: the shader exits early.
+void Prime(unsigned prog, RenderPath path, bool floatImage) {
+    GLuint tex = 0, fbo = 0, vao = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexStorage2D(GL_TEXTURE_2D, 1, floatImage ? GL_RGBA32F : GL_RGBA8, 1, 1);
+    glUseProgram(prog);
+    if (path == RenderPath::Compute) {
+        glBindImageTexture(0, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatImage ? GL_RGBA32F : GL_RGBA8);
+        glDispatchCompute(1, 1, 1);
+    } else {
+        glGenFramebuffers(1, &fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
+        glViewport(0, 0, 1, 1);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glFinish();
+    glUseProgram(0);
+    if (vao) glDeleteVertexArrays(1, &vao);
+    if (fbo) glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+}
+
+}  // namespace
+
+CompileWorker::CompileWorker(std::function<bool()> bindContext) {
+    thread_ = std::thread([this, bindContext] { Loop(bindContext); });
+}
+
+CompileWorker::~CompileWorker() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+}
+
+bool CompileWorker::Ok() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    started_.wait(lock, [&] { return state_ != 0; });
+    return state_ == 1;
+}
+
+uint64_t CompileWorker::Submit(const std::string& text, RenderPath path) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    uint64_t t = next_++;
+    jobs_.push_back(Job{t, text, path});
+    wake_.notify_all();
+    return t;
+}
+
+bool CompileWorker::Poll(uint64_t ticket, unsigned* program, std::string* rawLog) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = done_.find(ticket);
+    if (it == done_.end()) return false;
+    *program = it->second.program;
+    *rawLog = it->second.log;
+    done_.erase(it);
+    return true;
+}
+
+void CompileWorker::Forget(uint64_t ticket) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = done_.find(ticket);
+    if (it != done_.end()) {
+        forgotten_[ticket] = true;   // delete on the worker's context
+        wake_.notify_all();
+    } else {
+        forgotten_[ticket] = true;
+    }
+}
+
+void CompileWorker::Loop(std::function<bool()> bind) {
+    const bool ok = bind();
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        state_ = ok ? 1 : -1;
+    }
+    started_.notify_all();
+    if (!ok) return;
+    for (;;) {
+        Job job;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            // Programs nobody wants any more are deleted here, on a context that shares them.
+            for (auto it = forgotten_.begin(); it != forgotten_.end();) {
+                auto d = done_.find(it->first);
+                if (d != done_.end()) {
+                    if (d->second.program) glDeleteProgram(d->second.program);
+                    done_.erase(d);
+                    it = forgotten_.erase(it);
+                } else {
+                    ++it;
+                }
+            }
+            wake_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
+            if (stop_) return;
+            job = std::move(jobs_.front());
+            jobs_.pop_front();
+        }
+        std::string log;
+        unsigned prog = CompileLink(job.text, job.path, &log);
+        if (prog) Prime(prog, job.path, job.text.find("rgba32f") != std::string::npos);
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_[job.ticket] = Done{prog, log};
+    }
+}
+
+}  // namespace sdfvj
