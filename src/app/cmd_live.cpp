@@ -137,11 +137,15 @@ int RunLive(const LiveOptions& o) {
         } else {
             show.path = o.show.path == "compute" ? RenderPath::Compute : RenderPath::Fragment;
         }
-        // Shader compiles run on a worker thread with a hidden window's context, which shares
-        // programs with this one: a reload or a variant switch never stalls a frame.
-        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-        GLFWwindow* compileWindow = glfwCreateWindow(1, 1, "sdfvj compiler", nullptr, window.get());
-        glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+        // Where it helps (Mesa; see PreferCompileThread), shader compiles run on a worker thread
+        // with a hidden window's context that shares programs with this one, so a reload or a
+        // variant switch does not stall frames. Elsewhere the driver's parallel compile is used.
+        GLFWwindow* compileWindow = nullptr;
+        if (PreferCompileThread()) {
+            glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+            compileWindow = glfwCreateWindow(1, 1, "sdfvj compiler", nullptr, window.get());
+            glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+        }
         std::unique_ptr<CompileWorker> worker;
         if (compileWindow) {
             worker = std::make_unique<CompileWorker>([compileWindow] {

@@ -1,6 +1,7 @@
 #include <epoxy/gl.h>
 
 #include <cstring>
+#include <string>
 
 #include "render/render.h"
 
@@ -130,6 +131,11 @@ std::vector<float> FrameRenderer::ReadPixelsFloat() const {
 std::string GlRendererName() {
     const GLubyte* s = glGetString(GL_RENDERER);
     return s ? (const char*)s : "unknown";
+}
+
+bool PreferCompileThread() {
+    const GLubyte* v = glGetString(GL_VERSION);
+    return IsSoftwareRenderer() || (v && std::string((const char*)v).find("Mesa") != std::string::npos);
 }
 
 bool IsSoftwareRenderer() {

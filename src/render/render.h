@@ -154,6 +154,12 @@ private:
 std::string GlRendererName();
 // True on Mesa's software rasterizer, where timer queries are meaningless (time with glFinish).
 bool IsSoftwareRenderer();
+// Whether shaders should compile on a CompileWorker rather than through the driver's own
+// parallel compile. Measured (`sdfvj bench reload`, docs/performance.md): on Mesa a compile on
+// the render thread blocks the frame for all of it (~0.5 s) and the worker keeps frames at
+// ~18 ms; on NVIDIA the worker's compile holds a driver lock that stalls the render thread for
+// the whole compile (0.4-1.5 s) while GL_KHR_parallel_shader_compile stalls one frame ~0.2 s.
+bool PreferCompileThread();
 
 // Picks the faster path for this GPU by timing both on a small probe (cached per GL_RENDERER in
 // $XDG_CACHE_HOME/sdfvj/paths.json). Logs the decision to `log` when given.
