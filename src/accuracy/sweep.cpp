@@ -27,13 +27,6 @@ Setting Make(const std::string& knob, const std::string& label) {
     return s;
 }
 
-double Median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 }  // namespace
 
 std::vector<Setting> SweepSettings(const std::string& which) {
@@ -254,16 +247,13 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             if (!colour.Resize(o.width, o.height, error)) return false;
             std::vector<double> ms;
             for (int i = 0; i < o.warmup + o.frames; ++i) {
-                auto c0 = std::chrono::steady_clock::now();
-                colour.Draw(*shaded, scene, in, !info->wallClock);
-                if (info->wallClock) glFinish();
-                double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count();
-                if (i >= o.warmup) ms.push_back(info->wallClock ? wall : colour.LastGpuMs());
+                colour.Draw(*shaded, scene, in, true);
+                if (i >= o.warmup) ms.push_back(colour.LastGpuMs());
             }
             Row r;
             r.scene = scene.name;
             r.s = st;
-            r.gpuMs = Median(ms);
+            r.gpuMs = MedianMs(ms);
             std::vector<uint8_t> img = colour.ReadPixels();
             std::vector<uint8_t>* ref8 = nullptr;
             if (!hqImage(st.q, &ref8)) return false;

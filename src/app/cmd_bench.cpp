@@ -13,16 +13,6 @@
 
 namespace sdfvj {
 
-namespace {
-
-double Median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
 
 int RunBench(const BenchOptions& o) {
     std::string error;
@@ -89,13 +79,10 @@ int RunBench(const BenchOptions& o) {
                     std::vector<double> ms;
                     for (int i = 0; i < o.warmup + o.frames; ++i) {
                         in.frame = i;
-                        auto t0 = std::chrono::steady_clock::now();
-                        fr.Draw(*programs[p], scene, in, !wallClock);
-                        if (wallClock) glFinish();
-                        double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                        if (i >= o.warmup) ms.push_back(wallClock ? wall : fr.LastGpuMs());
+                        fr.Draw(*programs[p], scene, in, true);
+                        if (i >= o.warmup) ms.push_back(fr.LastGpuMs());
                     }
-                    medians.push_back(Median(ms));
+                    medians.push_back(MedianMs(ms));
                     std::snprintf(row, sizeof row, " %.3f |", medians.back());
                     line += row;
                 }

@@ -18,11 +18,6 @@ namespace sdfvj {
 
 namespace {
 
-double Median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 struct EffectCase {
     const char* name;
     int offBit;
@@ -56,11 +51,8 @@ int RunEffectsBench(const EffectsBenchOptions& o) {
     };
     auto timeOnce = [&](const Program& p, int effectsOff) {
         in.effectsOff = effectsOff;
-        auto t0 = std::chrono::steady_clock::now();
-        fr.Draw(p, scene, in, !wallClock);
-        if (wallClock) glFinish();
-        double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        return wallClock ? wall : fr.LastGpuMs();
+        fr.Draw(p, scene, in, true);
+        return fr.LastGpuMs();
     };
 
     const EffectCase cases[] = {
@@ -100,13 +92,13 @@ int RunEffectsBench(const EffectsBenchOptions& o) {
             b.push_back(tb);
             on.push_back(tc);
         }
-        double ma = Median(a), mb = Median(b), mc = Median(on);
+        double ma = MedianMs(a), mb = MedianMs(b), mc = MedianMs(on);
         std::snprintf(line, sizeof line, "| %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n", c.name, ma, mb, mc, mb - ma, mc - ma);
         std::printf("%s", line);
         table += line;
     }
     for (int i = 0; i < o.frames; ++i) noneB.push_back(timeOnce(*none, 0));
-    std::snprintf(line, sizeof line, "| (baseline: no effects, start / end of run) | %.3f / %.3f | | | | |\n", Median(noneA), Median(noneB));
+    std::snprintf(line, sizeof line, "| (baseline: no effects, start / end of run) | %.3f / %.3f | | | | |\n", MedianMs(noneA), MedianMs(noneB));
     std::printf("%s", line);
     table += line;
     if (!o.markdown.empty()) {

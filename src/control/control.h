@@ -80,9 +80,6 @@ void StepSmoothing(ParamState& s, double dt);
 bool SetParamByName(ParamState& s, const std::string& name, float value, std::string* error);
 // Sets target index i, clamping; returns false (and records s.lastClamp) when it clamped.
 bool SetParamTarget(ParamState& s, int index, float value);
-// Range clamp with ints/bools rounded; same contract as ClampParam in core/param_decl.h, kept
-// here so the input layer does not depend on the scene module.
-float ClampToDecl(const ParamDecl& decl, float value);
 // Valid parameter names, comma separated, for error messages.
 std::string ParamNameList(const std::vector<ParamDecl>& decls);
 

@@ -6,15 +6,6 @@
 
 namespace sdfvj {
 
-float ClampToDecl(const ParamDecl& d, float v) {
-    float lo = std::min(d.minValue, d.maxValue), hi = std::max(d.minValue, d.maxValue);
-    if (d.type == ParamType::Bool) return v >= 0.5f ? 1.0f : 0.0f;
-    if (d.type == ParamType::Int) v = std::round(v);
-    if (!(v >= lo)) v = lo;  // also catches NaN
-    if (v > hi) v = hi;
-    return v;
-}
-
 std::string ParamNameList(const std::vector<ParamDecl>& decls) {
     std::string s;
     for (const ParamDecl& d : decls) s += (s.empty() ? "" : ", ") + d.name;
@@ -25,7 +16,7 @@ ParamState MakeParamState(const std::vector<ParamDecl>& decls) {
     ParamState s;
     s.decls = decls;
     for (const ParamDecl& d : decls) {
-        float v = ClampToDecl(d, d.defaultValue);
+        float v = ClampParam(d, d.defaultValue);
         s.value.push_back(v);
         s.target.push_back(v);
         s.smoothingTau.push_back(d.type == ParamType::Float ? 0.05f : 0.0f);
@@ -41,7 +32,7 @@ int FindParam(const ParamState& s, const std::string& name) {
 
 bool SetParamTarget(ParamState& s, int i, float v) {
     if (i < 0 || i >= int(s.decls.size())) return false;
-    float c = ClampToDecl(s.decls[i], v);
+    float c = ClampParam(s.decls[i], v);
     s.target[i] = c;
     bool rounded = s.decls[i].type != ParamType::Float;
     if (c != v && !(rounded && std::isfinite(v) && v >= s.decls[i].minValue && v <= s.decls[i].maxValue)) {

@@ -19,7 +19,8 @@ struct ParamDecl {
     std::string label;         // human-readable, for the overlay
 };
 
-// Clamp a value into the declared range (integers and bools are rounded).
+// Clamps a value into the declared range (ints rounded, bools to 0/1; NaN/Inf -> the default).
+// The one clamp every input path uses: presets, --param, OSC, MIDI mappings.
 float ClampParam(const ParamDecl& decl, float value);
 
 }  // namespace sdfvj

@@ -1,5 +1,7 @@
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <string>
 
@@ -80,7 +82,9 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         p.Set("u_" + d.name, v);
     }
 
-    if (timeGpu) glBeginQuery(GL_TIME_ELAPSED, query_);
+    const bool wallClock = timeGpu && IsSoftwareRenderer();
+    const auto wallStart = std::chrono::steady_clock::now();
+    if (timeGpu && !wallClock) glBeginQuery(GL_TIME_ELAPSED, query_);
     glUseProgram(p.Id());
     if (p.Path() == RenderPath::Compute) {
         glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatTarget_ ? GL_RGBA32F : GL_RGBA8);
@@ -94,7 +98,10 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glBindVertexArray(vao_);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
-    if (timeGpu) {
+    if (wallClock) {
+        glFinish();
+        lastGpuMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wallStart).count();
+    } else if (timeGpu) {
         glEndQuery(GL_TIME_ELAPSED);
         GLuint64 ns = 0;
         glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
@@ -141,6 +148,13 @@ bool PreferCompileThread() {
 bool IsSoftwareRenderer() {
     std::string r = GlRendererName();
     return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos;
+}
+
+double MedianMs(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace sdfvj

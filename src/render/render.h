@@ -132,8 +132,9 @@ public:
     int Width() const { return width_; }
     bool FloatTarget() const { return floatTarget_; }
     int Height() const { return height_; }
-    // Sets built-in, scene and quality uniforms, then draws. With `timeGpu` the GPU time of the
-    // draw is measured by a GL timer query (see LastGpuMs; costs a sync, use in benchmarks only).
+    // Sets built-in, scene and quality uniforms, then draws. With `timeGpu` the draw is timed
+    // (see LastGpuMs; costs a sync, use in benchmarks only): a GL timer query on a GPU, glFinish
+    // and a wall clock on llvmpipe, whose timer queries are meaningless.
     void Draw(const Program& program, const SceneInfo& scene, const FrameInputs& in, bool timeGpu = false);
     double LastGpuMs() const { return lastGpuMs_; }
     // RGBA rows, top row first.
@@ -149,6 +150,9 @@ private:
     unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
     double lastGpuMs_ = 0.0;
 };
+
+// Median of benchmark samples (0 for none).
+double MedianMs(std::vector<double> samples);
 
 // GL_RENDERER string of the current context.
 std::string GlRendererName();

@@ -14,13 +14,6 @@ using nlohmann::json;
 
 namespace sdfvj {
 
-float ClampParam(const ParamDecl& decl, float value) {
-    if (!std::isfinite(value)) value = decl.defaultValue;
-    float v = std::clamp(value, std::min(decl.minValue, decl.maxValue), std::max(decl.minValue, decl.maxValue));
-    if (decl.type != ParamType::Float) v = std::round(v);
-    return v;
-}
-
 std::string DataRoot() {
     if (const char* env = std::getenv("SDFVJ_ROOT"); env && *env) return env;
     // A binary carried to another machine runs next to a copy of the tree: prefer ./shaders.
