@@ -12,6 +12,12 @@
 #define SDF_LIB_SHADING_GLSL
 #include "lib/common.glsl"
 
+// The field the probes below sample. A renderer may point it at a cheaper field that is
+// still a distance bound (render.glsl: mapNear, the ground alone far from the objects).
+#ifndef PROBE_MAP
+#define PROBE_MAP map
+#endif
+
 // 1 / (the step correction the scene asks for)
 float sceneStepScale() { return 1.0f / max(1.0f, sceneLipschitz()); }
 
@@ -21,17 +27,17 @@ vec3 calcNormalCentral(vec3 p, float eps) {
     vec3 ex = vec3(eps, 0.0f, 0.0f);
     vec3 ey = vec3(0.0f, eps, 0.0f);
     vec3 ez = vec3(0.0f, 0.0f, eps);
-    return safeNormalize(vec3(map(p + ex).w - map(p - ex).w,
-                              map(p + ey).w - map(p - ey).w,
-                              map(p + ez).w - map(p - ez).w));
+    return safeNormalize(vec3(PROBE_MAP(p + ex).w - PROBE_MAP(p - ex).w,
+                              PROBE_MAP(p + ey).w - PROBE_MAP(p - ey).w,
+                              PROBE_MAP(p + ez).w - PROBE_MAP(p - ez).w));
 }
 
 // Forward differences: 4 map calls, first-order accurate.
 vec3 calcNormalForward(vec3 p, float eps) {
-    float d = map(p).w;
-    return safeNormalize(vec3(map(p + vec3(eps, 0.0f, 0.0f)).w - d,
-                              map(p + vec3(0.0f, eps, 0.0f)).w - d,
-                              map(p + vec3(0.0f, 0.0f, eps)).w - d));
+    float d = PROBE_MAP(p).w;
+    return safeNormalize(vec3(PROBE_MAP(p + vec3(eps, 0.0f, 0.0f)).w - d,
+                              PROBE_MAP(p + vec3(0.0f, eps, 0.0f)).w - d,
+                              PROBE_MAP(p + vec3(0.0f, 0.0f, eps)).w - d));
 }
 
 // Tetrahedron: 4 map calls at the corners of a tetrahedron, second-order-ish accurate.
@@ -40,8 +46,8 @@ vec3 calcNormalTetra(vec3 p, float eps) {
     vec3 k1 = vec3(-1.0f, -1.0f, 1.0f);
     vec3 k2 = vec3(-1.0f, 1.0f, -1.0f);
     vec3 k3 = vec3(1.0f, 1.0f, 1.0f);
-    return safeNormalize(k0 * map(p + k0 * eps).w + k1 * map(p + k1 * eps).w +
-                         k2 * map(p + k2 * eps).w + k3 * map(p + k3 * eps).w);
+    return safeNormalize(k0 * PROBE_MAP(p + k0 * eps).w + k1 * PROBE_MAP(p + k1 * eps).w +
+                         k2 * PROBE_MAP(p + k2 * eps).w + k3 * PROBE_MAP(p + k3 * eps).w);
 }
 
 // ---- shadows: ro is the (offset) surface point, rd the unit direction to the light -----
@@ -50,7 +56,7 @@ float shadowHard(vec3 ro, vec3 rd, float tmin, float tmax, int steps) {
     float stepScale = sceneStepScale();
     float t = tmin;
     for (int i = 0; i < steps; i++) {
-        float h = map(ro + rd * t).w * stepScale;
+        float h = PROBE_MAP(ro + rd * t).w * stepScale;
         if (h < 1e-4f * t) return 0.0f;
         t += h;
         if (t > tmax) break;
@@ -64,7 +70,7 @@ float shadowSoft(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
     float res = 1.0f;
     float t = tmin;
     for (int i = 0; i < steps; i++) {
-        float h = map(ro + rd * t).w * stepScale;
+        float h = PROBE_MAP(ro + rd * t).w * stepScale;
         res = min(res, k * h / t);
         if (res < 1e-3f) return 0.0f;
         t += clamp(h, 0.005f, 0.5f);
@@ -81,7 +87,7 @@ float shadowSoftImproved(vec3 ro, vec3 rd, float tmin, float tmax, int steps, fl
     float t = tmin;
     float ph = 1e10f;
     for (int i = 0; i < steps; i++) {
-        float h = map(ro + rd * t).w * stepScale;
+        float h = PROBE_MAP(ro + rd * t).w * stepScale;
         float y = h * h / (2.0f * ph);
         float d = sqrt(max(h * h - y * y, 0.0f));
         res = min(res, k * d / max(t - y, 1e-4f));
@@ -102,7 +108,7 @@ float ambientOcclusion(vec3 p, vec3 n, int samples) {
     float denom = max(float(samples - 1), 1.0f);
     for (int i = 0; i < samples; i++) {
         float h = 0.01f + 0.15f * float(i) / denom;
-        float d = map(p + n * h).w * stepScale;
+        float d = PROBE_MAP(p + n * h).w * stepScale;
         occ += (h - d) * weight;
         weight *= 0.9f;
     }

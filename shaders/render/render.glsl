@@ -20,6 +20,19 @@
 //   MARCH_FIXED 0 sphere tracing / 1 fixed step of u_fixedStep
 //   EPS_MODE    hit threshold: 0 u_hitEps * max(1, t) / 1 fixed u_hitEps /
 //               2 u_hitEps pixel footprints (u_hitEps * t * pixel angle)
+//   BOUNDS      1 (default) use the scene's bounding volume, 0 march the whole field
+//               everywhere as a plain raymarcher does (the accuracy bench's plain row and its
+//               references)
+//
+// Bounding volume (optional, declared by the scene before this file):
+//   #define SCENE_BOUND 1 and `vec4 sceneBound()`: a sphere (centre xyz, radius w) that holds
+//     every surface of map() except the ground;
+//   #define SCENE_GROUND 1 and `vec4 mapGround(vec3 p)`: the ground plane y = 0 alone
+//     (albedo, p.y), with map(p) = fOpUnionColor(mapGround(p), <the objects>).
+// With both, a primary ray marches only the stretch inside the sphere and meets the ground
+// analytically (no creeping along the floor at the horizon), a shadow ray marches only where
+// the sphere can still darken its penumbra, and the probes (normals, AO, shadows) sample the
+// ground alone where the objects cannot be nearer.
 #ifndef SDF_RENDER_RENDER_GLSL
 #define SDF_RENDER_RENDER_GLSL
 
@@ -53,9 +66,65 @@
 #ifndef EPS_MODE
 #define EPS_MODE 0
 #endif
+#ifndef BOUNDS
+#define BOUNDS 1
+#endif
+#ifndef SCENE_BOUND
+#define SCENE_BOUND 0
+#endif
+#ifndef SCENE_GROUND
+#define SCENE_GROUND 0
+#endif
+#define USE_BOUND (BOUNDS && SCENE_BOUND)
+#define USE_GROUND (BOUNDS && SCENE_BOUND && SCENE_GROUND)
 
 #include "render/uniforms.glsl"
+
+#if USE_BOUND
+vec3 boundCentre() {
+    vec4 b = sceneBound();
+    return vec3(b.x, b.y, b.z);
+}
+#endif
+
+// map(), or the ground alone where it is nearer than the objects' bounding sphere (then the
+// objects cannot be the nearest surface, so the result is still a distance bound).
+vec4 mapNear(vec3 p) {
+#if USE_GROUND
+    vec4 g = mapGround(p);
+    if (g.w < length(p - boundCentre()) - sceneBound().w) return g;
+#endif
+    return map(p);
+}
+#define PROBE_MAP mapNear
 #include "lib/shading.glsl"
+
+// Where a ray is inside a sphere (centre xyz, radius w): (t_enter, t_exit), empty (x > y)
+// when it misses. rd unit length.
+vec2 sphereInterval(vec3 ro, vec3 rd, vec4 s) {
+    vec3 oc = ro - vec3(s.x, s.y, s.z);
+    float b = dot(oc, rd);
+    float disc = b * b - (dot(oc, oc) - s.w * s.w);
+    if (disc < 0.0f) return vec2(1e30f, -1e30f);
+    float q = sqrt(disc);
+    return vec2(-b - q, -b + q);
+}
+
+// Where a soft-shadow ray can still be darkened by whatever lies in the sphere s: outside the
+// cone |ro + t rd - centre| < radius + t / k every sample is at least t / k from the objects,
+// so its penumbra term k * h / t is >= 1 and changes nothing. Empty (x > y) when the ray
+// stays out of that cone; (-1e30, 1e30) when k <= 1 (the cone then holds everything).
+vec2 penumbraInterval(vec3 ro, vec3 rd, vec4 s, float k) {
+    if (k <= 1.0f) return vec2(-1e30f, 1e30f);
+    vec3 oc = ro - vec3(s.x, s.y, s.z);
+    float a = 1.0f - 1.0f / (k * k);
+    float b = dot(oc, rd) - s.w / k;
+    float c = dot(oc, oc) - s.w * s.w;
+    float disc = b * b - a * c;
+    if (disc < 0.0f) return vec2(1e30f, -1e30f);
+    float q = sqrt(disc);
+    return vec2((-b - q) / a, (-b + q) / a);
+}
 
 // Result of marching one ray.
 struct Hit {
@@ -94,7 +163,8 @@ float hitEpsilon(float t) {
 #endif
 }
 
-Hit march(vec3 ro, vec3 rd, float tmin) {
+// Marches the whole field from tmin; past tmax the ray has missed.
+Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
     float t = tmin;
     float steps = 0.0f;
 #if MARCH_FIXED
@@ -115,7 +185,7 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
         }
         prevT = t;
         t += max(u_fixedStep, 1e-4f);
-        if (t > u_maxDist) break;
+        if (t > tmax) break;
     }
 #else
     float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
@@ -125,7 +195,7 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
         m = map(ro + rd * t);
         if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
         t += m.w * stepScale;
-        if (t > u_maxDist) return Hit(u_maxDist, steps, false, vec3(0.0f));
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
     }
     // Out of steps short of the far plane: the ray is creeping along a surface (grazing
     // silhouettes, a floor at the horizon, a heavily twisted field). Calling it a hit
@@ -133,6 +203,50 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
     if (steps > 0.0f) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
 #endif
     return Hit(u_maxDist, steps, false, vec3(0.0f));
+}
+
+// The primary (and reflection) ray: with the scene's bound only the stretch inside the sphere
+// is marched, and the ground is met analytically.
+Hit march(vec3 ro, vec3 rd, float tmin) {
+#if USE_BOUND
+    float tGround = 2.0f * u_maxDist + 1.0f;   // no ground in front
+#if SCENE_GROUND
+    if (ro.y < 0.0f) return marchRange(ro, rd, tmin, u_maxDist);   // under the floor: no shortcut
+    if (rd.y < 0.0f) tGround = max(-ro.y / rd.y, tmin);
+#endif
+    vec2 inside = sphereInterval(ro, rd, sceneBound());
+    float a = max(inside.x, tmin);
+    float b = min(min(inside.y, tGround), u_maxDist);
+    float steps = 0.0f;
+    if (a <= b) {
+        Hit h = marchRange(ro, rd, a, b);
+        if (h.hit) return h;
+        steps = h.steps;
+    }
+    if (tGround <= u_maxDist) {
+        vec4 g = mapNear(ro + rd * tGround);
+        return Hit(tGround, steps + 1.0f, true, vec3(g.x, g.y, g.z));
+    }
+    return Hit(u_maxDist, steps, false, vec3(0.0f));
+#else
+    return marchRange(ro, rd, tmin, u_maxDist);
+#endif
+}
+
+// The shadow ray's stretch worth marching: all of [tmin, tmax], or with the scene's bound the
+// part of it where the objects can darken the penumbra (k is the hardness; hard shadows pass
+// a huge k, which leaves just the sphere). Returns (from, to), empty if from > to.
+vec2 shadowRange(vec3 ro, vec3 rd, float tmin, float tmax, float k) {
+#if USE_BOUND
+#if SCENE_GROUND
+    // An upward ray from above the ground keeps k * height / t >= k * rd.y from the ground.
+    if (ro.y < 0.0f || k * rd.y < 1.0f) return vec2(tmin, tmax);
+#endif
+    vec2 r = penumbraInterval(ro, rd, sceneBound(), k);
+    return vec2(max(r.x, tmin), min(r.y, tmax));
+#else
+    return vec2(tmin, tmax);
+#endif
 }
 
 vec3 surfaceNormal(vec3 p, float t) {
@@ -162,11 +276,14 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
 #if SHADOWS == 1
-    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0) shadow = shadowHard(ro, l, 0.01f, u_maxDist, u_shadowSteps);
+    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, 1e6f);
+    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
 #elif SHADOWS == 2
-    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0) shadow = shadowSoft(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
+    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
+    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
 #elif SHADOWS == 3
-    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0) shadow = shadowSoftImproved(ro, l, 0.01f, u_maxDist, u_shadowSteps, u_shadowK);
+    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
+    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
 #endif
     float occlusion = 1.0f;
 #if AO

@@ -33,5 +33,10 @@ vec4 map(vec3 p) {
     return vec4(bulbPalette(dt.y), dt.x);
 }
 
+// Bounding volume for the renderer (render.glsl BOUNDS): the bulb's own bounding sphere (seed
+// 001) plus the margin inside which fMandelbulbTrap switches to the estimator. No ground.
+#define SCENE_BOUND 1
+vec4 sceneBound() { return vec4(0.0f, 0.0f, 0.0f, mandelbulbBoundingRadius(max(u_power, 2.0f)) + 0.1f); }
+
 // The distance estimate overshoots a little close to the surface.
 float sceneLipschitz() { return 1.1f; }

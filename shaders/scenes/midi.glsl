@@ -28,7 +28,7 @@
 #define SCENE_GLOBAL_LIPSCHITZ 0
 #endif
 
-const float MIDI_RADIUS = 1.45f;         // the blob lies within this distance of the Y axis (unscaled)
+const float MIDI_RADIUS = 1.45f;         // the primitives lie within this distance of the blob's origin (unscaled)
 const float MIDI_DISPLACE_FREQ = 6.0f;   // spatial frequency of the displacement
 
 // The unscaled, untwisted blob around the origin.
@@ -51,10 +51,32 @@ float midiBlobLipschitz() {
            lipschitzDisplacement(u_displacement, MIDI_DISPLACE_FREQ);
 }
 
+// Bounding volume for the renderer (render.glsl BOUNDS): the blob and the ground apart.
+#define SCENE_BOUND 1
+#define SCENE_GROUND 1
+
+// The checkered ground plane y = 0.
+vec4 mapGround(vec3 p) {
+    float checker = mod(floor(p.x) + floor(p.z), 2.0f);
+    return vec4(vec3(0.26f + 0.08f * checker), p.y);
+}
+
+// Where the blob's centre sits for the current scale.
+vec3 midiCentre() { return vec3(0.0f, 0.15f + 1.0f * u_scale, 0.0f); }
+
+// A sphere holding the blob for every knob position: the unscaled primitives lie within
+// MIDI_RADIUS of the blob's origin; the chain of four smooth unions can lower the field by up
+// to the blend radius in all, the displacement by its amplitude; the twist and the spin rotate
+// about an axis through the origin, so they keep it; the scale scales it.
+vec4 sceneBound() {
+    vec3 c = midiCentre();
+    float r = MIDI_RADIUS + max(u_smoothness, 0.0f) + abs(u_displacement) + 0.02f;
+    return vec4(c.x, c.y, c.z, r * u_scale);
+}
+
 vec4 map(vec3 p) {
     float s = u_scale;
-    vec3 centre = vec3(0.0f, 0.15f + 1.0f * s, 0.0f);
-    vec3 q = pScale(pTranslate(p, centre), s);
+    vec3 q = pScale(pTranslate(p, midiCentre()), s);
     q = pRotateY(q, u_time * u_spin);
     vec4 blob = midiBlob(pTwistY(q, u_twist));
     blob.w += fDisplacement(q, u_displacement, MIDI_DISPLACE_FREQ);
@@ -65,9 +87,7 @@ vec4 map(vec3 p) {
     blob.w = blob.w / midiBlobLipschitz();
 #endif
     blob.w = fOpScale(blob.w, s);
-    float checker = mod(floor(p.x) + floor(p.z), 2.0f);
-    vec4 ground = vec4(vec3(0.26f + 0.08f * checker), fPlane(p, vec3(0.0f, 1.0f, 0.0f), 0.0f));
-    return fOpUnionColor(ground, blob);
+    return fOpUnionColor(mapGround(p), blob);
 }
 
 // The whole field's gradient bound. By default map() already divides the blob by its own

@@ -77,7 +77,7 @@ Geometry CpuReferenceGeometry(const SceneInfo& scene, const FrameInputs& in, int
     ParallelRows(height, threads, [&](int y) {
         for (int x = 0; x < width; ++x) {
             glm::dvec3 rd = s.cameraRay(glm::dvec2(x + 0.5, y + 0.5));
-            CpuRay<double> h = s.march(ro, rd, 0.0);
+            CpuRay<double> h = s.marchWhole(ro, rd, 0.0);   // the truth takes no shortcut
             GeomPixel& p = g.px[(size_t)y * width + x];
             p.steps = (float)h.steps;
             p.hit = h.hit;

@@ -15,6 +15,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -134,6 +135,7 @@ struct Setting {
     bool marchFixed = false;
     int epsMode = 0;         // EPS_MODE
     bool naiveStep = false;  // step factor multiplied back by the scene's Lipschitz bound
+    bool bounds = true;      // BOUNDS: use the scene's bounding volume (render.glsl)
     std::string role;        // "default" (sdfvj's Quality{}), "plain" (seed raymarcher) or ""
 };
 // which: "full" (every knob) or "tiny" (a handful, for the test suite).
@@ -165,6 +167,10 @@ struct SweepInfo {
     bool wallClock = false;
     std::string path;            // render path used
     double refSeconds = 0;       // CPU reference time
+    // Scenes with a bounding volume: the 4096-step render with the bound against the one
+    // without (the bound's own effect on the image; rows are compared with the reference of
+    // their own BOUNDS setting).
+    std::map<std::string, ImageError> boundEffect;
 };
 // Needs a current GL context (HeadlessContext). False with a reason on failure.
 bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, std::string* error);

@@ -15,6 +15,7 @@
 #undef SCENE_DOUBLE
 
 // The raw field with a global bound, as a plain raymarcher would march it.
+#undef SCENE_GLOBAL_LIPSCHITZ
 #define SCENE_GLOBAL_LIPSCHITZ 1
 #define SCENE_DOUBLE 0
 #define SCENE_NS acc_midi_global32

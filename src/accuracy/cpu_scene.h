@@ -30,6 +30,11 @@ struct CpuScene {
     std::function<V4(V2)> render;                   // render.glsl at its default switches
     std::function<V3(V2)> cameraRay;                // unit ray through a pixel
     std::function<CpuRay<S>(V3, V3, S)> march;      // ro, rd, tmin (sphere tracing, EPS_MODE 0)
+    std::function<CpuRay<S>(V3, V3, S)> marchWhole; // the same, ignoring the scene's bounding volume
+    std::function<S(V3, V3)> softShadow;            // ro, light dir: shadowSoft over render.glsl's shadowRange
+    std::function<S(V3, V3)> softShadowWhole;       // shadowSoft over all of [0.01, u_maxDist]
+    bool hasBound = false;                          // the scene declares a bounding sphere (SCENE_BOUND)
+    std::function<V4()> sceneBound;                 // centre xyz, radius w (or 0 without one)
     std::function<S(S)> hitEpsilon;
     std::function<V3(V3, S)> normalCentral, normalForward, normalTetra;  // p, eps
     std::function<V3(V3, S)> surfaceNormal;         // p, t (central, u_normalEps * max(1, t))

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <tuple>
 
 #include "accuracy/accuracy.h"
 
@@ -36,10 +37,15 @@ std::vector<Setting> SweepSettings(const std::string& which) {
     out.push_back(def);
     // The seed-style raymarcher: 128 steps, eps 1e-3, step factor 1 NOT divided by the scene's
     // Lipschitz bound (the sweep multiplies the bound back in for this row).
-    Setting plain = Make("plain", "plain (128 steps, eps 1e-3, factor 1, no Lipschitz)");
+    Setting plain = Make("plain", "plain (128 steps, eps 1e-3, factor 1, no Lipschitz, no bound)");
     plain.role = "plain";
     plain.naiveStep = true;
+    plain.bounds = false;
     out.push_back(plain);
+    // What the scene's bounding volume buys: the defaults marching the whole field everywhere.
+    Setting unbounded = Make("bounds", "no bounding volume");
+    unbounded.bounds = false;
+    out.push_back(unbounded);
     if (which == "tiny") {
         Setting s = Make("steps", "steps=32");
         s.q.maxSteps = 32;
@@ -179,14 +185,16 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
         }
 
         std::map<std::string, std::unique_ptr<Program>> programs;
-        auto program = [&](const EffectSet& e, int epsMode, Program** out, bool raw = false) {
+        auto program = [&](const EffectSet& e, int epsMode, Program** out, bool raw = false, bool bounds = true) {
             std::string key = DescribeEffects(e) + "|n" + std::to_string(e.normals) + "|f" + std::to_string(e.marchFixed) +
-                              "|d" + std::to_string(e.debugView) + "|e" + std::to_string(epsMode) + (raw ? "|raw" : "");
+                              "|d" + std::to_string(e.debugView) + "|e" + std::to_string(epsMode) + (raw ? "|raw" : "") +
+                              (bounds ? "" : "|unbounded");
             auto it = programs.find(key);
             if (it == programs.end()) {
                 auto p = std::make_unique<Program>();
                 std::vector<std::string> defines = {"EPS_MODE " + std::to_string(epsMode)};
                 if (raw) defines.push_back("SCENE_GLOBAL_LIPSCHITZ 1");
+                if (!bounds) defines.push_back("BOUNDS 0");
                 if (!BuildProgram(scene, e, path, defines, p.get(), error)) return false;
                 it = programs.emplace(key, std::move(p)).first;
             }
@@ -194,10 +202,11 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             return true;
         };
 
-        // High-quality GPU images, one per look (penumbra and AO samples change the look).
-        std::map<std::pair<float, int>, std::vector<uint8_t>> hq;
-        auto hqImage = [&](const Quality& look, std::vector<uint8_t>** out) {
-            auto key = std::make_pair(look.shadowK, look.aoSamples);
+        // High-quality GPU images, one per look (penumbra and AO samples change the look) and per
+        // BOUNDS setting.
+        std::map<std::tuple<float, int, bool>, std::vector<uint8_t>> hq;
+        auto hqImage = [&](const Quality& look, bool bounds, std::vector<uint8_t>** out) {
+            auto key = std::make_tuple(look.shadowK, look.aoSamples, bounds);
             auto it = hq.find(key);
             if (it == hq.end()) {
                 FrameInputs in = base;
@@ -212,7 +221,7 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
                 e.normals = 0;
                 e.marchFixed = false;
                 Program* p = nullptr;
-                if (!program(e, 0, &p)) return false;
+                if (!program(e, 0, &p, false, bounds)) return false;
                 if (!colour.Resize(o.width, o.height, error)) return false;
                 colour.Draw(*p, scene, in, false);
                 it = hq.emplace(key, colour.ReadPixels()).first;
@@ -220,6 +229,11 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             *out = &it->second;
             return true;
         };
+        if (MakeCpuScene32(scene.name).hasBound) {
+            std::vector<uint8_t>*with = nullptr, *without = nullptr;
+            if (!hqImage(Quality{}, true, &with) || !hqImage(Quality{}, false, &without)) return false;
+            info->boundEffect[scene.name] = CompareRgba8(*with, *without);
+        }
 
         // The GPU idled while the CPU reference ran, so its clocks are down: keep it busy for a
         // second before the first timed setting, or the first rows read up to 3x too slow.
@@ -235,6 +249,9 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             }
         }
 
+        // Accuracy first (deterministic), one setting after another.
+        struct Timed { Program* program; FrameInputs in; size_t row; std::vector<double> ms; };
+        std::vector<Timed> timed;
         for (const Setting& st : settings) {
             FrameInputs in = base;
             in.quality = st.q;
@@ -242,37 +259,47 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             EffectSet e = scene.effects;
             e.normals = st.normals;
             e.marchFixed = st.marchFixed;
+            const bool raw = st.naiveStep && hasRaw;
             Program* shaded = nullptr;
-            if (!program(e, st.epsMode, &shaded, st.naiveStep && hasRaw)) return false;
+            if (!program(e, st.epsMode, &shaded, raw, st.bounds)) return false;
             if (!colour.Resize(o.width, o.height, error)) return false;
-            std::vector<double> ms;
-            for (int i = 0; i < o.warmup + o.frames; ++i) {
-                colour.Draw(*shaded, scene, in, true);
-                if (i >= o.warmup) ms.push_back(colour.LastGpuMs());
-            }
+            colour.Draw(*shaded, scene, in, false);
             Row r;
             r.scene = scene.name;
             r.s = st;
-            r.gpuMs = MedianMs(ms);
             std::vector<uint8_t> img = colour.ReadPixels();
             std::vector<uint8_t>* ref8 = nullptr;
-            if (!hqImage(st.q, &ref8)) return false;
+            if (!hqImage(st.q, st.bounds, &ref8)) return false;
             r.img = CompareRgba8(img, *ref8);
 
             EffectSet eg = e;
             eg.debugView = 4;
             Program* gp = nullptr;
-            if (!program(eg, st.epsMode, &gp, st.naiveStep && hasRaw)) return false;
+            if (!program(eg, st.epsMode, &gp, raw, st.bounds)) return false;
             if (!geom.Resize(rw, rh, error, true)) return false;
             geom.Draw(*gp, scene, in, false);
             Geometry g = DecodeGeometry(geom.ReadPixelsFloat(), rw, rh);
             r.g = CompareGeometry(g, ref, PixelAngle(scene, rh));
+            timed.push_back({shaded, in, rows->size(), {}});
             rows->push_back(r);
+        }
+
+        // Then time every setting interleaved: each round draws every setting once, so a GPU
+        // clock change lands on all of them alike instead of on whichever rows ran during it.
+        if (!colour.Resize(o.width, o.height, error)) return false;
+        for (int i = 0; i < o.warmup + o.frames; ++i)
+            for (Timed& t : timed) {
+                colour.Draw(*t.program, scene, t.in, true);
+                if (i >= o.warmup) t.ms.push_back(colour.LastGpuMs());
+            }
+        for (Timed& t : timed) {
+            Row& r = (*rows)[t.row];
+            r.gpuMs = MedianMs(t.ms);
             char line[512];
             std::snprintf(line, sizeof line,
                           "%s | %-44s | %8.3f ms | %6.3f%% >8/255, %5.1f dB | t err p50 %.3g p99 %.3g px | sil %.3f%% | "
                           "normal p50 %.3g p99 %.3g deg | out of steps %.2f%%",
-                          scene.name.c_str(), st.label.c_str(), r.gpuMs, r.img.pctOver8, r.img.psnr, r.g.tErrP50,
+                          scene.name.c_str(), r.s.label.c_str(), r.gpuMs, r.img.pctOver8, r.img.psnr, r.g.tErrP50,
                           r.g.tErrP99, r.g.silhouettePct, r.g.normalP50, r.g.normalP99, r.g.outOfStepsPct);
             log(line);
         }

@@ -35,6 +35,9 @@
 #undef SDF_LIB_SHADING_GLSL
 #undef SDF_RENDER_UNIFORMS_GLSL
 #undef SDF_RENDER_RENDER_GLSL
+// what a scene declares for render.glsl (its bounding volume) must not carry over to the next
+#undef SCENE_BOUND
+#undef SCENE_GROUND
 
 #ifndef SDF_GLSL_DOUBLE
 #define SDF_GLSL_DOUBLE 0
