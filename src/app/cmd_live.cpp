@@ -10,10 +10,12 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <thread>
 
@@ -25,6 +27,8 @@
 #include "take/take.h"
 
 namespace sdfvj {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -103,6 +107,18 @@ int RunLive(const LiveOptions& o) {
     if (!PrepareShow(o.show, &show, &error)) { std::fprintf(stderr, "sdfvj live: %s\n", error.c_str()); return 2; }
     Mapping mapping;
     if (!LoadShowMapping(show, o.mapping, &mapping, &error)) { std::fprintf(stderr, "%s\n", error.c_str()); return 2; }
+    // --log-params FILE appends one line per frame, "time name=value ...", with the values the
+    // frame renders (after mapping and smoothing): for tests and for debugging a mapping. Line
+    // buffered, so a reader sees each frame as soon as it is drawn.
+    std::unique_ptr<FILE, int (*)(FILE*)> paramLog(nullptr, &std::fclose);
+    if (!o.logParams.empty()) {
+        paramLog.reset(std::fopen(o.logParams.c_str(), "a"));
+        if (!paramLog) {
+            std::fprintf(stderr, "sdfvj live: cannot write --log-params %s: %s\n", o.logParams.c_str(), std::strerror(errno));
+            return 2;
+        }
+        std::setvbuf(paramLog.get(), nullptr, _IOLBF, 0);
+    }
 
     if (!glfwInit()) {
         std::fprintf(stderr, "sdfvj live: no display (GLFW could not start); use `sdfvj render` for headless output\n");
@@ -160,11 +176,25 @@ int RunLive(const LiveOptions& o) {
             GLFWwindow* win;
             ~WorkerStop() { PendingProgram::SetWorker(nullptr); w.reset(); if (win) glfwDestroyWindow(win); }
         } workerStop{worker, compileWindow};
-        // Hot reload: shaders, mappings and presets are watched as folders.
+        // Hot reload: shaders, mappings and presets are watched as folders, and so are the folders
+        // of the mapping and the preset on stage when they live elsewhere (--mapping/--preset FILE).
+        // Files are told apart by their canonical paths; messages name them as given.
+        const std::string mappingFile = ResolveMappingPath(show, o.mapping);
+        const std::string mappingPath = fs::weakly_canonical(mappingFile).string();
+        std::string presetFile = show.preset.path;   // the preset on stage ("" = none) ...
+        std::string presetPath = presetFile.empty() ? "" : fs::weakly_canonical(presetFile).string();   // ... canonical
         FolderWatcher watcher;
+        std::vector<std::string> watched;            // canonical folders
+        auto watchFolder = [&](const std::string& dir) {
+            const std::string canonical = fs::weakly_canonical(dir).string();
+            if (std::find(watched.begin(), watched.end(), canonical) != watched.end()) return;
+            if (watcher.Watch(canonical, &error)) watched.push_back(canonical);
+            else std::fprintf(stderr, "sdfvj live: %s\n", error.c_str());
+        };
         for (const char* dir : {"shaders/lib", "shaders/scenes", "shaders/render", "mappings", "presets"})
-            if (!watcher.Watch(DataRoot() + "/" + dir, &error)) std::fprintf(stderr, "sdfvj live: %s\n", error.c_str());
-        const std::string mappingPath = std::filesystem::weakly_canonical(ResolveMappingPath(show, o.mapping)).string();
+            watchFolder(DataRoot() + "/" + dir);
+        watchFolder(fs::path(mappingPath).parent_path().string());
+        if (!presetPath.empty()) watchFolder(fs::path(presetPath).parent_path().string());
         LiveProgram live;
         live.Request(VariantKey{show.scene.path, show.effects, show.path});
         live.Wait();
@@ -195,26 +225,17 @@ int RunLive(const LiveOptions& o) {
         }
 
         ParamState params = ShowParamState(show);
-        // SDFVJ_LOG_PARAMS=FILE appends one line per frame, "time name=value ...", with the values
-        // the frame renders (after mapping and smoothing): for tests and for debugging a mapping.
-        std::unique_ptr<FILE, int (*)(FILE*)> paramLog(nullptr, &std::fclose);
-        if (const char* logPath = std::getenv("SDFVJ_LOG_PARAMS"); logPath && *logPath) {
-            paramLog.reset(std::fopen(logPath, "a"));
-            if (!paramLog) std::fprintf(stderr, "sdfvj live: cannot write %s (SDFVJ_LOG_PARAMS)\n", logPath);
-        }
         MappingState mstate;
         MappingActions actions;
         TapTempo tempo;
-        std::string currentPreset = std::filesystem::path(show.preset.path).filename().string();
+        std::string currentPreset = fs::path(show.preset.path).filename().string();   // for next/prev
         double lastMessageTime = -1.0;
         size_t suppressedMessages = 0;
-        std::vector<std::string> presetReloads;   // presets saved on disk, applied next frame
+        std::vector<std::string> presetReloads;   // the preset on stage was saved: apply it again next frame
         FrameRenderer fr;
         FrameInputs in;
         in.quality = show.quality;
-        // SDFVJ_HIDE_OVERLAY=1 starts with the overlay hidden (as after Tab): clean screenshots.
-        const char* hideOverlay = std::getenv("SDFVJ_HIDE_OVERLAY");
-        bool overlay = !(hideOverlay && *hideOverlay && std::string(hideOverlay) != "0");
+        bool overlay = !o.hideOverlay;   // --hide-overlay: start as after Tab (clean screenshots)
         bool tabWasDown = false;
         double last = clock(), fps = 0;
         int frame = 0;
@@ -247,7 +268,8 @@ int RunLive(const LiveOptions& o) {
             if (replay)
                 for (ControlEvent& e : replay->Until(now)) queue.Push(std::move(e));
             actions.Clear();
-            actions.presetSelect.swap(presetReloads);
+            std::vector<std::string> reloadsNow;
+            reloadsNow.swap(presetReloads);
             for (const ControlEvent& e : queue.DrainUntil(now)) {
                 if (recorder.IsOpen()) recorder.Record(e);
                 ApplyEvent(mapping, mstate, e, params, &actions);
@@ -267,31 +289,41 @@ int RunLive(const LiveOptions& o) {
             }
             if (actions.tapTempo) tempo.Tap(now);
             // Preset pads and /sdfvj/preset: values glide there through smoothing; a new scene or
-            // effect set compiles while the current one keeps rendering.
-            for (const std::string& request : actions.presetSelect) {
-                const std::string name = ResolvePresetRequest(request, currentPreset);
+            // effect set compiles while the current one keeps rendering. A saved preset on stage is
+            // applied the same way; when it does not load, the current values stay.
+            auto applyPreset = [&](const std::string& request, const std::string& file, bool reload) {
                 ShowOptions so = o.show;
                 so.scene.clear();
                 so.params.clear();
-                so.preset = name;
+                so.preset = file;
                 Show next;
                 std::string err;
-                if (name.empty() || !PrepareShow(so, &next, &err)) {
-                    std::fprintf(stderr, "sdfvj live: preset '%s': %s\n", request.c_str(), name.empty() ? "no such preset" : err.c_str());
-                    continue;
+                if (file.empty() || !PrepareShow(so, &next, &err)) {
+                    if (reload) std::fprintf(stderr, "%s — keeping the current values\n", err.c_str());
+                    else std::fprintf(stderr, "sdfvj live: preset '%s': %s\n", request.c_str(), file.empty() ? "no such preset" : err.c_str());
+                    return;
                 }
                 next.path = show.path;
                 const bool sameScene = next.scene.path == show.scene.path;
                 show = std::move(next);
-                currentPreset = name;
+                presetFile = show.preset.path;
+                presetPath = fs::weakly_canonical(presetFile).string();
+                currentPreset = fs::path(presetFile).filename().string();
+                watchFolder(fs::path(presetPath).parent_path().string());
                 if (!sameScene) params = ShowParamState(show);
                 for (const auto& [pname, value] : show.params) {
                     int i = FindParam(params, pname);
                     if (i >= 0) SetParamTarget(params, i, value);
                 }
                 live.Request(VariantKey{show.scene.path, show.effects, show.path});
-                input.SendFeedback(params, name);
-                std::fprintf(stderr, "preset %s (%s)\n", name.c_str(), show.scene.name.c_str());
+                input.SendFeedback(params, currentPreset);
+                if (reload) std::fprintf(stderr, "reloaded %s (%s)\n", presetFile.c_str(), show.scene.name.c_str());
+                else std::fprintf(stderr, "preset %s (%s)\n", currentPreset.c_str(), show.scene.name.c_str());
+            };
+            for (const std::string& file : reloadsNow) applyPreset(file, file, true);
+            for (const std::string& request : actions.presetSelect) {
+                const std::string name = ResolvePresetRequest(request, currentPreset);
+                applyPreset(request, name.empty() ? "" : (fs::path(DataRoot()) / "presets" / name).string(), false);
             }
             // Effect pads and /sdfvj/effect/<name>: a new variant compiles while the old one renders.
             if (!actions.effectToggles.empty()) {
@@ -317,16 +349,25 @@ int RunLive(const LiveOptions& o) {
             const std::vector<std::string> changed = watcher.Poll();
             live.Update(changed);
             for (const std::string& f : changed) {
+                const std::string path = fs::weakly_canonical(f).string();
                 // The preset on stage was edited: apply it again next frame (a broken save is
                 // reported and the current values stay).
-                if (!currentPreset.empty() && std::filesystem::path(f).filename() == currentPreset &&
-                    std::filesystem::path(f).parent_path().filename() == "presets")
-                    presetReloads.push_back(currentPreset);
-                if (std::filesystem::weakly_canonical(f).string() != mappingPath) continue;
+                if (!presetPath.empty() && path == presetPath &&
+                    std::find(presetReloads.begin(), presetReloads.end(), presetFile) == presetReloads.end())
+                    presetReloads.push_back(presetFile);
+                if (path != mappingPath) continue;
                 Mapping next;
-                LoadResult r = LoadMapping(mappingPath, &next);
-                if (r.ok) { mapping = std::move(next); mstate = MappingState{}; std::fprintf(stderr, "reloaded %s\n", mappingPath.c_str()); }
-                else std::fprintf(stderr, "%s — keeping the previous mapping\n", r.error.c_str());
+                LoadResult r = LoadMapping(mappingFile, &next);
+                if (!r.ok) {
+                    std::fprintf(stderr, "%s — keeping the previous mapping\n", r.error.c_str());
+                    continue;
+                }
+                std::string problems;
+                if (!ValidateMapping(next, params.decls, &problems))
+                    std::fprintf(stderr, "%s (entries for other scenes are ignored)\n", problems.c_str());
+                mapping = std::move(next);
+                mstate = MappingState{};
+                std::fprintf(stderr, "reloaded %s\n", mappingFile.c_str());
             }
             if (live.Error() != shownError) {
                 shownError = live.Error();

@@ -88,6 +88,8 @@ struct LiveOptions {
     std::string replay;
     double seconds = 0;                 // quit after this long (0 = run until closed)
     std::string screenshot;             // write the last frame here on exit
+    std::string logParams;              // append "time name=value ..." per frame to this file
+    bool hideOverlay = false;           // start with the overlay hidden (as after Tab)
 };
 int RunLive(const LiveOptions& o);
 #endif

@@ -116,6 +116,11 @@ int main(int argc, char** argv) {
     cmdLive->add_option("--replay", live.replay, "play a take into the show in real time (rehearsal)");
     cmdLive->add_option("--seconds", live.seconds, "quit after this many seconds (0: run until closed)");
     cmdLive->add_option("--screenshot", live.screenshot, "write the last frame to this PNG on exit");
+    cmdLive->add_option("--log-params", live.logParams,
+                        "append one line per frame to this file, \"TIME name=value ...\": the values the frame "
+                        "renders, after mapping and smoothing (for tests, and for debugging a mapping)");
+    cmdLive->add_flag("--hide-overlay", live.hideOverlay,
+                      "start with the overlay hidden, as after Tab (clean screenshots); Tab shows it");
 
     std::string learnParam, learnMapping = "mappings/learned.toml";
     double learnTimeout = 30;

@@ -1,6 +1,6 @@
 // `sdfvj live` as a user runs it: a real GLFW window on Xvfb (ctest fixture `xvfb`), OSC from
 // the `oscsend` tool, a screenshot, a recorded take. The frame values come from the
-// SDFVJ_LOG_PARAMS log ("time name=value ..." per frame).
+// --log-params log ("time name=value ..." per frame).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include "app/replay_driver.h"
 #include "app/show.h"
 #include "gl_fixture.h"
-#include "proc_util.h"
+#include "live_util.h"
 #include "take/take.h"
 
 using namespace sdfvj;
@@ -22,14 +22,6 @@ namespace fs = std::filesystem;
 namespace {
 
 const int kW = 240, kH = 136;
-
-std::string Display() {
-    std::string n = ReadText(std::string(SDFVJ_XVFB_STATE) + ".display");
-    while (!n.empty() && (n.back() == '\n' || n.back() == ' ')) n.pop_back();
-    INFO("no Xvfb display number in " << SDFVJ_XVFB_STATE << ".display (is the live_xvfb_start fixture running?)");
-    REQUIRE(!n.empty());
-    return ":" + n;
-}
 
 struct LiveRun {
     std::string dir, log, shot, params;
@@ -43,10 +35,10 @@ struct LiveRun {
         oscPort = FreeUdpPort();
         std::vector<std::string> argv = {SDFVJ_BIN, "live", "--scene", "midi", "--size", std::to_string(kW) + "x" + std::to_string(kH),
                                          "--seconds", "3", "--path", "fragment", "--effects", "none", "--osc-port", std::to_string(oscPort),
-                                         "--midi", "no-such-controller", "--screenshot", shot};
+                                         "--midi", "no-such-controller", "--screenshot", shot, "--log-params", params};
+        if (!overlay) argv.push_back("--hide-overlay");
         argv.insert(argv.end(), extra.begin(), extra.end());
-        pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"SDFVJ_LOG_PARAMS", params}, {"JACK_NO_START_SERVER", "1"},
-                                {"SDFVJ_HIDE_OVERLAY", overlay ? "0" : "1"}});
+        pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}});
     }
     // Waits until the log holds `text` (the program got that far).
     bool WaitForLog(const std::string& text, double seconds) const {
@@ -63,25 +55,6 @@ struct LiveRun {
     }
     int Wait() { return WaitExit(pid, 40); }
 };
-
-using Frame = std::pair<double, std::map<std::string, float>>;
-std::vector<Frame> ReadParamLog(const std::string& path) {
-    std::vector<Frame> frames;
-    std::istringstream in(ReadText(path));
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream ls(line);
-        Frame f;
-        ls >> f.first;
-        std::string kv;
-        while (ls >> kv) {
-            size_t eq = kv.find('=');
-            if (eq != std::string::npos) f.second[kv.substr(0, eq)] = std::stof(kv.substr(eq + 1));
-        }
-        frames.push_back(f);
-    }
-    return frames;
-}
 
 // Standard deviation of luma over the image: a flat colour (nothing drawn) gives 0.
 double LumaSpread(const Image& img) {
@@ -103,7 +76,7 @@ double LumaSpread(const Image& img) {
 
 TEST_CASE("live osc: oscsend /sdfvj/param/twist moves the running scene (window under Xvfb)") {
     // Two runs side by side: one gets the OSC message about 1 s in, the other nothing.
-    // The overlay is hidden (SDFVJ_HIDE_OVERLAY=1) so the screenshots show only the scene.
+    // The overlay is hidden (--hide-overlay) so the screenshots show only the scene.
     // The scene's spin is stopped (spin=0), so twist is the only thing that differs between them.
     LiveRun with("osc-twist", {"--param", "spin=0"}, false), without("no-osc", {"--param", "spin=0"}, false);
     INFO(ReadText(with.log));

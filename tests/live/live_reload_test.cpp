@@ -1,0 +1,259 @@
+// `sdfvj live` reloads the mapping file and the preset on stage when they are saved, and keeps
+// the last good one when a save is broken (issue 5). A real window under Xvfb (ctest fixture
+// `xvfb`), OSC from the `oscsend` tool, the frame values from the --log-params log. The files are
+// copies in a test folder, saved the way editors save (write a temporary file, rename it over).
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "live_util.h"
+
+using namespace sdfvj::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Writes `text` next to `path` and renames it over `path`, as editors save.
+void SaveLikeAnEditor(const std::string& path, const std::string& text) {
+    const fs::path p(path);
+    const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".new");
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << text;
+        REQUIRE(out.good());
+    }
+    fs::rename(tmp, p);
+}
+
+std::string JoinLines(const std::vector<std::string>& lines) {
+    std::string s;
+    for (const std::string& l : lines) s += l + "\n";
+    return s;
+}
+
+// A running `sdfvj live` (scene midi unless a preset says otherwise) that logs every frame's
+// values; stopped when the test ends, however it ends.
+struct LiveShow {
+    std::string dir, log, params;
+    pid_t pid = -1;
+    int oscPort = 0;
+
+    LiveShow(const std::string& folder, const std::vector<std::string>& extra) : dir(folder) {
+        log = dir + "/live.log";
+        params = dir + "/params.txt";
+        oscPort = FreeUdpPort();
+        // --seconds only bounds a run the test failed to stop; the test stops it long before.
+        std::vector<std::string> argv = {SDFVJ_BIN, "live", "--size", "160x90", "--seconds", "100", "--path", "fragment",
+                                         "--effects", "none", "--osc-port", std::to_string(oscPort), "--midi",
+                                         "no-such-controller", "--log-params", params, "--hide-overlay"};
+        argv.insert(argv.end(), extra.begin(), extra.end());
+        pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}});
+    }
+    ~LiveShow() { Stop(); }
+
+    // True while the process has not exited (one that has is reaped, and Stop has nothing to do).
+    bool Running() {
+        if (pid <= 0) return false;
+        if (waitpid(pid, nullptr, WNOHANG) == 0) return true;
+        pid = -1;
+        return false;
+    }
+    void Stop() {
+        if (pid <= 0) return;
+        kill(pid, SIGTERM);
+        WaitExit(pid, 10);   // SIGKILLs it after 10 s
+        pid = -1;
+    }
+    std::string Log() const { return ReadText(log); }
+    bool WaitForLog(const std::string& text, size_t times, double seconds) const {
+        return PollFor(seconds, [&] { return CountInFile(log, text) >= times; });
+    }
+    void Osc(const std::string& address, float value) const {
+        int rc = Run({"oscsend", "localhost", std::to_string(oscPort), address, "f", std::to_string(value)},
+                     dir + "/oscsend.log", 10);
+        INFO(ReadText(dir + "/oscsend.log"));
+        REQUIRE(rc == 0);
+    }
+    std::vector<Frame> Frames() const { return ReadParamLog(params); }
+    // Waits (up to `seconds`) for a frame whose values match `want` (to 1e-4); true when one came.
+    // *at is the index of that frame in the log.
+    bool WaitForValues(const std::map<std::string, float>& want, double seconds, size_t* at = nullptr) const {
+        return PollFor(seconds, [&] {
+            const std::vector<Frame> frames = Frames();
+            for (size_t i = frames.size(); i-- > 0;) {
+                if (!Matches(frames[i], want)) continue;
+                if (at) *at = i;
+                return true;
+            }
+            return false;
+        });
+    }
+    static bool Matches(const Frame& f, const std::map<std::string, float>& want) {
+        for (const auto& [name, v] : want) {
+            auto it = f.second.find(name);
+            if (it == f.second.end() || std::fabs(it->second - v) > 1e-4f) return false;
+        }
+        return true;
+    }
+    std::string LastFrame() const {
+        const std::vector<Frame> frames = Frames();
+        if (frames.empty()) return "(no frame logged)";
+        std::string s = std::to_string(frames.back().first);
+        for (const auto& [name, v] : frames.back().second) s += " " + name + "=" + std::to_string(v);
+        return s;
+    }
+    // At least `more` frames are logged after frame index `from` (the loop went on).
+    bool WaitForFramesAfter(size_t from, size_t more, double seconds) const {
+        return PollFor(seconds, [&] { return Frames().size() >= from + 1 + more; });
+    }
+};
+
+const double kDeadline = 10.0;   // generous: software GL on a loaded machine
+
+// REQUIRE for a wait on the running show: on failure it shows the show's log and last frame as
+// they are then (INFO would capture them before the wait).
+#define REQUIRE_LIVE(show, cond)                                                                   \
+    do {                                                                                           \
+        const bool ok_ = (cond);                                                                   \
+        if (!ok_) {                                                                                \
+            INFO("live log:\n" << (show).Log() << "last frame: " << (show).LastFrame());           \
+            INFO(#cond);                                                                           \
+            REQUIRE(ok_);                                                                          \
+        }                                                                                          \
+    } while (0)
+
+// Each mapping version sends OSC address /test/knob (0..1) somewhere else. Line 9 is the
+// entry's target in every version; the broken one has a syntax error there.
+std::vector<std::string> MappingLines(const std::string& targetLine, const std::string& rangeLine) {
+    return {"# live_reload test mapping",         // 1
+            "[profile]",                          // 2
+            "name = \"reload test\"",             // 3
+            "channel = \"any\"",                  // 4
+            "",                                   // 5
+            "[[map]]",                            // 6
+            "osc = \"/test/knob\"",               // 7
+            "smoothing = 0",                      // 8
+            targetLine,                           // 9
+            rangeLine};                           // 10
+}
+
+}  // namespace
+
+TEST_CASE("live_reload mapping: a saved mapping file remaps OSC at once, a broken save keeps the last good one") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "reload-mapping");
+    const std::string mapping = dir + "/knobs.toml";
+    {
+        std::ofstream(mapping) << JoinLines(MappingLines("target = \"twist\"", "range = [-3.0, 3.0]"));
+    }
+    LiveShow show(dir, {"--scene", "midi", "--mapping", mapping});
+    REQUIRE_LIVE(show, show.WaitForLog("OSC: listening on UDP port " + std::to_string(show.oscPort), 1, 20));
+
+    // The scene's defaults to start with (scale 1, twist 0.5, displacement 0.04).
+    REQUIRE_LIVE(show, show.WaitForValues({{"scale", 1.0f}, {"twist", 0.5f}, {"displacement", 0.04f}}, 20));
+
+    // Version 1: /test/knob -> twist over [-3, 3].
+    show.Osc("/test/knob", 1.0f);
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 3.0f}, {"displacement", 0.04f}, {"scale", 1.0f}}, kDeadline));
+
+    // Version 2, saved while running: the same knob drives displacement over [0.05, 0.25].
+    SaveLikeAnEditor(mapping, JoinLines(MappingLines("target = \"displacement\"", "range = [0.05, 0.25]")));
+    REQUIRE_LIVE(show, show.WaitForLog("reloaded " + mapping, 1, kDeadline));
+    show.Osc("/test/knob", 0.5f);
+    REQUIRE_LIVE(show, show.WaitForValues({{"displacement", 0.15f}, {"twist", 3.0f}, {"scale", 1.0f}}, kDeadline));
+
+    // A broken save (line 9: `target = = ...`): reported as file:line:, version 2 stays.
+    SaveLikeAnEditor(mapping, JoinLines(MappingLines("target = = \"scale\"", "range = [0.5, 1.5]")));
+    REQUIRE_LIVE(show, show.WaitForLog("keeping the previous mapping", 1, kDeadline));
+    {
+        const std::string out = show.Log();
+        INFO(out);
+        CHECK(out.find(mapping + ":9:") != std::string::npos);
+        CHECK(CountInFile(show.log, "reloaded " + mapping) == 1);
+    }
+    show.Osc("/test/knob", 1.0f);
+    REQUIRE_LIVE(show, show.WaitForValues({{"displacement", 0.25f}, {"twist", 3.0f}, {"scale", 1.0f}}, kDeadline));
+
+    // Fixed: the knob now drives scale over [0.5, 1.5]; displacement stays where it was.
+    SaveLikeAnEditor(mapping, JoinLines(MappingLines("target = \"scale\"", "range = [0.5, 1.5]")));
+    REQUIRE_LIVE(show, show.WaitForLog("reloaded " + mapping, 2, kDeadline));
+    show.Osc("/test/knob", 0.25f);
+    REQUIRE_LIVE(show, show.WaitForValues({{"scale", 0.75f}, {"displacement", 0.25f}, {"twist", 3.0f}}, kDeadline));
+    CHECK(show.Running());
+}
+
+namespace {
+
+// The preset on stage; line 5 holds twist in every version (the broken one has `,,` there).
+std::string PresetText(const std::string& twistLine, float displacement) {
+    return JoinLines({"{",                                                                    // 1
+                      "  \"scene\": \"midi\",",                                               // 2
+                      "  \"params\": {",                                                      // 3
+                      "    \"scale\": 1.25,",                                                 // 4
+                      twistLine,                                                              // 5
+                      "    \"displacement\": " + std::to_string(displacement) + ",",          // 6
+                      "    \"smoothness\": 0.3",                                              // 7
+                      "  }",                                                                  // 8
+                      "}"});                                                                  // 9
+}
+
+}  // namespace
+
+TEST_CASE("live_reload preset: the preset on stage applies again when saved, a broken save keeps the values") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "reload-preset");
+    const std::string preset = dir + "/stage.json";
+    {
+        std::ofstream(preset) << PresetText("    \"twist\": 1.5,", 0.1f);
+    }
+    LiveShow show(dir, {"--preset", preset});
+    REQUIRE_LIVE(show, show.WaitForLog("OSC: listening on UDP port " + std::to_string(show.oscPort), 1, 20));
+
+    // The first frame already renders the preset's values (not the scene defaults).
+    REQUIRE_LIVE(show, PollFor(20, [&] { return !show.Frames().empty(); }));
+    {
+        const Frame first = show.Frames().front();
+        CHECK(first.second.at("scale") == Approx(1.25f));
+        CHECK(first.second.at("twist") == Approx(1.5f));
+        CHECK(first.second.at("displacement") == Approx(0.1f));
+        CHECK(first.second.at("smoothness") == Approx(0.3f));
+        CHECK(first.second.at("spin") == Approx(0.3f));   // not in the preset: the scene default
+    }
+
+    // Saved with another twist: the running show glides there.
+    SaveLikeAnEditor(preset, PresetText("    \"twist\": 2.5,", 0.1f));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 2.5f}, {"scale", 1.25f}, {"displacement", 0.1f}}, kDeadline));
+    CHECK(show.WaitForLog("reloaded " + preset + " (midi)", 1, kDeadline));
+
+    // A broken save (line 5: `,,`), which would also move twist and displacement: reported as
+    // file:line:, and no frame from the save on shows any of its values.
+    const size_t beforeBroken = show.Frames().size();
+    SaveLikeAnEditor(preset, PresetText("    \"twist\": -1.0,,", 0.2f));
+    REQUIRE_LIVE(show, show.WaitForLog("keeping the current values", 1, kDeadline));
+    {
+        const std::string out = show.Log();
+        INFO(out);
+        CHECK(out.find(preset + ":5:") != std::string::npos);
+        CHECK(CountInFile(show.log, "reloaded " + preset) == 1);
+    }
+    const size_t atError = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(atError, 10, kDeadline));   // the show goes on
+    {
+        const std::vector<Frame> frames = show.Frames();
+        for (size_t i = beforeBroken; i < frames.size(); ++i) {
+            INFO("frame " << i << " at " << frames[i].first << " s");
+            CHECK(frames[i].second.at("twist") == Approx(2.5f).margin(1e-4));
+            CHECK(frames[i].second.at("displacement") == Approx(0.1f).margin(1e-4));
+        }
+    }
+
+    // Fixed: the new values apply.
+    SaveLikeAnEditor(preset, PresetText("    \"twist\": -1.0,", 0.2f));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", -1.0f}, {"displacement", 0.2f}, {"scale", 1.25f}}, kDeadline));
+    CHECK(show.WaitForLog("reloaded " + preset + " (midi)", 2, kDeadline));
+    CHECK(show.Running());
+}
