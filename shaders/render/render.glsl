@@ -28,7 +28,9 @@
 //   #define SCENE_BOUND 1 and `vec4 sceneBound()`: a sphere (centre xyz, radius w) that holds
 //     every surface of map() except the ground;
 //   #define SCENE_GROUND 1 and `vec4 mapGround(vec3 p)`: the ground plane y = 0 alone
-//     (albedo, p.y), with map(p) = fOpUnionColor(mapGround(p), <the objects>).
+//     (albedo, p.y); map(p) must equal mapGround(p) wherever the bounding sphere is farther
+//     away than the ground (a plain union with the objects does that; a smooth one needs its
+//     blend radius added to the sphere).
 // With both, a primary ray marches only the stretch inside the sphere and meets the ground
 // analytically (no creeping along the floor at the horizon), a shadow ray marches only where
 // the sphere can still darken its penumbra, and the probes (normals, AO, shadows) sample the

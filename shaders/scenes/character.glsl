@@ -23,6 +23,16 @@
 // Unit direction of a limb hanging down and swung forward (towards -Z) by angle a.
 vec3 limbDir(float a) { return vec3(0.0f, -cos(a), -sin(a)); }
 
+// Bounding volume for the renderer (render.glsl BOUNDS): the figure and the floor apart.
+#define SCENE_BOUND 1
+#define SCENE_GROUND 1
+
+// The floor y = 0 with its grid lines.
+vec4 mapGround(vec3 p) {
+    float grid = max(smoothstep(0.46f, 0.5f, abs(fract(p.x) - 0.5f)), smoothstep(0.46f, 0.5f, abs(fract(p.z) - 0.5f)));
+    return vec4(mix(vec3(0.45f), vec3(0.25f), grid), p.y);
+}
+
 vec4 map(vec3 p) {
     const vec3 skin = vec3(0.80f, 0.52f, 0.38f);
     const vec3 shirt = vec3(0.75f, 0.12f, 0.10f);
@@ -78,10 +88,14 @@ vec4 map(vec3 p) {
     body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, ankleL, ankleL + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
     body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, ankleR, ankleR + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
 
-    float grid = max(smoothstep(0.46f, 0.5f, abs(fract(p.x) - 0.5f)), smoothstep(0.46f, 0.5f, abs(fract(p.z) - 0.5f)));
-    vec4 ground = vec4(mix(vec3(0.45f), vec3(0.25f), grid), fPlane(p, vec3(0.0f, 1.0f, 0.0f), 0.0f));
-    return fOpUnionSmoothColor(ground, body, u_floorBlend);
+    return fOpUnionSmoothColor(mapGround(p), body, u_floorBlend);
 }
+
+// A sphere around the figure for every knob position and time: every part lies within 1.3 of
+// (0, 0.95, 0) (the raised waving hand and the swung foot are the farthest); the joint blends
+// can swell it by about the blend radius, and beyond radius + floor blend the smooth union with
+// the floor leaves the floor exact (the renderer's contract for SCENE_GROUND).
+vec4 sceneBound() { return vec4(0.0f, 0.95f, 0.0f, 1.3f + max(u_blend, 0.0f) + max(u_floorBlend, 0.0f) + 0.02f); }
 
 // Spheres and capsules are exact; smooth unions keep |grad| <= 1.
 float sceneLipschitz() { return 1.0f; }

@@ -26,9 +26,20 @@ vec3 floorAlbedo(vec3 p) {
     return mix(vec3(0.28f), vec3(0.42f), checker);
 }
 
+// Bounding volume for the renderer (render.glsl BOUNDS): the shapes and the floor apart.
+#define SCENE_BOUND 1
+#define SCENE_GROUND 1
+
+// The floor y = 0.
+vec4 mapGround(vec3 p) { return vec4(floorAlbedo(p), p.y); }
+
+// A sphere around the row of shapes: the spinning torus at x = -3.2 reaches 3.99 from
+// (0, 0.6, 0), everything else less; the smooth union swells the box and ball by k / 4.
+vec4 sceneBound() { return vec4(0.0f, 0.6f, 0.0f, 4.0f + 0.25f * max(u_smoothness, 0.0f) + 0.02f); }
+
 vec4 map(vec3 p) {
     float spin = u_time * u_spin;
-    vec4 res = vec4(floorAlbedo(p), fPlane(p, vec3(0.0f, 1.0f, 0.0f), 0.0f));
+    vec4 res = mapGround(p);
 
     // torus standing upright, spinning around Y
     vec3 q = pRotateY(pTranslate(p, vec3(-3.2f, 0.8f, 0.0f)), spin);
