@@ -41,14 +41,15 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     setenv("SDFVJ_ROOT", root.c_str(), 1);
     const fs::path sceneFile = root / "shaders" / "scenes" / fs::path(scene.path).filename();
 
-    // Two rounds of the same measurement: compiling through the driver on the render thread
-    // (with GL_KHR_parallel_shader_compile where it exists), then on a CompileWorker.
-    for (int mode = 0; mode < 2; ++mode) {
+    // Three rounds of the same measurement: compiling through the driver on the render thread
+    // (with GL_KHR_parallel_shader_compile where it exists), on a CompileWorker with a shared
+    // context, and on a CompileWorker with its own context that hands over a program binary.
+    for (int mode = 0; mode < 3; ++mode) {
     HeadlessContext shared;
     std::unique_ptr<CompileWorker> worker;
-    if (mode == 1) {
-        if (!shared.CreateShared(gl, &error)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); break; }
-        worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); });
+    if (mode >= 1) {
+        if (!shared.CreateShared(gl, &error, mode == 1)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); break; }
+        worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2);
         if (!worker->Ok()) { std::fprintf(stderr, "sdfvj bench reload: the worker's context failed\n"); break; }
         PendingProgram::SetWorker(worker.get());
     }
@@ -80,7 +81,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
 
     std::printf("# sdfvj bench reload: %s at %dx%d, %s path, on %s; compile %s\n", scene.name.c_str(), w, h,
                 RenderPathName(path), gl.Description().c_str(),
-                worker ? "on a worker thread with a shared context"
+                mode == 2 ? "on a worker thread with its own context, handing over a program binary"
+                : worker ? "on a worker thread with a shared context"
                        : (PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
                                                                      : "on the render thread"));
     std::printf("| round | save -> new program on screen ms | frames meanwhile | longest frame ms |\n|---:|---:|---:|---:|\n");

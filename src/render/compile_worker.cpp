@@ -7,8 +7,9 @@ namespace sdfvj {
 namespace {
 
 // Compiles and links on the calling thread's context; 0 and the raw log on failure.
-unsigned CompileLink(const std::string& text, RenderPath path, std::string* rawLog) {
+unsigned CompileLink(const std::string& text, RenderPath path, std::string* rawLog, bool retrievable) {
     GLuint prog = glCreateProgram();
+    if (retrievable) glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     std::vector<GLuint> stages;
     auto stage = [&](GLenum kind, const char* src) {
         GLuint s = glCreateShader(kind);
@@ -81,7 +82,7 @@ void Prime(unsigned prog, RenderPath path, bool floatImage) {
 
 }  // namespace
 
-CompileWorker::CompileWorker(std::function<bool()> bindContext) {
+CompileWorker::CompileWorker(std::function<bool()> bindContext, bool handOverBinary) : handOverBinary_(handOverBinary) {
     thread_ = std::thread([this, bindContext] { Loop(bindContext); });
 }
 
@@ -108,12 +109,15 @@ uint64_t CompileWorker::Submit(const std::string& text, RenderPath path) {
     return t;
 }
 
-bool CompileWorker::Poll(uint64_t ticket, unsigned* program, std::string* rawLog) {
+bool CompileWorker::Poll(uint64_t ticket, unsigned* program, std::string* rawLog, std::vector<uint8_t>* binary,
+                         unsigned* format) {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = done_.find(ticket);
     if (it == done_.end()) return false;
     *program = it->second.program;
     *rawLog = it->second.log;
+    if (binary) *binary = std::move(it->second.binary);
+    if (format) *format = it->second.format;
     done_.erase(it);
     return true;
 }
@@ -158,10 +162,27 @@ void CompileWorker::Loop(std::function<bool()> bind) {
             jobs_.pop_front();
         }
         std::string log;
-        unsigned prog = CompileLink(job.text, job.path, &log);
-        if (prog) Prime(prog, job.path, job.text.find("rgba32f") != std::string::npos);
+        Done done;
+        unsigned prog = CompileLink(job.text, job.path, &log, handOverBinary_);
+        if (prog && handOverBinary_) {
+            GLint length = 0;
+            glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &length);
+            done.binary.resize(length > 0 ? (size_t)length : 0);
+            GLenum format = 0;
+            GLsizei got = 0;
+            if (length > 0) glGetProgramBinary(prog, length, &got, &format, done.binary.data());
+            done.binary.resize((size_t)got);
+            done.format = format;
+            glDeleteProgram(prog);
+            prog = 0;
+            if (done.binary.empty()) log = "the driver gave no program binary (GL_PROGRAM_BINARY_LENGTH 0)";
+        } else if (prog) {
+            Prime(prog, job.path, job.text.find("rgba32f") != std::string::npos);
+        }
+        done.program = prog;
+        done.log = log;
         std::lock_guard<std::mutex> lock(mutex_);
-        done_[job.ticket] = Done{prog, log};
+        done_[job.ticket] = std::move(done);
     }
 }
 

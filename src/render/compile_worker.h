@@ -17,6 +17,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <vector>
 #include <thread>
 
 #include "shader/shader.h"
@@ -26,7 +27,10 @@ namespace sdfvj {
 class CompileWorker {
 public:
     // `bindContext` runs once on the worker thread and must make a shared context current there.
-    explicit CompileWorker(std::function<bool()> bindContext);
+    // With `handOverBinary` the worker's context need not be shared: each linked program is
+    // read back with glGetProgramBinary and deleted there, and Finish() loads the binary on the
+    // render thread's context (no object crosses contexts, so no share-group lock).
+    explicit CompileWorker(std::function<bool()> bindContext, bool handOverBinary = false);
     ~CompileWorker();
     CompileWorker(const CompileWorker&) = delete;
     CompileWorker& operator=(const CompileWorker&) = delete;
@@ -35,13 +39,15 @@ public:
     uint64_t Submit(const std::string& text, RenderPath path);
     // True once the ticket is done: `program` is the linked program (0 on failure, then
     // `rawLog` holds the driver's messages). A ticket is reported once.
-    bool Poll(uint64_t ticket, unsigned* program, std::string* rawLog);
+    // In binary mode `program` stays 0 on success and `binary`/`format` hold the program binary.
+    bool Poll(uint64_t ticket, unsigned* program, std::string* rawLog, std::vector<uint8_t>* binary = nullptr,
+              unsigned* format = nullptr);
     // The caller no longer wants this ticket; its program is deleted when done.
     void Forget(uint64_t ticket);
 
 private:
     struct Job { uint64_t ticket; std::string text; RenderPath path; };
-    struct Done { unsigned program; std::string log; };
+    struct Done { unsigned program; std::string log; std::vector<uint8_t> binary; unsigned format = 0; };
     void Loop(std::function<bool()> bind);
 
     std::mutex mutex_;
@@ -52,6 +58,7 @@ private:
     uint64_t next_ = 1;
     int state_ = 0;          // 0 starting, 1 running, -1 no context
     bool stop_ = false;
+    bool handOverBinary_ = false;
     std::thread thread_;
 };
 

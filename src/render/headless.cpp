@@ -67,14 +67,15 @@ bool HeadlessContext::Create(std::string* error) {
     return false;
 }
 
-bool HeadlessContext::CreateShared(const HeadlessContext& main, std::string* error) {
+bool HeadlessContext::CreateShared(const HeadlessContext& main, std::string* error, bool share) {
     if (!main.display_) {
         *error = "no main context to share with";
         return false;
     }
     const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    EGLContext ctx = eglCreateContext((EGLDisplay)main.display_, EGL_NO_CONFIG_KHR, (EGLContext)main.context_, ctxAttribs);
+    EGLContext ctx = eglCreateContext((EGLDisplay)main.display_, EGL_NO_CONFIG_KHR,
+                                      share ? (EGLContext)main.context_ : EGL_NO_CONTEXT, ctxAttribs);
     if (ctx == EGL_NO_CONTEXT) {
         *error = "cannot create a shared OpenGL context";
         return false;
@@ -82,7 +83,7 @@ bool HeadlessContext::CreateShared(const HeadlessContext& main, std::string* err
     display_ = main.display_;
     context_ = ctx;
     shared_ = true;
-    description_ = main.description_ + " (shared)";
+    description_ = main.description_ + (share ? " (shared)" : " (second context)");
     return true;
 }
 

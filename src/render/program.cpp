@@ -97,7 +97,8 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path) {
 
 bool PendingProgram::Ready() const {
     if (ticket_) {
-        if (!workerDone_ && g_worker) workerDone_ = g_worker->Poll(ticket_, &workerProgram_, &workerLog_);
+        if (!workerDone_ && g_worker)
+            workerDone_ = g_worker->Poll(ticket_, &workerProgram_, &workerLog_, &workerBinary_, &workerFormat_);
         return workerDone_;
     }
     if (!id_) return false;
@@ -112,6 +113,21 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
         while (!Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
         ticket_ = 0;
         workerDone_ = false;
+        if (!workerProgram_ && !workerBinary_.empty()) {
+            // Binary hand-over: load what the worker's own context compiled and linked.
+            GLuint prog = glCreateProgram();
+            glProgramBinary(prog, workerFormat_, workerBinary_.data(), (GLsizei)workerBinary_.size());
+            workerBinary_.clear();
+            GLint linked = 0;
+            glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+            if (!linked) {
+                glDeleteProgram(prog);
+                *log = "the driver rejected the compile thread's program binary";
+                return false;
+            }
+            into->Adopt(prog, path_, source_);
+            return true;
+        }
         if (!workerProgram_) {
             *log = MapCompileLog(workerLog_, source_);
             return false;

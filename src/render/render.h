@@ -25,7 +25,9 @@ public:
     bool Create(std::string* error);
     // A second context on the same display that shares programs with `main` (for a
     // CompileWorker). Created on the render thread; MakeCurrent() it on the worker.
-    bool CreateShared(const HeadlessContext& main, std::string* error);
+    // share = false: a second context on the same display that shares no objects (for a
+    // CompileWorker in binary hand-over mode).
+    bool CreateShared(const HeadlessContext& main, std::string* error, bool share = true);
     bool MakeCurrent();
     std::string Description() const { return description_; }  // "EGL device platform: llvmpipe (...)"
 private:
@@ -115,6 +117,8 @@ private:
     mutable bool workerDone_ = false;
     mutable unsigned workerProgram_ = 0;
     mutable std::string workerLog_;
+    mutable std::vector<uint8_t> workerBinary_;   // binary hand-over mode
+    mutable unsigned workerFormat_ = 0;
     ShaderSource source_;
     RenderPath path_ = RenderPath::Fragment;
 };

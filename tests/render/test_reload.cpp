@@ -178,18 +178,20 @@ TEST_CASE("variant: switching effects compiles once, then comes from the cache",
     CHECK(std::find(active.begin(), active.end(), "u_aoSamples") != active.end());
 }
 
-TEST_CASE("reload: on a compile thread, edits, errors and fixes behave the same and frames keep coming", "[reload]") {
+namespace {
+// binary = false: the worker's context shares programs with the test's context; true: it has
+// its own context and hands over program binaries.
+void WorkerReload(bool binary) {
     RequireGl();
-    // The worker's context shares programs with the test's context.
     HeadlessContext shared;
     std::string err;
-    REQUIRE(shared.CreateShared(*TestContext(), &err));
-    CompileWorker worker([&shared] { return shared.MakeCurrent(); });
+    REQUIRE(shared.CreateShared(*TestContext(), &err, !binary));
+    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, binary);
     REQUIRE(worker.Ok());
     PendingProgram::SetWorker(&worker);
     struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
 
-    ReloadRig rig("worker");
+    ReloadRig rig(binary ? "worker-binary" : "worker");
     Image good = rig.Frame(), after;
     rig.Save("shaders/scenes/reloadme.glsl", ReloadRig::SceneText("vec3(0.1f, 0.3f, 0.9f)"));
     int frames = rig.FramesUntilChange(good, &after);
@@ -210,4 +212,13 @@ TEST_CASE("reload: on a compile thread, edits, errors and fixes behave the same 
     Image fixed;
     CHECK(rig.FramesUntilChange(after, &fixed) > 0);
     CHECK(rig.live.Error().empty());
+}
+}  // namespace
+
+TEST_CASE("reload: on a compile thread, edits, errors and fixes behave the same and frames keep coming", "[reload]") {
+    WorkerReload(false);
+}
+
+TEST_CASE("reload: a compile thread with its own context hands over program binaries that render the same", "[reload]") {
+    WorkerReload(true);
 }
