@@ -6,6 +6,8 @@
 #   scripts/gpu.sh remote ARGS..  there (the device tool runs it in the repo root, carrying .gl and
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
+#   scripts/gpu.sh measure        there: every figure docs/ quotes, in one device call, into $OUT
+#                                 (4K targets, accuracy sweep, reload latency, effects, full table)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -28,6 +30,19 @@ case "${1:-}" in
     cp .devbuild/cmake/src/app/sdfvj-headless .devbuild/
     rm -rf .devbuild/cmake
     du -sh .gl .devbuild
+    ;;
+  measure)
+    out="${OUT:?set OUT to the folder for the results}"
+    run() { bash "$0" remote "$@"; }
+    run bench --scenes midi primitives character mandelbulb --sizes 3840x2160 --tests full --paths compute \
+      --frames 20 --warmup 5 --markdown "$out/bench_4k.md" > "$out/bench_4k.txt" 2>&1 || true
+    run bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 15 --warmup 5 \
+      --out "$out/accuracy" --markdown "$out/accuracy.md" > "$out/accuracy.txt" 2>&1 || true
+    for s in midi character; do
+      run bench reload --scene $s --size 1920x1080 --path compute > "$out/reload_$s.txt" 2>&1 || true
+    done
+    run bench effects --scene midi --size 1920x1080 --path compute > "$out/effects_midi.txt" 2>&1 || true
+    timeout 240 bash "$0" remote bench --frames 10 --warmup 3 --markdown "$out/bench.md" > "$out/bench.txt" 2>&1 || true
     ;;
   remote)
     shift
