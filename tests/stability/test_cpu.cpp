@@ -79,6 +79,8 @@ TEST_CASE("stability: hard geometry in the CPU builds matches analytic intersect
                    Case{"box", 2, 0, 1, 1e-3f, 50, {1.5f, 2.5f, -4}, {0, 1, 0}, 128},
                    Case{"sphere 10^4 away", 1, 1e4f, 2000, 1e-3f, 2e4f, {0, 1, -5}, {0, 1, 1e4f}, 256},
                    Case{"eps below float resolution at 10^4", 1, 1e4f, 2000, 1e-12f, 2e4f, {0, 1, -5}, {0, 1, 1e4f}, 256},
+                   Case{"ellipsoid", 8, 0, 1, 1e-3f, 50, {1.5f, 2.0f, -4}, {0, 1, 0}, 128},
+                   Case{"torus", 3, 0, 1, 1e-3f, 50, {1.5f, 2.5f, -4}, {0, 1, 0}, 128},
                    Case{"grazing floor", 0, 0, 1, 1e-3f, 50, {0, 0.01f, -5}, {0, 0.01f, 0}, 128}}) {
         scene.camPos = c.cam;
         scene.camTarget = c.target;
@@ -114,6 +116,36 @@ TEST_CASE("stability: hard geometry in the CPU builds matches analytic intersect
                         t1 = std::min(t1, std::max(a, b));
                     }
                     if (t0 <= t1) t = t0;
+                } else if (c.shape == 8) {
+                    // ellipsoid with semi-axes (1, 0.5, 0.25) * radius centred at (0, 1, 0): a
+                    // quadratic in the frame where it is the unit sphere
+                    glm::dvec3 axes = glm::dvec3(1.0, 0.5, 0.25) * double(c.radius);
+                    glm::dvec3 o = (ro - glm::dvec3(0, 1, 0)) / axes, d = rd / axes;
+                    double A = glm::dot(d, d), B = glm::dot(o, d), C = glm::dot(o, o) - 1.0;
+                    double disc = B * B - A * C;
+                    if (disc >= 0) t = (-B - std::sqrt(disc)) / A;
+                } else if (c.shape == 3) {
+                    // torus (ring radius 1, tube 0.3) centred at (0, 1, 0), its axis along Z (the
+                    // scene turns fTorus's Y axis by 90 degrees about X): the first root of its
+                    // quartic (|u|^2 + R^2 - r^2)^2 - 4 R^2 (u.x^2 + u.y^2) along the ray, bracketed
+                    // on a fine grid and bisected
+                    auto f = [&](double tt) {
+                        glm::dvec3 u = ro + rd * tt - glm::dvec3(0, 1, 0);
+                        double q = glm::dot(u, u) + 1.0 - 0.09;
+                        return q * q - 4.0 * (u.x * u.x + u.y * u.y);
+                    };
+                    for (double a = 0, fa = f(0); a < 20 && t < 0; a += 1e-3) {
+                        double b = a + 1e-3, fb = f(b);
+                        if ((fa > 0) != (fb > 0)) {
+                            double lo = a, hi = b;
+                            for (int i = 0; i < 60; ++i) {
+                                double m = 0.5 * (lo + hi);
+                                if ((f(m) > 0) == (fa > 0)) lo = m; else hi = m;
+                            }
+                            t = 0.5 * (lo + hi);
+                        }
+                        fa = fb;
+                    }
                 } else if (rd.y < 0) {
                     t = -ro.y / rd.y;
                 }
