@@ -1,7 +1,8 @@
-// cpu_scene.h - CpuScene: one scene + render.glsl compiled as C++ (see scene_instance.inc),
-// reached through pointers to its uniforms; plus reading a scene's JSON header and setting
-// the uniforms the host would upload by default.
+// cpu_scene.h - CpuScene (sdfvj_accuracy's: one scene + render.glsl compiled as C++, reached
+// through pointers to its uniforms), plus reading a scene's JSON header and setting the
+// uniforms the host would upload by default.
 #pragma once
+#include "accuracy/cpu_scene.h"
 #include "sdf/glsl_glm.h"
 
 #include <fstream>
@@ -13,21 +14,9 @@
 #include <string>
 #include <vector>
 
-template <class S>
-struct CpuScene {
-  using V2 = glm::vec<2, S>;
-  using V3 = glm::vec<3, S>;
-  using V4 = glm::vec<4, S>;
-  std::string name;
-  std::function<V4(V3)> map;
-  std::function<S()> lipschitz;
-  std::function<V4(V2)> render;
-  std::map<std::string, S*> inputs;  // u_<name> of every header input
-  S* time; int* frame; V2* resolution; S* beat; V3* camPos; V3* camTarget; S* fov;
-  V3* lightDir; V3* lightColor; int* maxSteps; S* hitEps; S* maxDist; S* stepFactor;
-  S* fixedStep; int* shadowSteps; S* shadowK; int* aoSamples; S* normalEps; S* roughness;
-  S* metalness;
-};
+// The scene instances are sdfvj_accuracy's (src/accuracy/scene_instance.inc), one per scene
+// and precision; these tests reach them through the same struct.
+using sdfvj::accuracy::CpuScene;
 
 // The JSON object between /* and */ at the top of a scene file.
 inline nlohmann::json readSceneHeader(const std::string& path) {
