@@ -82,19 +82,13 @@
 
 #include "render/uniforms.glsl"
 
-#if USE_BOUND
-vec3 boundCentre() {
-    vec4 b = sceneBound();
-    return vec3(b.x, b.y, b.z);
-}
-#endif
-
 // map(), or the ground alone where it is nearer than the objects' bounding sphere (then the
 // objects cannot be the nearest surface, so the result is still a distance bound).
 vec4 mapNear(vec3 p) {
 #if USE_GROUND
     vec4 g = mapGround(p);
-    if (g.w < length(p - boundCentre()) - sceneBound().w) return g;
+    vec4 b = sceneBound();
+    if (g.w < length(p - vec3(b.x, b.y, b.z)) - b.w) return g;
 #endif
     return map(p);
 }

@@ -2,6 +2,7 @@
 #include "accuracy/accuracy.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <stdexcept>
 #include <thread>
@@ -18,6 +19,12 @@ CpuScene<float> MakeCpuScene32_character();
 CpuScene<double> MakeCpuScene64_character();
 CpuScene<float> MakeCpuScene32_mandelbulb();
 CpuScene<double> MakeCpuScene64_mandelbulb();
+
+std::string Format(const char* format, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, format, v);
+    return b;
+}
 
 std::vector<std::string> CpuSceneNames() { return {"primitives", "midi", "character", "mandelbulb"}; }
 

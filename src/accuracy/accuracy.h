@@ -25,6 +25,10 @@
 
 namespace sdfvj::accuracy {
 
+// printf-style formatting of one number ("%.3f") for the reports and the sweep's labels.
+std::string Format(const char* format, double v);
+
+
 // ---- CPU build of the scenes ------------------------------------------------------------
 std::vector<std::string> CpuSceneNames();   // primitives, midi, character, mandelbulb
 bool HasCpuScene(const std::string& name);

@@ -11,11 +11,7 @@ namespace sdfvj::accuracy {
 
 namespace {
 
-std::string F(const char* f, double v) {
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return b;
-}
+const auto F = Format;
 
 // Plot frame: x = GPU ms (log10 over the scene's range), y = % pixels > 8/255 off (log10,
 // 1e-3 .. 100; 0 % is drawn at 1e-3).

@@ -15,11 +15,7 @@ namespace sdfvj::accuracy {
 
 namespace {
 
-std::string Fmt(const char* f, double v) {
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return b;
-}
+const auto Fmt = Format;
 
 Setting Make(const std::string& knob, const std::string& label) {
     Setting s;
