@@ -1,0 +1,258 @@
+#!/usr/bin/env bash
+# The stage soak: `sdfvj live` must survive everything a stage throws at it, all at once.
+#
+#   scripts/soak.sh [--quick] [--minutes N] [--bin PATH] [--driver PATH] [--keep]
+#                   [--rss-limit-mb N] [--gap-limit-ms N] [--seed N]
+#
+#   --quick        at most 45 s in all (CI, `ctest -L soak`): a 15 s storm
+#   --minutes N    length of the storm (default 10)
+#   --bin PATH     the sdfvj to soak (default: build-asan/src/app/sdfvj when it exists, else
+#                  build/src/app/sdfvj)
+#   --driver PATH  tests/soak's soak_driver (default: next to --bin's build, else built here with g++)
+#   --keep         keep the work folder (it is always kept when the soak fails)
+#
+# It runs `sdfvj live --preset demo` at 320x180 in an Xvfb display on Mesa llvmpipe, with
+# SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
+# never touched), --log-params, --record take.mid, an OSC port liblo picks free, and a private
+# JACK dummy server (JACK_DEFAULT_SERVER=sdfvj-soak-$$). soak_driver then floods it with hostile
+# OSC, MIDI from a controller port that is unplugged and plugged back, and valid/broken saves of
+# scenes, library files, presets and mappings (see tests/soak/soak_driver.cpp).
+#
+# Passes when: sdfvj is still running at the end and then exits by itself (--seconds) with code 0;
+# no gap between logged frames is longer than --gap-limit-ms (default 250; the first second is
+# start-up and not counted); the last OSC value sent after the storm is in the last frame; VmRSS
+# grew by at most --rss-limit-mb from the baseline (taken 2 s after the first frame); stderr holds
+# no sanitizer report; the recorded take renders again (`sdfvj render --replay take.mid`).
+# Exit code 0 on pass, 1 on fail, 2 on bad usage or a missing tool.
+set -u
+
+repo=$(cd "$(dirname "$0")/.." && pwd)
+quick=0 minutes=10 bin="" driver="" keep=0 rssLimit="" gapLimit=250 seed=$$
+while [ $# -gt 0 ]; do
+    case $1 in
+    --quick) quick=1 ;;
+    --minutes) minutes=${2:?--minutes needs a number}; shift ;;
+    --bin) bin=${2:?--bin needs a path}; shift ;;
+    --driver) driver=${2:?--driver needs a path}; shift ;;
+    --keep) keep=1 ;;
+    --rss-limit-mb) rssLimit=${2:?}; shift ;;
+    --gap-limit-ms) gapLimit=${2:?}; shift ;;
+    --seed) seed=${2:?}; shift ;;
+    -h|--help) sed -n '2,/^set -u/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "soak: unknown argument '$1' (see --help)"; exit 2 ;;
+    esac
+    shift
+done
+case $minutes in ''|*[!0-9.]*) echo "soak: --minutes wants a number"; exit 2 ;; esac
+
+if [ $quick = 1 ]; then storm=15; else storm=$(awk -v m="$minutes" 'BEGIN { printf "%d", m * 60 }'); fi
+[ "$storm" -ge 5 ] || storm=5
+warm=2                        # seconds of calm after the first frame: the RSS baseline
+finalPhase=6                  # the driver's calm end: restore files, preset, the final value (5.5 s)
+liveSeconds=$((warm + storm + finalPhase + 4))   # sdfvj quits by itself after this (live clock)
+finalValue=1.2345
+osc_rate=2000
+
+for tool in Xvfb jackd jack_lsp awk; do
+    command -v $tool >/dev/null 2>&1 || { echo "soak: $tool is not installed (scripts/setup.sh installs it)"; exit 2; }
+done
+
+if [ -z "$bin" ]; then
+    if [ -x "$repo/build-asan/src/app/sdfvj" ]; then bin=$repo/build-asan/src/app/sdfvj; else bin=$repo/build/src/app/sdfvj; fi
+fi
+[ -x "$bin" ] || { echo "soak: no sdfvj at $bin (build it, or pass --bin)"; exit 2; }
+bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
+sanitized=0
+grep -q -a -m1 "__asan_init\|__ubsan_handle" "$bin" && sanitized=1
+if [ -z "$rssLimit" ]; then if [ $sanitized = 1 ]; then rssLimit=192; else rssLimit=64; fi; fi
+
+work=$(mktemp -d /tmp/sdfvj-soak.XXXXXX)
+XVFB_PID="" JACK_PID="" LIVE_PID="" DRIVER_PID=""
+failures=()
+fail() { failures+=("$1"); echo "soak: FAIL: $1"; }
+
+stop_pid() {   # stop_pid PID: TERM, up to 5 s, then KILL; only processes this script started
+    local pid=$1 i=0
+    [ -n "$pid" ] || return 0
+    kill "$pid" 2>/dev/null || return 0
+    while kill -0 "$pid" 2>/dev/null && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+    kill -9 "$pid" 2>/dev/null
+    wait "$pid" 2>/dev/null
+    return 0
+}
+cleanup() {
+    stop_pid "$DRIVER_PID"; DRIVER_PID=""
+    stop_pid "$LIVE_PID"; LIVE_PID=""
+    stop_pid "$JACK_PID"; JACK_PID=""
+    stop_pid "$XVFB_PID"; XVFB_PID=""
+    if [ $keep = 0 ] && [ ${#failures[@]} = 0 ] && [ -n "${work:-}" ]; then rm -rf "$work"; fi
+}
+trap cleanup EXIT
+trap 'fail "interrupted"; exit 1' INT TERM
+
+t0=$(date +%s.%N)
+elapsed() { awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
+rss_kb() { awk '/^VmRSS:/ { print $2 }' "/proc/$1/status" 2>/dev/null || echo 0; }
+# wait_for SECONDS COMMAND...: polls every 50 ms
+wait_for() {
+    local n=$(awk -v s="$1" 'BEGIN { printf "%d", s * 20 }') i=0
+    shift
+    until "$@"; do
+        i=$((i + 1)); [ $i -gt "$n" ] && return 1
+        sleep 0.05
+    done
+}
+
+# --- the driver ---------------------------------------------------------------------------
+if [ -z "$driver" ]; then
+    for d in "$(dirname "$bin")/../../tests/soak/soak_driver" "$repo/build-soak/tests/soak/soak_driver" "$repo/build/tests/soak/soak_driver"; do
+        [ -x "$d" ] && { driver=$d; break; }
+    done
+fi
+if [ -z "$driver" ]; then
+    echo "soak: building soak_driver with g++ (no build folder has it)"
+    g++ -O1 -std=c++20 "$repo/tests/soak/soak_driver.cpp" $(pkg-config --cflags --libs liblo rtmidi) -pthread \
+        -o "$work/soak_driver" || { echo "soak: cannot build soak_driver"; exit 2; }
+    driver=$work/soak_driver
+fi
+
+# --- the stage: a copy of the data, a display, a JACK server --------------------------------
+mkdir -p "$work/root"
+cp -r "$repo/shaders" "$repo/presets" "$repo/mappings" "$work/root/"
+
+setsid Xvfb -displayfd 3 -screen 0 640x360x24 -nolisten tcp 3>"$work/xvfb.display" >"$work/xvfb.log" 2>&1 </dev/null &
+XVFB_PID=$!
+wait_for 10 test -s "$work/xvfb.display" || { fail "Xvfb did not start: $(tail -3 "$work/xvfb.log")"; exit 1; }
+display=:$(tr -d ' \n' <"$work/xvfb.display")
+
+export JACK_DEFAULT_SERVER=sdfvj-soak-$$
+export JACK_NO_AUDIO_RESERVATION=1
+setsid jackd -n "$JACK_DEFAULT_SERVER" --no-realtime -d dummy -r 48000 -p 256 >"$work/jackd.log" 2>&1 </dev/null &
+JACK_PID=$!
+wait_for 10 jack_lsp >/dev/null 2>&1
+jack_lsp >/dev/null 2>&1 || { fail "jackd did not start: $(tail -3 "$work/jackd.log")"; exit 1; }
+
+# --- the show -------------------------------------------------------------------------------
+: "${ASAN_OPTIONS:=detect_leaks=1:halt_on_error=1:quarantine_size_mb=64:malloc_context_size=15}"
+: "${UBSAN_OPTIONS:=print_stacktrace=1}"
+export ASAN_OPTIONS UBSAN_OPTIONS
+export SDFVJ_ROOT=$work/root
+export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
+echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no)), storm ${storm} s, display $display, JACK $JACK_DEFAULT_SERVER, work $work"
+(cd "$work" && DISPLAY=$display exec "$bin" live --preset demo --size 320x180 --path fragment --midi soak-controller \
+    --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds") \
+    >"$work/live.out" 2>"$work/live.err" </dev/null &
+LIVE_PID=$!
+
+oscPort=""
+first_frame() { [ -s "$work/params.log" ] || ! kill -0 $LIVE_PID 2>/dev/null; }
+wait_for 90 first_frame
+oscPort=$(sed -n 's/.*OSC: listening on UDP port \([0-9]*\).*/\1/p' "$work/live.err" | head -1)
+if ! kill -0 $LIVE_PID 2>/dev/null || [ ! -s "$work/params.log" ] || [ -z "$oscPort" ]; then
+    fail "sdfvj live did not come up (no frame or no OSC port); stderr tail:"
+    tail -20 "$work/live.err"
+    exit 1
+fi
+rssFirst=$(rss_kb $LIVE_PID)
+sleep $warm
+rssStart=$(rss_kb $LIVE_PID)
+rssPeak=$rssStart
+echo "soak: first frame at $(elapsed) s, OSC port $oscPort, VmRSS $((rssFirst / 1024)) MB at the first frame, $((rssStart / 1024)) MB after ${warm} s (baseline)"
+
+# --- the storm ------------------------------------------------------------------------------
+"$driver" --osc-port "$oscPort" --root "$work/root" --seconds "$storm" --midi-name soak-controller \
+    --osc-rate $osc_rate --save-ms 300 --replug-s 3 --final-preset demo --final-param twist \
+    --final-value $finalValue --seed "$seed" >"$work/driver.out" 2>"$work/driver.err" &
+DRIVER_PID=$!
+limit=$((storm + finalPhase + 20)) i=0 died=0 nextReport=60
+while kill -0 $DRIVER_PID 2>/dev/null; do
+    sleep 1; i=$((i + 1))
+    if ! kill -0 $LIVE_PID 2>/dev/null; then died=1; break; fi
+    r=$(rss_kb $LIVE_PID); [ "${r:-0}" -gt "$rssPeak" ] && rssPeak=$r
+    if [ $i -ge $nextReport ]; then
+        echo "soak: $((i / 60)) min: alive, VmRSS $((r / 1024)) MB, $(wc -l <"$work/params.log") frames"
+        nextReport=$((nextReport + 60))
+    fi
+    [ $i -gt $limit ] && { fail "soak_driver did not finish in ${limit} s"; break; }
+done
+stop_pid "$DRIVER_PID" >/dev/null; DRIVER_PID=""
+sleep 0.5
+
+aliveAtEnd=0 rssEnd=0
+if [ $died = 0 ] && kill -0 $LIVE_PID 2>/dev/null; then
+    aliveAtEnd=1
+    rssEnd=$(rss_kb $LIVE_PID)
+    [ "$rssEnd" -gt "$rssPeak" ] && rssPeak=$rssEnd
+fi
+lastLine=$(tail -n 2 "$work/params.log" | head -n 1)   # the last line may be half-written
+[ $aliveAtEnd = 1 ] || fail "sdfvj live died during the storm (at $(elapsed) s)"
+
+# sdfvj quits by itself at --seconds; wait for that (bounded), then stop it.
+wait_for $((liveSeconds + 30)) sh -c "! kill -0 $LIVE_PID 2>/dev/null"
+if kill -0 $LIVE_PID 2>/dev/null; then
+    fail "sdfvj live did not quit at --seconds $liveSeconds; stopped with SIGTERM"
+    stop_pid $LIVE_PID
+fi
+wait $LIVE_PID 2>/dev/null; liveRc=$?
+LIVE_PID=""
+if [ $aliveAtEnd = 1 ] && [ $liveRc != 0 ]; then fail "sdfvj live exited with code $liveRc"; fi
+[ $died = 1 ] && [ $liveRc -ge 128 ] && echo "soak: sdfvj live was killed by signal $((liveRc - 128))"
+
+# --- the checks -----------------------------------------------------------------------------
+read -r frames maxGap gapAt < <(awk '$1 >= 1.0 { if (n++) { g = $1 - p; if (g > m) { m = g; at = p } } p = $1 }
+    END { printf "%d %.0f %.2f\n", n, m * 1000, at }' "$work/params.log")
+liveTime=$(tail -n 2 "$work/params.log" | head -n 1 | awk '{ print $1 }')
+[ "${maxGap:-0}" -le "$gapLimit" ] || fail "a ${maxGap} ms gap between frames at live time ${gapAt} s (limit ${gapLimit} ms)"
+
+finalSeen=$(echo "$lastLine" | awk -v want=$finalValue '{ for (i = 2; i <= NF; ++i) if ($i ~ /^twist=/) {
+    v = substr($i, 7) + 0; d = v - want; if (d < 0) d = -d; print (d < 1e-3 ? "yes" : "no (" v ")"); exit } print "no (no twist)" }')
+[ "$finalSeen" = yes ] || fail "the last OSC value /sdfvj/raw/twist $finalValue is not in the last frame: $finalSeen"
+
+rssGrowth=$(( (rssEnd - rssStart) / 1024 ))
+if [ $aliveAtEnd = 1 ] && [ $rssGrowth -gt "$rssLimit" ]; then fail "VmRSS grew by $rssGrowth MB (limit $rssLimit MB)"; fi
+
+sanReports=$(grep -c -E "ERROR: AddressSanitizer|runtime error:|LeakSanitizer|ERROR: ThreadSanitizer" "$work/live.err")
+[ "$sanReports" = 0 ] || fail "$sanReports sanitizer report lines in sdfvj's stderr"
+
+recorded=$(sed -n 's/^recorded \([0-9]*\) events to .*/\1/p' "$work/live.err" | tail -1)
+takeOk=no
+if [ -s "$work/take.mid" ]; then
+    (cd "$work" && "$bin" render --preset demo --replay take.mid --frames 1 --size 64x36 --path fragment \
+        --out "$work/replay" --quiet) >"$work/replay.log" 2>&1 && takeOk=yes
+fi
+[ $takeOk = yes ] || fail "the recorded take does not render again: $(tail -3 "$work/replay.log" 2>/dev/null)"
+
+reconnects=$(grep -c "listening to .*soak-controller" "$work/live.err")
+gone=$(grep -c "no port matches 'soak-controller'" "$work/live.err")
+count() { awk -v k="$1" '$1 == "COUNT" && $2 == k { print $3; f = 1 } END { if (!f) print 0 }' "$work/driver.out"; }
+sumc() { awk -v p="$1" '$1 == "COUNT" && $2 ~ p { s += $3 } END { print s + 0 }' "$work/driver.out"; }
+
+# --- summary --------------------------------------------------------------------------------
+echo
+echo "================ sdfvj soak summary ================"
+echo "binary          $bin$([ $sanitized = 1 ] && echo ' (sanitizers)')"
+echo "commit          $(git -C "$repo" rev-parse --short HEAD 2>/dev/null)$(git -C "$repo" diff --quiet HEAD -- src 2>/dev/null || echo ' + local changes in src/')"
+echo "storm           ${storm} s (+${finalPhase} s calm end), wall $(elapsed) s in all"
+echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo NO), then exit code $liveRc"
+echo "frames          ${frames:-0} logged after the first second, live clock reached ${liveTime:-?} s"
+echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms)"
+echo "VmRSS           first frame $((rssFirst / 1024)) MB, baseline $((rssStart / 1024)) MB, end $((rssEnd / 1024)) MB, peak $((rssPeak / 1024)) MB; growth ${rssGrowth} MB (limit ${rssLimit} MB)"
+echo "final value     /sdfvj/raw/twist $finalValue in the last frame: $finalSeen"
+echo "sanitizer       $sanReports report lines"
+echo "take            ${recorded:-?} events recorded; renders again: $takeOk"
+echo "OSC sent        $(sumc '^osc_') datagrams: $(count osc_valid_param) param, $(count osc_raw) raw (NaN/inf too), $(count osc_wrong_type) wrong types, $(count osc_unknown_address) unknown addresses, $(count osc_preset) preset, $(count osc_effect_toggle) effect toggles, $(count osc_huge_string) huge strings, $(( $(count osc_garbage) + $(count osc_mangled) + $(count osc_bad_bundle) )) garbage/mangled/bundles"
+echo "MIDI sent       $(sumc '^midi_(cc|note|running|sysex|system|other|random)') messages: $(count midi_cc) CC, $(count midi_note) notes, $(count midi_sysex) sysex, $(count midi_running_status) running status, $(( $(count midi_system_or_stray) + $(count midi_random_bytes) )) stray/system/random"
+echo "MIDI replugs    $(count midi_replug) (show saw the port go $gone times, came back $reconnects times)"
+echo "saves           $(sumc '^save_(valid|broken)$'): $(count save_valid) valid, $(count save_broken) broken; $(count save_rename) rename, $(count save_in_place) in place, $(count save_two_halves) in two halves; $(count save_scene) scene, $(count save_lib) lib, $(count save_preset) preset, $(count save_mapping) mapping"
+echo "shader errors   $(grep -c -E '^shaders/|\.glsl:' "$work/live.err") lines; reloads $(grep -c '^shader reloaded' "$work/live.err")"
+if [ ${#failures[@]} = 0 ]; then
+    echo "result          PASS"
+else
+    echo "result          FAIL"
+    for f in "${failures[@]}"; do echo "  - $f"; done
+    echo "work folder     $work (kept)"
+    echo "---- sdfvj stderr, last 25 lines ----"
+    tail -n 25 "$work/live.err"
+fi
+echo "===================================================="
+[ ${#failures[@]} = 0 ]
