@@ -50,7 +50,14 @@ std::string DataRoot();
 
 // Parses a scene's header. On failure returns false and sets error to
 // "path:line: what is wrong, what was expected".
+// Every field is type- and range-checked (numbers finite and in range, strings strings, CAMERA,
+// LIGHT, MATERIAL and EFFECTS objects with known keys only), nesting is limited to 64 levels and
+// the header to 1 MiB; no exception leaves it. Unknown top-level keys are accepted (ISF headers
+// carry others: ISFVSN, CREDIT, ...), except a known key in the wrong case ("Inputs").
 bool LoadScene(const std::string& path, SceneInfo* out, std::string* error);
+// LoadScene on text already in memory (the whole .glsl); `path` is used for out->path and errors.
+// The fuzzer (src/scene/fuzz_scene.cpp) calls this, the code production runs.
+bool ParseSceneText(const std::string& text, const std::string& path, SceneInfo* out, std::string* error);
 
 // A scene by name ("midi") or by file path. Error lists the known scenes.
 bool FindScene(const std::string& nameOrFile, SceneInfo* out, std::string* error);
@@ -80,7 +87,11 @@ struct Preset {
     std::string mapping;       // path relative to the data root
     std::string take;          // path relative to the data root
 };
+// Presets are strict: unknown keys are errors (with their line), params are finite numbers
+// (or booleans), effects and normals must parse. Errors are "path:line: what, expected ...".
 bool LoadPreset(const std::string& path, Preset* out, std::string* error);
+// LoadPreset on JSON text already in memory (fuzzer entry); `path` is used for errors.
+bool ParsePresetText(const std::string& text, const std::string& path, Preset* out, std::string* error);
 std::vector<std::string> ListPresets();
 
 }  // namespace sdfvj
