@@ -104,6 +104,7 @@ struct InputSession::Impl {
     std::vector<std::unique_ptr<MidiPort>> alsaPorts;
     std::unique_ptr<RtMidiIn> alsaProbe;           // kept: one sequencer client for the port list
     std::vector<std::string> connected;            // sources we listen to
+    std::vector<std::string> gone;                 // sources we listened to that vanished (unplugged)
     std::string midiStatus;
     int pollsWithoutMidi = 0;
 
@@ -229,6 +230,17 @@ struct InputSession::Impl {
         if (opt.log) std::fprintf(stderr, "sdfvj: %s\n", midiStatus.c_str());
     }
 
+    // Caller holds `mutex`. Sources listened to at the last poll and missing now join `gone`;
+    // one that is listened to again leaves it. Bounded: a studio of hot-plugged gear keeps the
+    // last few names only.
+    void NoteGone(const std::vector<std::string>& before) {
+        auto has = [](const std::vector<std::string>& v, const std::string& n) { return std::find(v.begin(), v.end(), n) != v.end(); };
+        gone.erase(std::remove_if(gone.begin(), gone.end(), [&](const std::string& n) { return has(connected, n); }), gone.end());
+        for (const std::string& n : before)
+            if (!has(connected, n) && !has(gone, n)) gone.push_back(n);
+        if (gone.size() > 4) gone.erase(gone.begin(), gone.end() - 4);
+    }
+
     void ReconnectOrThrow() {
         if (api == Api::Jack && jackDied) AbandonDeadJack();
         if (api == Api::None) {
@@ -236,6 +248,7 @@ struct InputSession::Impl {
             if (opt.midi && ++pollsWithoutMidi % 4 == 0 && JackServerRunning()) StartMidi();
             return;
         }
+        const std::vector<std::string> before = connected;
         std::vector<std::string> wanted;
         if (api == Api::Jack) {
             wanted = SelectPorts(JackSources(), opt.midiPort);
@@ -278,15 +291,24 @@ struct InputSession::Impl {
             connected.clear();
             for (auto& p : alsaPorts) connected.push_back(p->name);
         }
+        NoteGone(before);
         std::string apiName = api == Api::Jack ? "JACK" : "ALSA";
         std::string s = "MIDI (" + apiName + "): ";
         if (virtualIn) s += "virtual port " + virtualIn->name + "; ";
-        if (connected.empty())
-            s += opt.midiPort.empty() ? "no controller connected"
-                                      : "no port matches '" + opt.midiPort + "', waiting for it";
-        else {
+        if (!connected.empty()) {
             s += "listening to ";
             for (size_t i = 0; i < connected.size(); ++i) s += (i ? ", " : "") + connected[i];
+            if (!gone.empty()) s += "; ";
+        }
+        if (!gone.empty()) {
+            // A controller that was unplugged: say so until it is back (then it is listened to
+            // again at the next poll, no restart needed).
+            for (size_t i = 0; i < gone.size(); ++i) s += (i ? ", " : "") + gone[i];
+            s += gone.size() == 1 ? " is gone (unplugged?), waiting for it to come back"
+                                  : " are gone (unplugged?), waiting for them to come back";
+        } else if (connected.empty()) {
+            s += opt.midiPort.empty() ? "no controller connected"
+                                      : "no port matches '" + opt.midiPort + "', waiting for it";
         }
         if (s != midiStatus && opt.log) std::fprintf(stderr, "sdfvj: %s\n", s.c_str());
         midiStatus = s;
@@ -303,15 +325,14 @@ struct InputSession::Impl {
         }
     }
 
+    // The body is HandleOscMessage (decode.cpp), which the fuzzer drives through a real lo_server.
     static int OnOsc(const char* path, const char* types, lo_arg** argv, int argc, lo_message, void* user) {
+        bool HandleOscMessage(const char*, const char*, const void* const*, int, double, EventQueue&, InputCounters&,
+                              std::string*);  // decode.cpp; to move into control.h
         auto* s = static_cast<Impl*>(user);
-        ControlEvent e;
         std::string why;
-        if (DecodeOscMessage(path, types, reinterpret_cast<const void* const*>(argv), argc, s->clock(), &e, &why)) {
-            s->counters.oscMessages++;
-            s->queue.Push(std::move(e));
-        } else {
-            s->counters.oscWrongType++;
+        if (!HandleOscMessage(path, types, reinterpret_cast<const void* const*>(argv), argc, s->clock(), s->queue,
+                              s->counters, &why)) {
             std::lock_guard<std::mutex> lock(s->problemMutex);
             s->lastOscProblem = why;
         }

@@ -227,3 +227,51 @@ TEST_CASE("midi learn: an NRPN control is learned as nrpn") {
     CHECK(m.entries[0].number == 3 * 128 + 1);
     std::remove(path.c_str());
 }
+
+TEST_CASE("midi replug: a controller port that vanishes and returns is heard again, and the status line says so") {
+    // The stage case: the controller's cable is pulled and plugged back while the show runs.
+    // Round 0 removes only the port (the client stays, as a driver that keeps running); round 1
+    // closes the whole client (as a USB device that disappears with its driver).
+    const std::string dev = Unique("test-controller");
+    MidiRig r(dev, Unique("sdfvj-replug"));
+    REQUIRE(ParseMapping("[[map]]\ncc = 1\ntarget = \"displacement\"\n", "t.toml", &r.mapping).ok);
+    auto status = [&] { return r.session->StatusLines()[0]; };
+
+    auto out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("soak-controller"));
+    out->openVirtualPort(dev);
+    // Sends value `v` until it arrives (JACK connects asynchronously after the next port poll).
+    auto heard = [&](uint8_t v) {
+        size_t base = r.queue.Pushed();
+        if (!WaitFor([&] { Send(*out, {0xB0, 1, v}); return r.queue.Pushed() > base; }, 2.0)) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(30));   // resent copies land
+        r.Frame(r.queue.Pushed());
+        return Param(r.params, "displacement") == Approx(v / 127.0f);
+    };
+    REQUIRE(heard(10));
+    INFO(status());
+    CHECK(status().find("listening to") != std::string::npos);
+    CHECK(status().find(dev) != std::string::npos);
+
+    for (int round = 0; round < 2; ++round) {
+        INFO("round " << round);
+        if (round == 0) out->closePort();
+        else out.reset();
+        // The status line says the controller is gone, and names it, within two port polls.
+        REQUIRE(WaitFor([&] { return status().find("gone") != std::string::npos; }, 1.0));
+        INFO(status());
+        CHECK(status().find(dev) != std::string::npos);
+        CHECK(status().find("listening to") == std::string::npos);
+        CHECK(r.session->OpenMidiPorts().empty());
+
+        if (!out) out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("soak-controller"));
+        out->openVirtualPort(dev);                                        // plugged back
+        double plugged = Now();
+        REQUIRE(WaitFor([&] { return !r.session->OpenMidiPorts().empty(); }, 1.0));
+        CHECK(Now() - plugged < 1.0);
+        REQUIRE(heard(uint8_t(40 + 30 * round)));
+        INFO(status());
+        CHECK(status().find("listening to") != std::string::npos);
+        CHECK(status().find(dev) != std::string::npos);
+        CHECK(status().find("gone") == std::string::npos);
+    }
+}
