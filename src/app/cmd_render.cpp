@@ -1,12 +1,22 @@
 // `sdfvj render`: headless frames on the fixed clock (time = frame / fps), to PNGs or ffmpeg.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
 #include "app/commands.h"
 #include "app/replay_driver.h"
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 
@@ -14,7 +24,89 @@ namespace sdfvj {
 
 namespace {
 
-struct PipeCloser { void operator()(FILE* f) const { if (f) pclose(f); } };
+// ffmpeg as a child process reading raw RGBA frames on its stdin. Started from an argv (no
+// shell: quotes, spaces and `$` in the output path are just characters), waited for, and its
+// exit status is the verdict: a failed encode is a failed render. Owns the pipe and the child;
+// the destructor closes the pipe and reaps the child on every early return.
+class FfmpegEncoder {
+public:
+    FfmpegEncoder() = default;
+    ~FfmpegEncoder() { Finish(); }
+    FfmpegEncoder(const FfmpegEncoder&) = delete;
+    FfmpegEncoder& operator=(const FfmpegEncoder&) = delete;
+
+    // Returns 0, or ENOENT when there is no ffmpeg on PATH, or another errno with *error set.
+    int Start(const std::vector<std::string>& argv, std::string* error) {
+        int fds[2];
+        if (pipe2(fds, O_CLOEXEC) != 0) { *error = std::string("cannot make a pipe for ffmpeg: ") + std::strerror(errno); return errno; }
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_adddup2(&actions, fds[0], 0);   // dup2 clears O_CLOEXEC on fd 0
+        std::vector<char*> args;
+        for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        int rc = posix_spawnp(&pid_, args[0], &actions, nullptr, args.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        close(fds[0]);
+        if (rc != 0) {
+            close(fds[1]);
+            pid_ = -1;
+            *error = std::string("cannot start ffmpeg: ") + std::strerror(rc);
+            return rc;
+        }
+        fd_ = fds[1];
+        return 0;
+    }
+
+    // Writes all of `bytes`; false when ffmpeg closed its end (it exited or failed: EPIPE).
+    bool Write(const std::vector<uint8_t>& bytes) {
+        size_t done = 0;
+        while (done < bytes.size()) {
+            ssize_t n = write(fd_, bytes.data() + done, bytes.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) return false;
+            done += size_t(n);
+        }
+        return true;
+    }
+
+    // Closes the pipe (end of input) and waits for ffmpeg. Returns "" when it exited with 0,
+    // else how it ended ("exit status 1", "killed by signal 9"). Idempotent.
+    std::string Finish() {
+        if (fd_ >= 0) { close(fd_); fd_ = -1; }
+        if (pid_ <= 0) return result_;
+        int status = 0;
+        pid_t r;
+        do r = waitpid(pid_, &status, 0); while (r < 0 && errno == EINTR);
+        pid_ = -1;
+        if (r < 0) result_ = std::string("lost track of it: ") + std::strerror(errno);
+        else if (WIFEXITED(status) && WEXITSTATUS(status) == 0) result_ = "";
+        else if (WIFEXITED(status)) result_ = "exit status " + std::to_string(WEXITSTATUS(status));
+        else if (WIFSIGNALED(status)) result_ = "killed by signal " + std::to_string(WTERMSIG(status));
+        else result_ = "ended with wait status " + std::to_string(status);
+        return result_;
+    }
+
+private:
+    pid_t pid_ = -1;
+    int fd_ = -1;
+    std::string result_;
+};
+
+// The ffmpeg command line for raw RGBA frames of w x h on stdin. libx264's yuv420p needs even
+// sizes: an odd width or height gets one black column/row of padding (right/bottom).
+std::vector<std::string> FfmpegArgs(int w, int h, double fps, const std::string& outPath) {
+    char size[32], rate[32];
+    std::snprintf(size, sizeof size, "%dx%d", w, h);
+    std::snprintf(rate, sizeof rate, "%g", fps);
+    std::vector<std::string> a = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-y",
+                                  "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size, "-r", rate, "-i", "pipe:0"};
+    if (w % 2 || h % 2) a.insert(a.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"});
+    // "file:" keeps a path that starts with '-' or holds ':' from being read as an option or
+    // a protocol; the container is still chosen from the extension.
+    a.insert(a.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "file:" + outPath});
+    return a;
+}
 
 }  // namespace
 
@@ -44,19 +136,21 @@ int RunRender(const RenderOptions& o) {
     FrameRenderer fr;
     if (!fr.Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
 
-    std::unique_ptr<FILE, PipeCloser> video;
+    std::unique_ptr<FfmpegEncoder> video;
     if (!o.video.empty()) {
-        if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) {
+        // A dead ffmpeg must not kill us silently: write() then fails with EPIPE instead.
+        signal(SIGPIPE, SIG_IGN);
+        video = std::make_unique<FfmpegEncoder>();
+        int rc = video->Start(FfmpegArgs(w, h, o.fps, o.video), &error);
+        if (rc == ENOENT) {
             std::fprintf(stderr, "sdfvj render: --video needs ffmpeg, which is not installed (apt-get install ffmpeg); "
                                  "use --out DIR for PNG frames\n");
             return 2;
         }
-        char cmd[1024];
-        std::snprintf(cmd, sizeof cmd,
-                      "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgba -s %dx%d -r %g -i - -c:v libx264 "
-                      "-pix_fmt yuv420p '%s'", w, h, o.fps, o.video.c_str());
-        video.reset(popen(cmd, "w"));
-        if (!video) { std::fprintf(stderr, "sdfvj render: cannot start ffmpeg\n"); return 1; }
+        if (rc != 0) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 1; }
+        if ((w % 2 || h % 2) && !o.quiet)
+            std::fprintf(stderr, "sdfvj render: %dx%d is odd, the video is padded to %dx%d (libx264 needs even sizes)\n",
+                         w, h, w + w % 2, h + h % 2);
     } else {
         std::error_code ec;
         fs::create_directories(o.out, ec);
@@ -79,8 +173,10 @@ int RunRender(const RenderOptions& o) {
         fr.Draw(*show.program, show.scene, in);
         std::vector<uint8_t> rgba = fr.ReadPixels();
         if (video) {
-            if (std::fwrite(rgba.data(), 1, rgba.size(), video.get()) != rgba.size()) {
-                std::fprintf(stderr, "\nsdfvj render: ffmpeg stopped reading frames\n");
+            if (!video->Write(rgba)) {
+                std::string how = video->Finish();
+                std::fprintf(stderr, "\nsdfvj render: ffmpeg stopped reading frames at frame %d (%s), %s is not complete\n",
+                             i, how.empty() ? "it exited with status 0" : how.c_str(), o.video.c_str());
                 return 1;
             }
         } else {
@@ -93,6 +189,14 @@ int RunRender(const RenderOptions& o) {
         }
         if (!o.quiet)
             PrintProgress(i + 1, frames, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    if (video) {
+        std::string how = video->Finish();
+        if (!how.empty()) {
+            std::fprintf(stderr, "\nsdfvj render: ffmpeg failed to encode %s (%s), expected exit status 0; its message is above\n",
+                         o.video.c_str(), how.c_str());
+            return 1;
+        }
     }
     return 0;
 }
