@@ -125,8 +125,12 @@ int main(int argc, char** argv) {
     std::string learnParam, learnMapping = "mappings/learned.toml";
     double learnTimeout = 30;
     auto* cmdLearn = app.add_subcommand("learn", "MIDI learn: wait for the next control that moves and map it");
+    cmdLearn->footer("Listens on every MIDI input port and on OSC UDP port 9000; when 9000 is taken (a running "
+                     "`sdfvj live`), on a free port, printed at start. The mapping file is changed only when the "
+                     "new entry parses, and atomically (a temporary file renamed over it): on any error it is left "
+                     "byte-identical.");
     cmdLearn->add_option("--param", learnParam, "parameter to map")->required();
-    cmdLearn->add_option("--mapping", learnMapping, "mapping file to add the entry to")->capture_default_str();
+    cmdLearn->add_option("--mapping", learnMapping, "mapping file to add the entry to (all or nothing)")->capture_default_str();
     cmdLearn->add_option("--timeout", learnTimeout, "seconds to wait")->capture_default_str();
 #endif
 

@@ -1,8 +1,26 @@
 // RunLearn: `sdfvj learn --param NAME [--mapping FILE]`. Listens on every MIDI port (and OSC),
 // takes the first control that moves, and appends a [[map]] entry for it to the mapping file.
+//
+// The file is never left half-done: the new text (old text + the entry) is built in memory,
+// parsed as a mapping, and only then written to a temporary file in the same folder and renamed
+// over the original. Any failure leaves the file byte-identical.
+// OSC listens on 9000 like `sdfvj live`; when a running show already holds that port, learn
+// takes a free one and says which.
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "control/control.h"
@@ -44,18 +62,129 @@ std::string LearnSource(const ControlEvent& e, std::map<int, int>* ccFirst, std:
     return "";
 }
 
+constexpr int kLearnOscPort = 9000;   // the same default as `sdfvj live --osc-port`
+
+// True when a UDP port can be bound right now (by us, on every address, as liblo does).
+bool UdpPortFree(int port) {
+    int s = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    if (s < 0) return true;   // cannot tell; let liblo try and report
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_ANY);
+    a.sin_port = htons(uint16_t(port));
+    bool free = bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+    close(s);
+    return free;
+}
+
+// Parameter names are scene uniforms (u_<name>): a TOML string of them needs no escaping.
+bool IsParamName(const std::string& s) {
+    if (s.empty() || !(std::isalpha((unsigned char)s[0]) || s[0] == '_')) return false;
+    for (char c : s)
+        if (!(std::isalnum((unsigned char)c) || c == '_')) return false;
+    return true;
+}
+
+// Whole file, or "" with *exists = false when there is none. False on a read error.
+bool ReadWhole(const std::string& path, std::string* text, bool* exists) {
+    *exists = false;
+    text->clear();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return !ec;
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return false;
+    std::stringstream ss;
+    ss << f.rdbuf();
+    *exists = true;
+    *text = ss.str();
+    return !f.bad();
+}
+
+// Writes `text` to a temporary file next to `path` and renames it over `path`: readers (a
+// running `live` reloading its mapping) see the old file or the new one, never a mix.
+bool WriteAtomically(const std::string& path, const std::string& text, std::string* error) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::path target = fs::is_symlink(path, ec) ? fs::canonical(path, ec) : fs::path(path);
+    fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    std::string tmp = (folder / ("." + target.filename().string() + ".learn-XXXXXX")).string();
+    int fd = mkstemp(tmp.data());
+    if (fd < 0) {
+        *error = path + ":1:1: cannot write next to the file (" + std::strerror(errno) +
+                 "), expected a writable folder " + folder.string();
+        return false;
+    }
+    struct stat st;
+    mode_t mode = stat(target.c_str(), &st) == 0 ? (st.st_mode & 07777) : mode_t(0644);
+    bool ok = fchmod(fd, mode) == 0;
+    for (size_t done = 0; ok && done < text.size();) {
+        ssize_t n = write(fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) ok = false;
+        else done += size_t(n);
+    }
+    ok = ok && fsync(fd) == 0;
+    int savedErrno = errno;
+    ok = close(fd) == 0 && ok;
+    if (ok && rename(tmp.c_str(), target.c_str()) != 0) {
+        ok = false;
+        savedErrno = errno;
+    }
+    if (!ok) {
+        unlink(tmp.c_str());
+        *error = path + ":1:1: cannot write the file (" + std::strerror(savedErrno) + "), expected a writable mapping file";
+    }
+    return ok;
+}
+
+// Adds one learned entry to the mapping file, all or nothing. Returns "" or one error line.
+std::string AddLearnedEntry(const std::string& mappingPath, const std::string& param, const std::string& source) {
+    std::string text;
+    bool exists = false;
+    if (!ReadWhole(mappingPath, &text, &exists))
+        return mappingPath + ":1:1: cannot read the file, expected a readable mapping file";
+    Mapping before;
+    if (exists) {
+        LoadResult r = ParseMapping(text, mappingPath, &before);
+        if (!r.ok) return r.error;
+    }
+    std::string entry = "\n# learned by `sdfvj learn --param " + param + "`\n[[map]]\n" + source + "\ntarget = \"" +
+                        param + "\"\n";
+    std::string next = text;
+    if (!next.empty() && next.back() != '\n') next += '\n';
+    next += entry;
+    Mapping after;
+    LoadResult r = ParseMapping(next, mappingPath, &after);
+    if (!r.ok)
+        return r.error + " (after adding the learned entry; " + mappingPath + " is unchanged)";
+    if (after.entries.size() != before.entries.size() + 1 || after.entries.back().target != param)
+        return mappingPath + ":1:1: the learned entry did not read back as one more [[map]] for '" + param +
+               "', expected the file to take new [[map]] tables (" + mappingPath + " is unchanged)";
+    std::string error;
+    if (!WriteAtomically(mappingPath, next, &error)) return error;
+    return "";
+}
+
 }  // namespace
 
 int RunLearn(const std::string& param, const std::string& mappingPath, double timeoutSeconds) {
-    Mapping existing;
+    if (!IsParamName(param)) {
+        std::fprintf(stderr, "sdfvj learn: bad parameter name '%s', expected letters, digits and '_' (a scene INPUT name)\n",
+                     param.c_str());
+        return 2;
+    }
     {
-        std::ifstream probe(mappingPath);
-        if (probe) {
-            LoadResult r = LoadMapping(mappingPath, &existing);
-            if (!r.ok) {
-                std::fprintf(stderr, "%s\n", r.error.c_str());
-                return 2;
-            }
+        std::string text;
+        bool exists = false;
+        Mapping existing;
+        if (!ReadWhole(mappingPath, &text, &exists)) {
+            std::fprintf(stderr, "%s:1:1: cannot read the file, expected a readable mapping file\n", mappingPath.c_str());
+            return 2;
+        }
+        LoadResult r = exists ? ParseMapping(text, mappingPath, &existing) : LoadResult{true, ""};
+        if (!r.ok) {
+            std::fprintf(stderr, "%s\n", r.error.c_str());
+            return 2;
         }
     }
     EventQueue queue;
@@ -63,25 +192,22 @@ int RunLearn(const std::string& param, const std::string& mappingPath, double ti
     auto clock = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     InputOptions opt;
     opt.log = false;
+    // A running `sdfvj live` holds 9000: learn must still start, on a port of its own.
+    opt.oscPort = UdpPortFree(kLearnOscPort) ? kLearnOscPort : 0;
     InputSession session(opt, queue, clock);
     for (const std::string& s : session.StatusLines()) std::fprintf(stderr, "%s\n", s.c_str());
+    if (opt.oscPort == 0 && session.OscPort() > 0)
+        std::fprintf(stderr, "learn: UDP port %d is taken (a running `sdfvj live`?), send OSC to port %d instead\n",
+                     kLearnOscPort, session.OscPort());
     std::fprintf(stderr, "learn: move the control for '%s' (%.0f s)...\n", param.c_str(), timeoutSeconds);
     std::map<int, int> ccFirst, nrpnSelected;
     while (clock() < timeoutSeconds) {
         for (const ControlEvent& e : queue.DrainUntil(clock())) {
             std::string src = LearnSource(e, &ccFirst, &nrpnSelected);
             if (src.empty()) continue;
-            std::ofstream out(mappingPath, std::ios::app);
-            if (!out) {
-                std::fprintf(stderr, "%s:1:1: cannot write the file, expected a writable mapping file\n", mappingPath.c_str());
-                return 2;
-            }
-            out << "\n# learned by `sdfvj learn --param " << param << "`\n[[map]]\n" << src << "\ntarget = \"" << param << "\"\n";
-            out.close();
-            Mapping check;
-            LoadResult r = LoadMapping(mappingPath, &check);
-            if (!r.ok) {
-                std::fprintf(stderr, "%s\n", r.error.c_str());
+            std::string error = AddLearnedEntry(mappingPath, param, src);
+            if (!error.empty()) {
+                std::fprintf(stderr, "%s\n", error.c_str());
                 return 2;
             }
             std::printf("learned: %s -> %s, written to %s\n", src.substr(0, src.find('\n')).c_str(), param.c_str(), mappingPath.c_str());
