@@ -91,6 +91,7 @@ trap cleanup EXIT
 trap 'fail "interrupted"; exit 1' INT TERM
 
 t0=$(date +%s.%N)
+loadStart=$(cut -d' ' -f1-3 /proc/loadavg)
 elapsed() { awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
 rss_kb() { awk '/^VmRSS:/ { print $2 }' "/proc/$1/status" 2>/dev/null || echo 0; }
 # wait_for SECONDS COMMAND...: polls every 50 ms
@@ -135,7 +136,9 @@ jack_lsp >/dev/null 2>&1 || { fail "jackd did not start: $(tail -3 "$work/jackd.
 # --- the show -------------------------------------------------------------------------------
 : "${ASAN_OPTIONS:=detect_leaks=1:halt_on_error=1:quarantine_size_mb=64:malloc_context_size=15}"
 : "${UBSAN_OPTIONS:=print_stacktrace=1}"
-export ASAN_OPTIONS UBSAN_OPTIONS
+# Third-party leaks (Mesa, fontconfig, JACK) are suppressed as in scripts/test_sanitize.sh.
+if [ -z "${LSAN_OPTIONS:-}" ] && [ -f "$repo/scripts/lsan.supp" ]; then LSAN_OPTIONS=suppressions=$repo/scripts/lsan.supp:print_suppressions=0; fi
+export ASAN_OPTIONS UBSAN_OPTIONS LSAN_OPTIONS
 export SDFVJ_ROOT=$work/root
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
 echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no)), storm ${storm} s, display $display, JACK $JACK_DEFAULT_SERVER, work $work"
@@ -169,6 +172,7 @@ while kill -0 $DRIVER_PID 2>/dev/null; do
     sleep 1; i=$((i + 1))
     if ! kill -0 $LIVE_PID 2>/dev/null; then died=1; break; fi
     r=$(rss_kb $LIVE_PID); [ "${r:-0}" -gt "$rssPeak" ] && rssPeak=$r
+    echo "$i $r" >>"$work/rss.log"
     if [ $i -ge $nextReport ]; then
         echo "soak: $((i / 60)) min: alive, VmRSS $((r / 1024)) MB, $(wc -l <"$work/params.log") frames"
         nextReport=$((nextReport + 60))
@@ -201,6 +205,9 @@ if [ $aliveAtEnd = 1 ] && [ $liveRc != 0 ]; then fail "sdfvj live exited with co
 # --- the checks -----------------------------------------------------------------------------
 read -r frames maxGap gapAt < <(awk '$1 >= 1.0 { if (n++) { g = $1 - p; if (g > m) { m = g; at = p } } p = $1 }
     END { printf "%d %.0f %.2f\n", n, m * 1000, at }' "$work/params.log")
+# The five longest gaps, and how many passed 100 ms: one stall, or a slow machine throughout?
+gaps=$(awk '$1 >= 1.0 { if (n++) printf "%.0f %.2f\n", ($1 - p) * 1000, p; p = $1 }' "$work/params.log" | sort -rn |
+    awk '$1 > 100 { over++ } NR <= 5 { printf "%s%d ms @%ss", sep, $1, $2; sep = ", " } END { printf "; %d gaps over 100 ms", over }')
 liveTime=$(tail -n 2 "$work/params.log" | head -n 1 | awk '{ print $1 }')
 [ "${maxGap:-0}" -le "$gapLimit" ] || fail "a ${maxGap} ms gap between frames at live time ${gapAt} s (limit ${gapLimit} ms)"
 
@@ -211,7 +218,7 @@ finalSeen=$(echo "$lastLine" | awk -v want=$finalValue '{ for (i = 2; i <= NF; +
 rssGrowth=$(( (rssEnd - rssStart) / 1024 ))
 if [ $aliveAtEnd = 1 ] && [ $rssGrowth -gt "$rssLimit" ]; then fail "VmRSS grew by $rssGrowth MB (limit $rssLimit MB)"; fi
 
-sanReports=$(grep -c -E "ERROR: AddressSanitizer|runtime error:|LeakSanitizer|ERROR: ThreadSanitizer" "$work/live.err")
+sanReports=$(grep -a -c -E "ERROR: AddressSanitizer|runtime error:|LeakSanitizer|ERROR: ThreadSanitizer" "$work/live.err")
 [ "$sanReports" = 0 ] || fail "$sanReports sanitizer report lines in sdfvj's stderr"
 
 recorded=$(sed -n 's/^recorded \([0-9]*\) events to .*/\1/p' "$work/live.err" | tail -1)
@@ -222,8 +229,9 @@ if [ -s "$work/take.mid" ]; then
 fi
 [ $takeOk = yes ] || fail "the recorded take does not render again: $(tail -3 "$work/replay.log" 2>/dev/null)"
 
-reconnects=$(grep -c "listening to .*soak-controller" "$work/live.err")
-gone=$(grep -c "no port matches 'soak-controller'" "$work/live.err")
+# The show's MIDI status lines: the controller gone (unplugged), then listened to again.
+read -r gone reconnects < <(awk '/soak-controller is gone/ { if (!g) n++; g = 1 }
+    /listening to .*soak-controller/ { if (g) b++; g = 0 } END { printf "%d %d\n", n, b }' "$work/live.err")
 count() { awk -v k="$1" '$1 == "COUNT" && $2 == k { print $3; f = 1 } END { if (!f) print 0 }' "$work/driver.out"; }
 sumc() { awk -v p="$1" '$1 == "COUNT" && $2 ~ p { s += $3 } END { print s + 0 }' "$work/driver.out"; }
 
@@ -235,8 +243,10 @@ echo "commit          $(git -C "$repo" rev-parse --short HEAD 2>/dev/null)$(git 
 echo "storm           ${storm} s (+${finalPhase} s calm end), wall $(elapsed) s in all"
 echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo NO), then exit code $liveRc"
 echo "frames          ${frames:-0} logged after the first second, live clock reached ${liveTime:-?} s"
-echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms)"
+echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms); longest: $gaps"
+echo "machine load    $loadStart at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end (1/5/15 min; $(nproc) cores)"
 echo "VmRSS           first frame $((rssFirst / 1024)) MB, baseline $((rssStart / 1024)) MB, end $((rssEnd / 1024)) MB, peak $((rssPeak / 1024)) MB; growth ${rssGrowth} MB (limit ${rssLimit} MB)"
+echo "VmRSS timeline  $(awk -v n="$storm" 'BEGIN { step = n / 8 < 1 ? 1 : int(n / 8) } $1 % step == 0 { printf "%s%ds %dMB", sep, $1, $2 / 1024; sep = ", " }' "$work/rss.log" 2>/dev/null)"
 echo "final value     /sdfvj/raw/twist $finalValue in the last frame: $finalSeen"
 echo "sanitizer       $sanReports report lines"
 echo "take            ${recorded:-?} events recorded; renders again: $takeOk"
@@ -244,7 +254,7 @@ echo "OSC sent        $(sumc '^osc_') datagrams: $(count osc_valid_param) param,
 echo "MIDI sent       $(sumc '^midi_(cc|note|running|sysex|system|other|random)') messages: $(count midi_cc) CC, $(count midi_note) notes, $(count midi_sysex) sysex, $(count midi_running_status) running status, $(( $(count midi_system_or_stray) + $(count midi_random_bytes) )) stray/system/random"
 echo "MIDI replugs    $(count midi_replug) (show saw the port go $gone times, came back $reconnects times)"
 echo "saves           $(sumc '^save_(valid|broken)$'): $(count save_valid) valid, $(count save_broken) broken; $(count save_rename) rename, $(count save_in_place) in place, $(count save_two_halves) in two halves; $(count save_scene) scene, $(count save_lib) lib, $(count save_preset) preset, $(count save_mapping) mapping"
-echo "shader errors   $(grep -c -E '^shaders/|\.glsl:' "$work/live.err") lines; reloads $(grep -c '^shader reloaded' "$work/live.err")"
+echo "shader errors   $(grep -a -c -E '\.glsl:[0-9]' "$work/live.err") lines; reloads $(grep -a -c '^shader reloaded' "$work/live.err")"
 if [ ${#failures[@]} = 0 ]; then
     echo "result          PASS"
 else
