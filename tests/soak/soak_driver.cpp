@@ -364,7 +364,7 @@ struct Saver {
     // variants, so Mesa's shader cache keeps the soak from being only a compile benchmark.
     std::string Valid(const Target& t) {
         const int v = Uniform(0, 3);
-        if (t.kind == "preset") return Replace(t.original, "\"params\": {", "\"params\": {\"soak\": " + std::to_string(v) + ", ");
+        if (t.kind == "preset") return t.original + std::string(size_t(v) + 1, '\n');   // JSON allows trailing space
         if (t.kind == "mapping") return t.original + "\n# soak save " + std::to_string(v) + "\n";
         return t.original + "\n// soak save " + std::to_string(v) + "\n";
     }
