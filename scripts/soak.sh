@@ -2,7 +2,7 @@
 # The stage soak: `sdfvj live` must survive everything a stage throws at it, all at once.
 #
 #   scripts/soak.sh [--quick] [--minutes N] [--bin PATH] [--driver PATH] [--keep]
-#                   [--rss-limit-mb N] [--rss-late-limit-mb N] [--gap-limit-ms N] [--seed N]
+#                   [--only osc|midi|saves] [--rss-limit-mb N] [--rss-late-limit-mb N] [--gap-limit-ms N] [--seed N]
 #
 #   --quick        at most 45 s in all (CI, `ctest -L soak`): a 15 s storm
 #   --minutes N    length of the storm (default 10)
@@ -10,6 +10,7 @@
 #                  build/src/app/sdfvj)
 #   --driver PATH  tests/soak's soak_driver (default: next to --bin's build, else built here with g++)
 #   --keep         keep the work folder (it is always kept when the soak fails)
+#   --only KIND    one source alone (osc, midi or saves), to tell which one causes a finding
 #
 # It runs `sdfvj live --preset demo` at 320x180 in an Xvfb display on Mesa llvmpipe, with
 # SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
@@ -28,7 +29,7 @@
 set -u
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
-quick=0 minutes=10 bin="" driver="" keep=0 rssLimit="" rssLateLimit="" gapLimit=250 seed=$$
+quick=0 minutes=10 bin="" driver="" keep=0 only="" rssLimit="" rssLateLimit="" gapLimit=250 seed=$$
 while [ $# -gt 0 ]; do
     case $1 in
     --quick) quick=1 ;;
@@ -36,6 +37,7 @@ while [ $# -gt 0 ]; do
     --bin) bin=${2:?--bin needs a path}; shift ;;
     --driver) driver=${2:?--driver needs a path}; shift ;;
     --keep) keep=1 ;;
+    --only) only=${2:?--only needs osc, midi or saves}; shift ;;
     --rss-limit-mb) rssLimit=${2:?}; shift ;;
     --rss-late-limit-mb) rssLateLimit=${2:?}; shift ;;
     --gap-limit-ms) gapLimit=${2:?}; shift ;;
@@ -169,7 +171,9 @@ rssPeak=$rssStart
 echo "soak: first frame at $(elapsed) s, OSC port $oscPort, VmRSS $((rssFirst / 1024)) MB at the first frame, $((rssStart / 1024)) MB after ${warm} s (baseline)"
 
 # --- the storm ------------------------------------------------------------------------------
-"$driver" --osc-port "$oscPort" --root "$work/root" --seconds "$storm" --midi-name soak-controller \
+# The driver stands for the outside world (a tablet, a controller, an editor), so it yields the
+# CPU to the show: on a 2-core machine it would otherwise take a core from llvmpipe.
+nice -n 10 "$driver" ${only:+--only "$only"} --osc-port "$oscPort" --root "$work/root" --seconds "$storm" --midi-name soak-controller \
     --osc-rate $osc_rate --save-ms 300 --replug-s 3 --final-preset demo --final-param twist \
     --final-value $finalValue --seed "$seed" >"$work/driver.out" 2>"$work/driver.err" &
 DRIVER_PID=$!
@@ -251,7 +255,7 @@ echo
 echo "================ sdfvj soak summary ================"
 echo "binary          $bin$([ $sanitized = 1 ] && echo ' (sanitizers)')"
 echo "commit          $(git -C "$repo" rev-parse --short HEAD 2>/dev/null)$(git -C "$repo" diff --quiet HEAD -- src 2>/dev/null || echo ' + local changes in src/')"
-echo "storm           ${storm} s (+${finalPhase} s calm end), wall $(elapsed) s in all"
+echo "storm           ${storm} s (+${finalPhase} s calm end)${only:+, only $only}, wall $(elapsed) s in all"
 echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo NO), then exit code $liveRc"
 echo "frames          ${frames:-0} logged after the first second, live clock reached ${liveTime:-?} s"
 echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms); longest: $gaps"

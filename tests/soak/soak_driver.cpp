@@ -2,7 +2,7 @@
 //
 //   soak_driver --osc-port N --root DIR [--seconds S] [--midi-name NAME] [--osc-rate N]
 //               [--save-ms M] [--replug-s S] [--final-preset NAME] [--final-param NAME]
-//               [--final-value V] [--seed N]
+//               [--final-value V] [--seed N] [--only osc|midi|saves]
 //
 // For --seconds it throws everything at once, from three threads:
 //   - OSC over UDP to 127.0.0.1:N: valid /sdfvj/param and /sdfvj/raw floods, wrong types,
@@ -62,6 +62,7 @@ struct Options {
     std::string finalParam = "twist";
     float finalValue = 1.2345f;
     unsigned seed = 0;
+    std::string only;            // "osc", "midi" or "saves": one source alone, to tell which one stalls
 };
 
 // Event counts, printed at the end as `COUNT name value`.
@@ -504,6 +505,7 @@ int main(int argc, char** argv) {
         else if (Arg(argc, argv, i, "--final-param", &v)) o.finalParam = v;
         else if (Arg(argc, argv, i, "--final-value", &v)) o.finalValue = std::strtof(v.c_str(), nullptr);
         else if (Arg(argc, argv, i, "--seed", &v)) o.seed = unsigned(std::strtoul(v.c_str(), nullptr, 10));
+        else if (Arg(argc, argv, i, "--only", &v)) o.only = v;
         else {
             std::fprintf(stderr, "soak_driver: unknown or incomplete argument '%s' (see the comment at the top of soak_driver.cpp)\n", argv[i]);
             return 2;
@@ -519,12 +521,11 @@ int main(int argc, char** argv) {
     const auto deadline = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
     std::printf("STORM start, %.0f s\n", o.seconds);
     std::fflush(stdout);
-    std::thread osc(RunOsc, std::cref(o), deadline);
-    std::thread midi(RunMidi, std::cref(o), deadline);
-    std::thread saves(RunSaves, std::cref(o), deadline);
-    osc.join();
-    midi.join();
-    saves.join();
+    std::vector<std::thread> threads;
+    if (o.only.empty() || o.only == "osc") threads.emplace_back(RunOsc, std::cref(o), deadline);
+    if (o.only.empty() || o.only == "midi") threads.emplace_back(RunMidi, std::cref(o), deadline);
+    if (o.only.empty() || o.only == "saves") threads.emplace_back(RunSaves, std::cref(o), deadline);
+    for (std::thread& t : threads) t.join();
     std::printf("STORM end after %.1f s\n", Since(t0));
     std::fflush(stdout);
 
