@@ -247,6 +247,15 @@ fi
 # The show's MIDI status lines: the controller gone (unplugged), then listened to again.
 read -r gone reconnects < <(awk '/soak-controller is gone/ { if (!g) n++; g = 1 }
     /listening to .*soak-controller/ { if (g) b++; g = 0 } END { printf "%d %d\n", n, b }' "$work/live.err")
+# The MIDI status when the final preset switch came (the controller is plugged in through the
+# calm end; it vanishes for good when the driver exits, which the show then reports too).
+lastMidi=$(awk '/^sdfvj: MIDI/ { m = $0 } /^preset demo.json/ { s = m } END { print s }' "$work/live.err")
+if [ -z "$only" ] || [ "$only" = midi ]; then
+    case $lastMidi in
+    *"listening to "*soak-controller*) ;;
+    *) fail "the MIDI controller was not listened to again after its last replug: ${lastMidi:-no MIDI status line}" ;;
+    esac
+fi
 count() { awk -v k="$1" '$1 == "COUNT" && $2 == k { print $3; f = 1 } END { if (!f) print 0 }' "$work/driver.out"; }
 sumc() { awk -v p="$1" '$1 == "COUNT" && $2 ~ p { s += $3 } END { print s + 0 }' "$work/driver.out"; }
 
@@ -267,7 +276,7 @@ echo "sanitizer       $sanReports report lines"
 echo "take            ${recorded:-?} events recorded; renders again: $takeOk"
 echo "OSC sent        $(sumc '^osc_') datagrams: $(count osc_valid_param) param, $(count osc_raw) raw (NaN/inf too), $(count osc_wrong_type) wrong types, $(count osc_unknown_address) unknown addresses, $(count osc_preset) preset, $(count osc_effect_toggle) effect toggles, $(count osc_huge_string) huge strings, $(( $(count osc_garbage) + $(count osc_mangled) + $(count osc_bad_bundle) )) garbage/mangled/bundles"
 echo "MIDI sent       $(sumc '^midi_(cc|note|running|sysex|system|other|random)') messages: $(count midi_cc) CC, $(count midi_note) notes, $(count midi_sysex) sysex, $(count midi_running_status) running status, $(( $(count midi_system_or_stray) + $(count midi_random_bytes) )) stray/system/random"
-echo "MIDI replugs    $(count midi_replug) (show saw the port go $gone times, came back $reconnects times)"
+echo "MIDI replugs    $(count midi_replug) (the show said gone $gone times, listening again $reconnects times)"
 echo "saves           $(sumc '^save_(valid|broken)$'): $(count save_valid) valid, $(count save_broken) broken; $(count save_rename) rename, $(count save_in_place) in place, $(count save_two_halves) in two halves; $(count save_scene) scene, $(count save_lib) lib, $(count save_preset) preset, $(count save_mapping) mapping"
 echo "shader errors   $(grep -a -c -E '\.glsl:[0-9]' "$work/live.err") lines; reloads $(grep -a -c '^shader reloaded' "$work/live.err")"
 if [ ${#failures[@]} = 0 ]; then

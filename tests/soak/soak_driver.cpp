@@ -300,8 +300,10 @@ struct MidiBlaster {
     }
 };
 
-void RunMidi(const Options& o, Clock::time_point deadline) {
-    MidiBlaster m(o);
+// `m` outlives the storm: the controller stays plugged in through the calm end, so the show
+// must be listening to it again when it is checked.
+void RunMidi(MidiBlaster& m, Clock::time_point deadline) {
+    const Options& o = m.o;
     if (!m.Plug(true)) return;
     auto nextReplug = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.replugSeconds));
     while (!gStop && Clock::now() < deadline) {
@@ -317,7 +319,6 @@ void RunMidi(const Options& o, Clock::time_point deadline) {
             nextReplug = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.replugSeconds));
         }
     }
-    // Stay plugged in at the end: the port is there when the show is checked.
 }
 
 // -------------------------------------------------------------------------------------- saves
@@ -521,9 +522,10 @@ int main(int argc, char** argv) {
     const auto deadline = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
     std::printf("STORM start, %.0f s\n", o.seconds);
     std::fflush(stdout);
+    MidiBlaster midi(o);
     std::vector<std::thread> threads;
     if (o.only.empty() || o.only == "osc") threads.emplace_back(RunOsc, std::cref(o), deadline);
-    if (o.only.empty() || o.only == "midi") threads.emplace_back(RunMidi, std::cref(o), deadline);
+    if (o.only.empty() || o.only == "midi") threads.emplace_back(RunMidi, std::ref(midi), deadline);
     if (o.only.empty() || o.only == "saves") threads.emplace_back(RunSaves, std::cref(o), deadline);
     for (std::thread& t : threads) t.join();
     std::printf("STORM end after %.1f s\n", Since(t0));
