@@ -246,7 +246,8 @@ fi
 
 # The show's MIDI status lines: the controller gone (unplugged), then listened to again.
 read -r gone reconnects < <(awk '/soak-controller is gone/ { if (!g) n++; g = 1 }
-    /listening to .*soak-controller/ { if (g) b++; g = 0 } END { printf "%d %d\n", n, b }' "$work/live.err")
+    /listening to .*soak-controller/ { if (g) b++; g = 0 } /^preset demo.json/ { fn = n; fb = b }
+    END { printf "%d %d\n", fn, fb }' "$work/live.err")   # up to the final preset: the driver's exit unplugs too
 # The MIDI status when the final preset switch came (the controller is plugged in through the
 # calm end; it vanishes for good when the driver exits, which the show then reports too).
 lastMidi=$(awk '/^sdfvj: MIDI/ { m = $0 } /^preset demo.json/ { s = m } END { print s }' "$work/live.err")
