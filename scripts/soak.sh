@@ -75,7 +75,7 @@ if [ -z "$rssLimit" ]; then if [ $sanitized = 1 ]; then rssLimit=384; else rssLi
 if [ -z "$rssLateLimit" ]; then if [ $sanitized = 1 ]; then rssLateLimit=64; else rssLateLimit=32; fi; fi
 
 work=$(mktemp -d /tmp/sdfvj-soak.XXXXXX)
-XVFB_PID="" JACK_PID="" LIVE_PID="" DRIVER_PID=""
+XVFB_PID="" JACK_PID="" LIVE_PID="" DRIVER_PID="" STAMP_PID=""
 failures=()
 fail() { failures+=("$1"); echo "soak: FAIL: $1"; }
 
@@ -91,6 +91,7 @@ stop_pid() {   # stop_pid PID: TERM, up to 5 s, then KILL; only processes this s
 cleanup() {
     stop_pid "$DRIVER_PID"; DRIVER_PID=""
     stop_pid "$LIVE_PID"; LIVE_PID=""
+    stop_pid "$STAMP_PID"; STAMP_PID=""   # its tail ends with sdfvj (--pid)
     stop_pid "$JACK_PID"; JACK_PID=""
     stop_pid "$XVFB_PID"; XVFB_PID=""
     if [ $keep = 0 ] && [ ${#failures[@]} = 0 ] && [ -n "${work:-}" ]; then rm -rf "$work"; fi
@@ -154,6 +155,13 @@ echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no))
     --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds") \
     >"$work/live.out" 2>"$work/live.err" </dev/null &
 LIVE_PID=$!
+# A copy of stderr with wall-clock stamps, to tell what happened around the longest frame gaps.
+stamp_stderr() {
+    local line
+    while IFS= read -r line; do printf '%s %s\n' "$EPOCHREALTIME" "${line:0:300}"; done
+}
+tail --pid=$LIVE_PID -s 0.05 -n +1 -F "$work/live.err" 2>/dev/null | stamp_stderr >"$work/live.err.stamped" &
+STAMP_PID=$!
 
 oscPort=""
 first_frame() { [ -s "$work/params.log" ] || ! kill -0 $LIVE_PID 2>/dev/null; }
@@ -164,6 +172,8 @@ if ! kill -0 $LIVE_PID 2>/dev/null || [ ! -s "$work/params.log" ] || [ -z "$oscP
     tail -20 "$work/live.err"
     exit 1
 fi
+# Live clock -> wall clock: the live time of the newest frame now (one frame of error at most).
+clockOffset=$(awk -v now="$EPOCHREALTIME" '{ t = $1 } END { printf "%.3f", now - t }' "$work/params.log")
 rssFirst=$(rss_kb $LIVE_PID)
 sleep $warm
 rssStart=$(rss_kb $LIVE_PID)
@@ -260,6 +270,18 @@ fi
 count() { awk -v k="$1" '$1 == "COUNT" && $2 == k { print $3; f = 1 } END { if (!f) print 0 }' "$work/driver.out"; }
 sumc() { awk -v p="$1" '$1 == "COUNT" && $2 ~ p { s += $3 } END { print s + 0 }' "$work/driver.out"; }
 
+# What sdfvj printed around the three longest gaps (live time; from the stamped stderr copy).
+around=$(awk '$1 >= 1.0 { if (n++) printf "%.0f %.3f %.3f\n", ($1 - p) * 1000, p, $1; p = $1 }' "$work/params.log" |
+    sort -rn | head -3 | while read -r ms from to; do
+        echo "  gap ${ms} ms from ${from} s:"
+        awk -v a="$from" -v b="$to" -v off="$clockOffset" '{ t = $1 - off } t >= a - 0.6 && t <= b {
+            m = substr($0, index($0, " ") + 1); k = substr(m, 1, 24)
+            if (k == pk) { rep++; next }
+            if (rep) printf "             (and %d more like it)\n", rep
+            printf "    %7.2f  %s\n", t, m; pk = k; rep = 0 }
+            END { if (rep) printf "             (and %d more like it)\n", rep }' "$work/live.err.stamped" 2>/dev/null | tail -8
+    done)
+
 # --- summary --------------------------------------------------------------------------------
 echo
 echo "================ sdfvj soak summary ================"
@@ -269,6 +291,7 @@ echo "storm           ${storm} s (+${finalPhase} s calm end)${only:+, only $only
 echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo NO), then exit code $liveRc"
 echo "frames          ${frames:-0} logged after the first second, live clock reached ${liveTime:-?} s"
 echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms); longest: $gaps"
+[ -n "$around" ] && echo "around the longest gaps, what sdfvj printed (live time, s):" && echo "$around"
 echo "machine load    $loadStart at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end (1/5/15 min; $(nproc) cores)"
 echo "VmRSS           first frame $((rssFirst / 1024)) MB, baseline $((rssStart / 1024)) MB, end $((rssEnd / 1024)) MB, peak $((rssPeak / 1024)) MB; growth ${rssGrowth} MB (limit ${rssLimit} MB), ${rssLate} MB over the second half (limit ${rssLateLimit} MB)"
 echo "VmRSS timeline  $(awk -v n="$storm" 'BEGIN { step = n / 8 < 1 ? 1 : int(n / 8) } $1 % step == 0 { printf "%s%ds %dMB", sep, $1, $2 / 1024; sep = ", " }' "$work/rss.log" 2>/dev/null)"
