@@ -12,7 +12,7 @@ void LiveProgram::Request(const VariantKey& key) {
     auto it = cache_.find(key);
     if (it != cache_.end()) {
         pending_.Cancel();
-        current_ = it->second.program.get();
+        current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
         return;
@@ -36,7 +36,7 @@ void LiveProgram::Rebuild() {
     if (it != cache_.end() && it->second.program->Source().hash == src.hash) {
         // A no-op save, or a broken save undone: the cached program is the right one again.
         pending_.Cancel();
-        current_ = it->second.program.get();
+        current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
         return;
@@ -61,13 +61,13 @@ void LiveProgram::Finish() {
     slot.program = std::move(program);
     slot.scene = pendingScene_;
     if (pendingKey_ == key_) {
-        current_ = slot.program.get();
+        current_ = slot.program;
         scene_ = slot.scene;
     }
 }
 
 bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
-    const Program* before = current_;
+    const Program* before = current_.get();
     if (!changedFiles.empty()) {
         bool affectsCurrent = false;
         for (const std::string& changed : changedFiles) {
@@ -76,8 +76,9 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
                 const auto& files = p.Source().files;
                 return std::find(files.begin(), files.end(), canon) != files.end();
             };
-            // Owners of the changed file other than the one on screen are dropped; they rebuild
-            // when requested again.
+            // Owners of the changed file other than the variant asked for are dropped from the
+            // cache; they rebuild when requested again. The program on screen may be one of them
+            // (an effect toggle is still compiling): current_ keeps it alive until replaced.
             for (auto it = cache_.begin(); it != cache_.end();) {
                 if (uses(*it->second.program) && it->first != key_) it = cache_.erase(it);
                 else ++it;
@@ -91,7 +92,7 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
         if (affectsCurrent) Rebuild();
     }
     if (pending_.Active() && pending_.Ready()) Finish();
-    return current_ != before;
+    return current_.get() != before;
 }
 
 void LiveProgram::Wait() {

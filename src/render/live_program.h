@@ -30,7 +30,7 @@ public:
     // Blocks until no compile is pending (offline renders, tests).
     void Wait();
 
-    const Program* Current() const { return current_; }
+    const Program* Current() const { return current_.get(); }
     const SceneInfo& Scene() const { return scene_; }
     const VariantKey& Key() const { return key_; }
     const std::string& Error() const { return error_; }   // empty when the last build succeeded
@@ -38,8 +38,10 @@ public:
     bool Pending() const { return pending_.Active(); }
 
 private:
+    // Programs are shared between the cache and the screen: evicting a cache entry (its files
+    // changed) never frees the program still on screen while its replacement compiles.
     struct Cached {
-        std::unique_ptr<Program> program;
+        std::shared_ptr<const Program> program;
         SceneInfo scene;
     };
     void Rebuild();   // reassemble key_ and compile when the source hash differs
@@ -49,7 +51,7 @@ private:
     SceneInfo scene_;                       // header of the program on screen
     SceneInfo pendingScene_;
     VariantKey pendingKey_;
-    const Program* current_ = nullptr;
+    std::shared_ptr<const Program> current_;
     std::map<VariantKey, Cached> cache_;
     PendingProgram pending_;
     uint64_t pendingHash_ = 0;
