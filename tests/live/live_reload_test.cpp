@@ -6,7 +6,10 @@
 
 #include <signal.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -44,7 +47,9 @@ struct LiveShow {
     pid_t pid = -1;
     int oscPort = 0;
 
-    LiveShow(const std::string& folder, const std::vector<std::string>& extra) : dir(folder) {
+    // `root`: a data root (SDFVJ_ROOT) with its own shaders/, presets/ and mappings/ to edit.
+    LiveShow(const std::string& folder, const std::vector<std::string>& extra, const std::string& root = "")
+        : dir(folder) {
         log = dir + "/live.log";
         params = dir + "/params.txt";
         oscPort = FreeUdpPort();
@@ -53,7 +58,9 @@ struct LiveShow {
                                          "--effects", "none", "--osc-port", std::to_string(oscPort), "--midi",
                                          "no-such-controller", "--log-params", params, "--hide-overlay"};
         argv.insert(argv.end(), extra.begin(), extra.end());
-        pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}});
+        std::vector<EnvChange> env = {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}};
+        if (!root.empty()) env.push_back({"SDFVJ_ROOT", root});
+        pid = Spawn(argv, log, env);
     }
     ~LiveShow() { Stop(); }
 
@@ -255,5 +262,122 @@ TEST_CASE("live_reload preset: the preset on stage applies again when saved, a b
     SaveLikeAnEditor(preset, PresetText("    \"twist\": -1.0,", 0.2f));
     REQUIRE_LIVE(show, show.WaitForValues({{"twist", -1.0f}, {"displacement", 0.2f}, {"scale", 1.25f}}, kDeadline));
     CHECK(show.WaitForLog("reloaded " + preset + " (midi)", 2, kDeadline));
+    CHECK(show.Running());
+}
+
+namespace {
+
+// A copy of the repository's data (shaders, presets, mappings) that a test may edit.
+std::string CopyDataRoot(const std::string& dir) {
+    const fs::path root = fs::path(dir) / "root";
+    fs::create_directories(root);
+    for (const char* sub : {"shaders", "presets", "mappings"})
+        fs::copy(fs::path(SDFVJ_SOURCE_ROOT) / sub, root / sub, fs::copy_options::recursive);
+    return root.string();
+}
+
+std::string ReadAll(const std::string& path) { return ReadText(path); }
+
+// The midi scene with its header's INPUTS line for `twist` replaced by `replacement`.
+std::string MidiWithTwistLine(const std::string& midi, const std::string& replacement) {
+    const std::string twist =
+        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},";
+    const size_t at = midi.find(twist);
+    REQUIRE(at != std::string::npos);
+    return midi.substr(0, at) + replacement + midi.substr(at + twist.size());
+}
+
+}  // namespace
+
+TEST_CASE("live_reload first shader: a scene that does not compile keeps the window open, the fix starts the show") {
+    // Issue 10, defect 5: live exited when the first program failed to compile.
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "reload-first");
+    const std::string root = CopyDataRoot(dir);
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    const std::string good = ReadAll(scene);
+    const size_t mapAt = good.find("vec4 map(vec3 p)");
+    REQUIRE(mapAt != std::string::npos);
+    const size_t brokenLine = 1 + (size_t)std::count(good.begin(), good.begin() + (long)mapAt, '\n');
+    SaveLikeAnEditor(scene, good.substr(0, mapAt) + "vec4 map(vec3 p) { return fBx(p); }\nvec4 mapUnused(vec3 p)" +
+                                good.substr(mapAt + std::string("vec4 map(vec3 p)").size()));
+    LiveShow show(dir, {"--scene", "midi"}, root);
+    REQUIRE_LIVE(show, show.WaitForLog("midi.glsl:" + std::to_string(brokenLine) + ":", 1, 30));
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    REQUIRE_LIVE(show, show.Running());
+    SaveLikeAnEditor(scene, good);
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded", 1, 30));
+    const size_t at = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 5, kDeadline));
+    CHECK(show.Running());
+}
+
+TEST_CASE("live_reload scene header: an added input keeps every knob, a wrong-typed field is reported and the show goes on") {
+    // Issue 10, defects 2 and 4: a LABEL that is a number killed live (nlohmann type_error), and a
+    // header that gained an input reset every knob each frame (parameters rebuilt by count).
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "reload-header");
+    const std::string root = CopyDataRoot(dir);
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    const std::string good = ReadAll(scene);
+    LiveShow show(dir, {"--scene", "midi"}, root);
+    REQUIRE_LIVE(show, show.WaitForLog("OSC: listening on UDP port " + std::to_string(show.oscPort), 1, 20));
+    show.Osc("/sdfvj/raw/twist", 2.0f);
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 2.0f}}, kDeadline));
+
+    // A number where LABEL wants a string: one line with file:line, the show goes on.
+    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
+        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": 5},"));
+    REQUIRE_LIVE(show, show.WaitForLog("midi.glsl:5:", 1, kDeadline));
+    size_t at = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 5, kDeadline));
+    CHECK(show.Frames().back().second.at("twist") == Approx(2.0f));
+
+    // An added input: it appears at its default, the knob set before stays.
+    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
+        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
+        "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},"));
+    REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.25f}, {"twist", 2.0f}}, 30));
+    show.Osc("/sdfvj/raw/glow", 0.75f);
+    REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.75f}, {"twist", 2.0f}}, kDeadline));
+    at = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 10, kDeadline));
+    {
+        const std::vector<Frame> frames = show.Frames();
+        for (size_t i = at; i < frames.size(); ++i) {
+            INFO("frame " << i);
+            CHECK(frames[i].second.at("twist") == Approx(2.0f).margin(1e-3));
+            CHECK(frames[i].second.at("glow") == Approx(0.75f).margin(1e-3));
+        }
+    }
+    // Renamed (header and code): the new name answers OSC, the old one is gone.
+    std::string renamed = MidiWithTwistLine(good,
+        "    {\"NAME\": \"warp\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Warp\"},");
+    for (size_t p = renamed.find("u_twist"); p != std::string::npos; p = renamed.find("u_twist", p)) renamed.replace(p, 7, "u_warp");
+    SaveLikeAnEditor(scene, renamed);
+    REQUIRE_LIVE(show, PollFor(30, [&] { const auto f = show.Frames(); return !f.empty() && f.back().second.count("warp"); }));
+    show.Osc("/sdfvj/raw/warp", -1.5f);
+    REQUIRE_LIVE(show, show.WaitForValues({{"warp", -1.5f}}, kDeadline));
+    CHECK(show.Frames().back().second.count("twist") == 0);
+    CHECK(show.Running());
+}
+
+TEST_CASE("live_reload effect toggle and library save at once: the show keeps rendering") {
+    // Issue 10, defect 3: toggling an effect and saving a library file while the new variant
+    // compiled freed the program on screen (segmentation fault).
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "reload-toggle");
+    const std::string root = CopyDataRoot(dir);
+    const std::string lib = root + "/shaders/lib/combinators.glsl";
+    const std::string text = ReadAll(lib);
+    LiveShow show(dir, {"--scene", "midi"}, root);
+    REQUIRE_LIVE(show, show.WaitForLog("OSC: listening on UDP port " + std::to_string(show.oscPort), 1, 20));
+    for (int round = 0; round < 3; ++round) {
+        const int rc = Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/effect/ao", "i",
+                            std::to_string(round % 2)}, dir + "/oscsend.log", 10);
+        REQUIRE(rc == 0);
+        SaveLikeAnEditor(lib, text + "\n// saved " + std::to_string(round) + "\n");
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        REQUIRE_LIVE(show, show.Running());
+    }
+    const size_t at = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 5, 30));
     CHECK(show.Running());
 }
