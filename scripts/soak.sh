@@ -199,7 +199,7 @@ while kill -0 $DRIVER_PID 2>/dev/null; do
     fi
     [ $i -gt $limit ] && { fail "soak_driver did not finish in ${limit} s"; break; }
 done
-stop_pid "$DRIVER_PID" >/dev/null; DRIVER_PID=""
+stop_pid "$DRIVER_PID" >/dev/null; DRIVER_PID=""   # on TERM it restores the files and prints its counts
 sleep 0.5
 
 aliveAtEnd=0 rssEnd=0
@@ -209,7 +209,8 @@ if [ $died = 0 ] && kill -0 $LIVE_PID 2>/dev/null; then
     [ "$rssEnd" -gt "$rssPeak" ] && rssPeak=$rssEnd
 fi
 lastLine=$(tail -n 2 "$work/params.log" | head -n 1)   # the last line may be half-written
-[ $aliveAtEnd = 1 ] || fail "sdfvj live died during the storm (at $(elapsed) s)"
+diedAt=$(elapsed)
+[ $aliveAtEnd = 1 ] || fail "sdfvj live died during the storm (noticed at $diedAt s of the soak, live clock $(tail -n 2 "$work/params.log" | head -n 1 | awk '{ print $1 }') s)"
 
 # sdfvj quits by itself at --seconds; wait for that (bounded), then stop it.
 wait_for $((liveSeconds + 30)) sh -c "! kill -0 $LIVE_PID 2>/dev/null"
@@ -249,7 +250,8 @@ sanReports=$(grep -a -c -E "ERROR: AddressSanitizer|runtime error:|LeakSanitizer
 recorded=$(sed -n 's/^recorded \([0-9]*\) events to .*/\1/p' "$work/live.err" | tail -1)
 takeOk=no
 if [ -s "$work/take.mid" ]; then
-    (cd "$work" && "$bin" render --preset demo --replay take.mid --frames 1 --size 64x36 --path fragment \
+    # Against the repository's own data (read only): the copy may hold a broken save after a crash.
+    (cd "$work" && SDFVJ_ROOT=$repo "$bin" render --preset demo --replay take.mid --frames 1 --size 64x36 --path fragment \
         --out "$work/replay" --quiet) >"$work/replay.log" 2>&1 && takeOk=yes
 fi
 [ $takeOk = yes ] || fail "the recorded take does not render again: $(tail -3 "$work/replay.log" 2>/dev/null)"
@@ -288,7 +290,8 @@ echo "================ sdfvj soak summary ================"
 echo "binary          $bin$([ $sanitized = 1 ] && echo ' (sanitizers)')"
 echo "commit          $(git -C "$repo" rev-parse --short HEAD 2>/dev/null)$(git -C "$repo" diff --quiet HEAD -- src 2>/dev/null || echo ' + local changes in src/')"
 echo "storm           ${storm} s (+${finalPhase} s calm end)${only:+, only $only}, wall $(elapsed) s in all"
-echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo NO), then exit code $liveRc"
+sig=""; [ "$liveRc" -gt 128 ] 2>/dev/null && sig=" (killed by SIG$(kill -l $((liveRc - 128)) 2>/dev/null))"
+echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo "NO (noticed at $diedAt s)"), then exit code $liveRc$sig"
 echo "frames          ${frames:-0} logged after the first second, live clock reached ${liveTime:-?} s"
 echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms); longest: $gaps"
 [ -n "$around" ] && echo "around the longest gaps, what sdfvj printed (live time, s):" && echo "$around"

@@ -21,6 +21,7 @@
 // Prints `COUNT name value` lines (the soak's event counts) and `FINAL ...` on stdout.
 // Every loop is bounded by the deadline; the driver talks to 127.0.0.1 only.
 #include <arpa/inet.h>
+#include <csignal>
 #include <lo/lo.h>
 #include <netinet/in.h>
 #include <rtmidi/RtMidi.h>
@@ -518,6 +519,8 @@ int main(int argc, char** argv) {
     }
     if (o.seconds <= 0 || o.seconds > 24 * 3600) o.seconds = 20;
 
+    // SIGTERM (the show died, the soak stops us): end the storm, restore the files, print the counts.
+    std::signal(SIGTERM, [](int) { gStop = true; });
     const auto t0 = Clock::now();
     const auto deadline = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
     std::printf("STORM start, %.0f s\n", o.seconds);
@@ -531,6 +534,12 @@ int main(int argc, char** argv) {
     std::printf("STORM end after %.1f s\n", Since(t0));
     std::fflush(stdout);
 
+    if (gStop) {
+        std::printf("STOPPED by SIGTERM\n");
+        std::lock_guard<std::mutex> g(gCounts.m);
+        for (const auto& [k, v] : gCounts.n) std::printf("COUNT %s %llu\n", k.c_str(), (unsigned long long)v);
+        return 1;
+    }
     // The storm is over and every file is back. The performer picks the preset and sets one value.
     lo_address a = lo_address_new("127.0.0.1", std::to_string(o.oscPort).c_str());
     SleepMs(1000);
