@@ -33,13 +33,21 @@ bool HasCpuScene(const std::string& name) {
     return std::find(n.begin(), n.end(), name) != n.end();
 }
 
+// A programmer bug, not bad input: every caller asks HasCpuScene() first (the bench reports an
+// unknown scene to the user as a value). Says which name and stops.
+[[noreturn]] static void UnknownCpuScene(const std::string& name) {
+    std::fprintf(stderr, "sdfvj: bug: MakeCpuScene('%s') without HasCpuScene() first; CPU builds exist for "
+                 "primitives, midi, character and mandelbulb\n", name.c_str());
+    std::abort();
+}
+
 CpuScene<float> MakeCpuScene32(const std::string& name) {
     if (name == "primitives") return MakeCpuScene32_primitives();
     if (name == "midi") return MakeCpuScene32_midi();
     if (name == "midi_global") return MakeCpuScene32_midi_global();
     if (name == "character") return MakeCpuScene32_character();
     if (name == "mandelbulb") return MakeCpuScene32_mandelbulb();
-    throw std::runtime_error("no CPU build of scene '" + name + "', expected primitives, midi, character or mandelbulb");
+    UnknownCpuScene(name);
 }
 CpuScene<double> MakeCpuScene64(const std::string& name) {
     if (name == "primitives") return MakeCpuScene64_primitives();
@@ -47,7 +55,7 @@ CpuScene<double> MakeCpuScene64(const std::string& name) {
     if (name == "midi_global") return MakeCpuScene64_midi_global();
     if (name == "character") return MakeCpuScene64_character();
     if (name == "mandelbulb") return MakeCpuScene64_mandelbulb();
-    throw std::runtime_error("no CPU build of scene '" + name + "', expected primitives, midi, character or mandelbulb");
+    UnknownCpuScene(name);
 }
 
 void ParallelRows(int height, int threads, const std::function<void(int)>& f) {

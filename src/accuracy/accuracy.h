@@ -32,7 +32,7 @@ std::string Format(const char* format, double v);
 // ---- CPU build of the scenes ------------------------------------------------------------
 std::vector<std::string> CpuSceneNames();   // primitives, midi, character, mandelbulb
 bool HasCpuScene(const std::string& name);
-CpuScene<float> MakeCpuScene32(const std::string& name);    // throws std::runtime_error
+CpuScene<float> MakeCpuScene32(const std::string& name);    // name must pass HasCpuScene (a bug otherwise)
 CpuScene<double> MakeCpuScene64(const std::string& name);
 
 // Sets every uniform the way FrameRenderer::Draw does for (scene, in) at width x height

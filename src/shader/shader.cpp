@@ -1,5 +1,6 @@
 #include "shader/shader.h"
 
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -146,8 +147,15 @@ std::string MapCompileLog(const std::string& log, const ShaderSource& src) {
     while (std::getline(in, line)) {
         std::smatch m;
         if (std::regex_match(line, m, kMesa) || std::regex_match(line, m, kNvidia)) {
-            size_t file = std::stoul(m[1]);
-            long lineNo = std::stol(m[2]);
+            // The driver's log is outside input too: numbers parsed with a range check.
+            size_t file = 0;
+            long lineNo = 0;
+            const std::string fileText = m[1].str(), lineText = m[2].str();
+            if (std::from_chars(fileText.data(), fileText.data() + fileText.size(), file).ec != std::errc() ||
+                std::from_chars(lineText.data(), lineText.data() + lineText.size(), lineNo).ec != std::errc()) {
+                out << line << "\n";
+                continue;
+            }
             if (lineNo >= kLinesPerFile) {
                 file = (size_t)(lineNo / kLinesPerFile);
                 lineNo %= kLinesPerFile;
