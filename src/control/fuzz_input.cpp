@@ -3,12 +3,22 @@
 //   cmake --build build-fuzz --target fuzz_input && build-fuzz/src/control/fuzz_input -max_total_time=60
 // (scripts/fuzz_input.sh does both). The first byte picks the decoder:
 //   0: MIDI byte stream -> MidiDecoder -> ApplyEvent (a mapping that uses every source kind)
-//   1: OSC packet -> liblo deserialiser -> DecodeOscMessage -> ApplyEvent
+//   1: OSC packet -> a real lo_server (lo_server_dispatch_data: liblo's own bundle and message
+//      parsing, as the live server thread does on each UDP datagram) -> the handler InputSession
+//      registers (HandleOscMessage) -> EventQueue -> ApplyEvent
 //   2: TOML mapping text -> ParseMapping -> ValidateMapping
 #include <cstdint>
 #include <cstdlib>
 
+#include <lo/lo.h>
+
 #include "control/control.h"
+
+namespace sdfvj {
+// decode.cpp: the body of InputSession's liblo handler (to move into control.h).
+bool HandleOscMessage(const char* path, const char* types, const void* const* argv, int argc, double time,
+                      EventQueue& queue, InputCounters& counters, std::string* why);
+}  // namespace sdfvj
 
 using namespace sdfvj;
 
@@ -67,6 +77,27 @@ struct World {
     }
 };
 
+// The OSC side of InputSession without its thread: a UDP lo_server (its socket is never read)
+// with the handler registered the way StartOsc registers it, fed through lo_server_dispatch_data.
+struct OscServer {
+    lo_server server = nullptr;
+    EventQueue queue{1 << 12};
+    InputCounters counters;
+    OscServer() {
+        server = lo_server_new_with_proto(nullptr, LO_UDP, &OnError);
+        if (!server) std::abort();
+        lo_server_add_method(server, nullptr, nullptr, &OnOsc, this);  // as InputSession::StartOsc
+        lo_server_enable_queue(server, 0, 1);                            // likewise
+    }
+    static void OnError(int, const char*, const char*) {}
+    static int OnOsc(const char* path, const char* types, lo_arg** argv, int argc, lo_message, void* user) {
+        auto* o = static_cast<OscServer*>(user);
+        std::string why;
+        HandleOscMessage(path, types, reinterpret_cast<const void* const*>(argv), argc, 0.0, o->queue, o->counters, &why);
+        return 0;
+    }
+};
+
 void Check(const ParamState& p) {
     for (size_t i = 0; i < p.decls.size(); ++i) {
         const ParamDecl& d = p.decls[i];
@@ -95,8 +126,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         DecodeMidiBytes(d, data, half, 0.0, &events);
         DecodeMidiBytes(d, data + half, size - half, 0.0, &events);
     } else if (mode == 1) {
-        OscDecodeCounts c;
-        DecodeOscPacket(data, size, 0.0, &events, &c);
+        static OscServer osc;
+        std::vector<uint8_t> packet(data, data + size);  // liblo takes a writable buffer
+        if (!packet.empty()) lo_server_dispatch_data(osc.server, packet.data(), packet.size());
+        events = osc.queue.DrainUntil(1e300);
     } else {
         Mapping m;
         std::string text(reinterpret_cast<const char*>(data), size);

@@ -355,6 +355,9 @@ struct InputSession::Impl {
             osc, [](lo_server_thread, void* u) { tlOscSession = static_cast<Impl*>(u); return 0; },
             [](lo_server_thread, void*) { tlOscSession = nullptr; }, this);
         lo_server_thread_add_method(osc, nullptr, nullptr, &Impl::OnOsc, this);
+        // Bundles are dispatched at once, whatever their timetag: liblo's queue for future ones
+        // grows without bound and inserts in O(n), so a flood of them stalled this thread.
+        lo_server_enable_queue(lo_server_thread_get_server(osc), 0, 1);
         if (lo_server_thread_start(osc) != 0) {
             lo_server_thread_free(osc);
             osc = nullptr;
