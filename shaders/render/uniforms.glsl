@@ -10,6 +10,7 @@ uniform float u_time;        // seconds since start (replay: frame / fps)
 uniform int u_frame;         // frame index
 uniform vec2 u_resolution;   // output size in pixels
 uniform float u_beat;        // beat phase from the clock / MIDI, 0..1 per beat
+uniform float u_bpm;         // tempo: tap, MIDI clock or the preset's "bpm" (120 by default)
 uniform vec3 u_camPos;       // camera position
 uniform vec3 u_camTarget;    // point the camera looks at
 uniform float u_fov;         // vertical field of view, degrees

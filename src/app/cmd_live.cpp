@@ -1,8 +1,8 @@
 // `sdfvj live`: a GLFW window, MIDI and OSC in, the performer's overlay on top.
 //
 // LiveSession owns what the show runs on (window, GL programs, devices, watcher, recorder) and
-// its Frame() reads top to bottom: input -> mapping -> actions -> reloads -> program -> smoothing
-// -> draw -> overlay -> present. The state a performer changes, and the stages that change it,
+// its Frame() reads top to bottom: input -> mapping -> actions -> reloads -> program -> automation
+// -> smoothing -> draw -> overlay -> present. The state a performer changes, and the stages that change it,
 // live in live_session.h as plain data and free functions, tested without a window.
 //
 // Threads: input threads (RtMidi, liblo) only push onto the EventQueue; all GL and all state
@@ -227,6 +227,7 @@ bool LiveSession::Frame() {
     Guard("actions", [&] { ApplyActions(state_, now); });
     Guard("reload", [&] { Reload(); });
     Guard("program", [&] { UpdateProgram(); });
+    Guard("automation", [&] { RunAutomation(state_, now, frame_); });
     StepSmoothing(state_.params, dt);
     Guard("log", [&] { LogParams(now); });
     Guard("draw", [&] { Draw(now); });
@@ -257,7 +258,7 @@ void LiveSession::Reload() {
     for (const std::string& folder : state_.foldersToWatch) Watch(folder);
     state_.foldersToWatch.clear();
     const std::vector<std::string> changed = watcher_.Poll();
-    ApplyFileChanges(state_, changed);
+    ApplyFileChanges(state_, changed, Now());
     if (!(state_.wanted == live_.Key())) live_.Request(state_.wanted);
     live_.Update(changed);
 }
@@ -294,7 +295,8 @@ void LiveSession::Draw(double now) {
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(fbw_, fbh_, &error)) return;
     in_.time = now;
     in_.frame = frame_++;
-    in_.beat = state_.tempo.Phase(now);
+    in_.beat = BeatPhase(state_, now);
+    in_.bpm = (float)state_.automation.tempo.bpm;
     renderer_.Draw(*live_.Current(), live_.Scene(), in_);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

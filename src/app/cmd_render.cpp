@@ -123,10 +123,10 @@ int RunRender(const RenderOptions& o) {
     std::unique_ptr<ReplayDriver> replay;
     std::string takePath = !o.replay.empty() ? o.replay : "";
     int frames = o.frames;
-    if (!takePath.empty()) {
+    if (!takePath.empty() || !show.preset.automation.Empty()) {   // a take, or a scripted preset
         replay = MakeReplayDriver(show, takePath, o.mapping, &error);
         if (!replay) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
-        if (!o.framesGiven) frames = (int)std::ceil(replay->Duration() * o.fps) + 1;
+        if (!o.framesGiven && !takePath.empty()) frames = (int)std::ceil(replay->Duration() * o.fps) + 1;
     }
     if (frames <= 0) { std::fprintf(stderr, "sdfvj render: --frames must be at least 1\n"); return 2; }
 
@@ -169,7 +169,11 @@ int RunRender(const RenderOptions& o) {
     for (int i = 0; i < frames; ++i) {
         in.frame = i;
         in.time = i * dt;
-        if (replay) replay->Advance(in.time, dt, &in.params);
+        if (replay) {
+            replay->Advance(in.time, dt, &in.params);
+            in.beat = replay->BeatPhase(in.time);
+            in.bpm = replay->Bpm();
+        }
         fr.Draw(*show.program, show.scene, in);
         std::vector<uint8_t> rgba = fr.ReadPixels();
         if (video) {

@@ -36,43 +36,54 @@ void WatchFolderOf(LiveState& s, const std::string& canonicalFile) {
 
 }  // namespace
 
-void TapTempo::Tap(double now) {
-    if (!taps.empty() && now - taps.back() > 2.0) taps.clear();   // a pause starts a new count
-    taps.push_back(now);
-    if (taps.size() > 5) taps.erase(taps.begin());
-    if (taps.size() >= 2) {
-        std::vector<double> gaps;
-        for (size_t i = 1; i < taps.size(); ++i) gaps.push_back(taps[i] - taps[i - 1]);
-        std::sort(gaps.begin(), gaps.end());
-        double gap = gaps[gaps.size() / 2];
-        if (gap > 0.2 && gap < 2.0) bpm = 60.0 / gap;
+// Outside input is echoed in messages (a preset name, an OSC address): only printable text
+// reaches the terminal and the overlay. Control bytes and broken UTF-8 become '?', and a line is
+// cut at 2000 bytes.
+std::string PrintableLine(const std::string& text) {
+    std::string out;
+    const size_t n = std::min(text.size(), (size_t)2000);
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = (unsigned char)text[i];
+        if (c == '\n' || c == '\t' || (c >= 0x20 && c < 0x7f)) {
+            out += (char)c;
+            ++i;
+            continue;
+        }
+        const size_t len = c >= 0xf0 && c < 0xf5 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 && c < 0xe0 ? 2 : 0;
+        bool ok = len > 0 && i + len <= n;
+        for (size_t k = 1; ok && k < len; ++k) ok = ((unsigned char)text[i + k] & 0xc0) == 0x80;
+        if (ok) {
+            out.append(text, i, len);
+            i += len;
+        } else {
+            out += '?';
+            ++i;
+        }
     }
-    origin = now;
+    if (text.size() > n) out += "...";
+    return out;
 }
 
-float TapTempo::Phase(double now) const {
-    double beats = (now - origin) * bpm / 60.0;
-    return (float)(beats - std::floor(beats));
-}
-
-void LiveReport::Say(const std::string& line) {
+void LiveReport::Say(const std::string& raw) {
+    const std::string line = PrintableLine(raw);
     if (print) std::fprintf(stderr, "%s\n", line.c_str());
     recent.push_back(line);
     while (recent.size() > 8) recent.pop_front();
 }
 
-void LiveReport::Limited(double now, const std::vector<std::string>& lines) {
+void LiveReport::Limited(double now, const std::vector<std::string>& lines, const std::string& kind) {
     if (lines.empty()) return;
-    if (now - lastLimited < 1.0) {
-        suppressed += lines.size();
+    Throttle& t = throttles[kind];
+    if (now - t.last < 1.0) {
+        t.suppressed += lines.size();
         return;
     }
     std::string line = lines.back();
-    if (suppressed + lines.size() > 1)
-        line += " (and " + std::to_string(suppressed + lines.size() - 1) + " more in the last second)";
+    if (t.suppressed + lines.size() > 1)
+        line += " (and " + std::to_string(t.suppressed + lines.size() - 1) + " more in the last second)";
     Say(line);
-    lastLimited = now;
-    suppressed = 0;
+    t.last = now;
+    t.suppressed = 0;
 }
 
 bool OpenLiveState(const ShowOptions& options, const std::string& mappingOption, LiveState* state, std::string* error) {
@@ -87,6 +98,11 @@ bool OpenLiveState(const ShowOptions& options, const std::string& mappingOption,
     s.currentPreset = s.presetFile.empty() ? "" : fs::path(s.presetFile).filename().string();
     s.params = ShowParamState(s.show);
     s.wanted = VariantKey{s.show.scene.path, s.show.effects, s.show.path};
+    if (!s.show.preset.automation.Empty() &&
+        !s.automation.automation.Load(s.show.preset.automation, s.show.scene.params, error))
+        return false;
+    if (s.show.preset.automation.bpm > 0) s.automation.tempo.SetBpm(0.0, s.show.preset.automation.bpm);
+    s.automation.automation.Start(0.0);
     WatchFolderOf(s, s.mappingPath);
     if (!s.presetPath.empty()) WatchFolderOf(s, s.presetPath);
     *state = std::move(s);
@@ -128,19 +144,22 @@ ParamState RebaseParams(const ParamState& old, const std::vector<ParamDecl>& dec
 
 void ApplyControl(LiveState& state, const std::vector<ControlEvent>& events, double now) {
     state.actions.Clear();
+    FeedAutomation(state.automation, events);
     for (const ControlEvent& e : events) ApplyEvent(state.mapping, state.mappingState, e, state.params, &state.actions);
     // Bad-input reports: at most one line a second, so a flood cannot stall the frame.
     state.report.Limited(now, state.actions.messages);
 }
 
-bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload) {
+bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload, double now, double morphBeats) {
     ShowOptions so = state.options;
     so.scene.clear();
     so.params.clear();
     so.preset = file;
     Show next;
     std::string err;
-    if (!PrepareShow(so, &next, &err)) {
+    Automation scripts;
+    const AutomationDesc& desc = next.preset.automation;
+    if (!PrepareShow(so, &next, &err) || (!desc.Empty() && !scripts.Load(desc, next.scene.params, &err))) {
         state.report.Say(err + (reload ? " — keeping the current values" : " — keeping the current preset"));
         return false;
     }
@@ -152,29 +171,47 @@ bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload) {
     state.currentPreset = fs::path(state.presetFile).filename().string();
     WatchFolderOf(state, state.presetPath);
     state.wanted = VariantKey{state.show.scene.path, state.show.effects, state.show.path};
+    // Scripts, tempo and cue list start over with the preset.
+    ShowAutomation& a = state.automation;
+    a.automation = std::move(scripts);
+    if (state.show.preset.automation.bpm > 0) a.tempo.SetBpm(now, state.show.preset.automation.bpm);
+    a.automation.Start(a.tempo.Beats(now));
+    a.morph = ParamMorph{};
+    MorphDesc how = state.show.preset.automation.morph;
+    if (morphBeats >= 0) how.seconds = morphBeats * 60.0 / a.tempo.bpm;
     state.pendingTargets.clear();
-    for (const auto& [name, value] : state.show.params) state.pendingTargets[name] = value;
-    state.pendingScenePath = state.show.scene.path;
-    state.pendingCut = sceneChange;
+    if (!sceneChange && how.seconds > 0) {
+        StartMorph(a.morph, state.params, state.show.params, now, how);   // same scene: every value morphs
+    } else {
+        for (const auto& [name, value] : state.show.params) state.pendingTargets[name] = value;
+        state.pendingScenePath = state.show.scene.path;
+        state.pendingCut = sceneChange;
+    }
     state.sendFeedback = true;
-    state.report.Say(std::string(reload ? "reloaded " : "preset ") + (reload ? state.presetFile : state.currentPreset) +
-                     " (" + state.show.scene.name + ")");
+    const std::string line = std::string(reload ? "reloaded " : "preset ") +
+                             (reload ? state.presetFile : state.currentPreset) + " (" + state.show.scene.name + ")";
+    if (reload) state.report.Say(line);
+    else state.report.Limited(now, {line}, "preset");   // pads and OSC can switch faster than anyone reads
     return true;
 }
 
 void ApplyActions(LiveState& state, double now) {
     const MappingActions& a = state.actions;
-    if (a.tapTempo) state.tempo.Tap(now);
+    if (a.tapTempo) {
+        state.automation.tap.Tap(now);
+        state.automation.tempo.TapOnBeat(now, state.automation.tap.bpm);
+    }
     // Preset pads and /sdfvj/preset: values glide there through smoothing; a new scene or effect
     // set compiles while the current one keeps rendering.
     for (const std::string& request : a.presetSelect) {
         const std::string name = ResolvePresetRequest(request, state.currentPreset, ListPresets());
-        if (name.empty()) {
-            state.report.Say("sdfvj live: preset '" + request.substr(0, 64) +
-                             "': no such preset, expected a name, an index or next/prev (see `sdfvj list`)");
+        if (name.empty()) {   // a flood of these (a tablet gone wrong) prints one line a second
+            state.report.Limited(now, {"sdfvj live: preset '" + request.substr(0, 64) +
+                                       "': no such preset, expected a name, an index or next/prev (see `sdfvj list`)"},
+                                 "no preset");
             continue;
         }
-        ApplyPresetFile(state, (fs::path(DataRoot()) / "presets" / name).string(), false);
+        ApplyPresetFile(state, (fs::path(DataRoot()) / "presets" / name).string(), false, now);
     }
     // Effect pads and /sdfvj/effect/<name>: a new variant compiles while the old one renders.
     for (const auto& [name, on] : a.effectToggles) {
@@ -189,7 +226,7 @@ void ApplyActions(LiveState& state, double now) {
     }
 }
 
-void ApplyFileChanges(LiveState& state, const std::vector<std::string>& changedFiles) {
+void ApplyFileChanges(LiveState& state, const std::vector<std::string>& changedFiles, double now) {
     bool presetSaved = false, mappingSaved = false;
     for (const std::string& f : changedFiles) {
         const std::string path = Canonical(f);
@@ -197,7 +234,7 @@ void ApplyFileChanges(LiveState& state, const std::vector<std::string>& changedF
         mappingSaved |= path == state.mappingPath;
     }
     // The preset on stage was edited: apply it again (a broken save is reported, values stay).
-    if (presetSaved) ApplyPresetFile(state, state.presetFile, true);
+    if (presetSaved) ApplyPresetFile(state, state.presetFile, true, now);
     if (mappingSaved) {
         Mapping next;
         LoadResult r = LoadMapping(state.mappingFile, &next);
@@ -229,6 +266,26 @@ void FollowScene(LiveState& state, const SceneInfo& onScreen) {
         }
         state.pendingTargets.clear();
     }
+}
+
+void RunAutomation(LiveState& state, double now, int frame) {
+    std::vector<std::string> reports;
+    const std::vector<float> knobs = KnobPositions(state.mapping, state.mappingState);
+    for (const CueDesc& cue : StepAutomation(state.automation, state.params, knobs, now, frame, &reports)) {
+        const std::string name = ResolvePresetRequest(cue.preset, state.currentPreset, ListPresets());
+        if (name.empty()) {
+            reports.push_back(state.show.preset.automation.file + ":" + std::to_string(cue.line) + ": cue preset '" +
+                              cue.preset + "' does not exist, expected a preset name (see `sdfvj list`)");
+            continue;
+        }
+        ApplyPresetFile(state, (fs::path(DataRoot()) / "presets" / name).string(), false, now, cue.overBeats);
+    }
+    for (const std::string& r : reports) state.report.Say(r);
+}
+
+float BeatPhase(const LiveState& state, double now) {
+    const double beats = state.automation.tempo.Beats(now);
+    return (float)(beats - std::floor(beats));
 }
 
 }  // namespace sdfvj

@@ -7,6 +7,7 @@
 //   ApplyActions(state, now)                tap tempo, preset selects, effect toggles
 //   ApplyFileChanges(state, changedFiles)   the mapping or the preset on stage was saved
 //   FollowScene(state, sceneOnScreen)       parameters follow the header of the program on screen
+//   RunAutomation(state, now, frame)        scripted presets: cues, expressions, morphs (automation.h)
 //   StepSmoothing(state.params, dt)         (control.h)
 //
 // None of them touches GL or a device, so each is tested on its own (tests/live/live_state_test).
@@ -21,29 +22,24 @@
 #include <vector>
 
 #include "app/show.h"
+#include "automation/automation.h"
 #include "control/control.h"
 
 namespace sdfvj {
-
-// Tap tempo: the beat the performer taps on a pad drives u_beat (phase 0..1 per beat).
-struct TapTempo {
-    double bpm = 120.0;
-    double origin = 0.0;            // time of a beat
-    std::vector<double> taps;
-    void Tap(double now);
-    float Phase(double now) const;
-};
 
 // Lines for the performer: printed on stderr and kept for the overlay. Lines that a flood of bad
 // input can cause go through Limited(): at most one a second, with a count of the rest.
 struct LiveReport {
     std::deque<std::string> recent;     // newest last, at most 8
     bool print = true;                  // also write to stderr
-    double lastLimited = -1e9;
-    uint64_t suppressed = 0;
+    struct Throttle { double last = -1e9; uint64_t suppressed = 0; };
+    std::map<std::string, Throttle> throttles;   // one per kind of line ("input", "preset", ...)
     void Say(const std::string& line);
-    void Limited(double now, const std::vector<std::string>& lines);
+    void Limited(double now, const std::vector<std::string>& lines, const std::string& kind = "input");
 };
+
+// Printable text for the terminal and the overlay: control bytes and broken UTF-8 become '?'.
+std::string PrintableLine(const std::string& text);
 
 struct LiveState {
     ShowOptions options;                // the command line's show options (presets start from them)
@@ -63,7 +59,7 @@ struct LiveState {
     std::vector<std::string> presetReloads; // the preset on stage was saved: apply it again
 
     MappingActions actions;             // what this frame's events asked for
-    TapTempo tempo;
+    ShowAutomation automation;          // the preset's scripts, the tempo (tap, clock) and morphs
     LiveReport report;
 
     // Requests for the frame (it clears them once acted on).
@@ -86,11 +82,17 @@ ParamState RebaseParams(const ParamState& old, const std::vector<ParamDecl>& dec
 
 void ApplyControl(LiveState& state, const std::vector<ControlEvent>& events, double now);
 void ApplyActions(LiveState& state, double now);
-void ApplyFileChanges(LiveState& state, const std::vector<std::string>& changedFiles);
+void ApplyFileChanges(LiveState& state, const std::vector<std::string>& changedFiles, double now);
 void FollowScene(LiveState& state, const SceneInfo& onScreen);
+void RunAutomation(LiveState& state, double now, int frame);
+// u_beat: the phase 0..1 within the current beat.
+float BeatPhase(const LiveState& state, double now);
 
-// Applies a preset file (a reload of the one on stage when `reload`): values glide there, a new
-// scene or effect set becomes `wanted`. A preset that does not load is reported; nothing changes.
-bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload);
+// Applies a preset file (a reload of the one on stage when `reload`): values morph there over the
+// preset's morph time (or glide through smoothing), its scripts start, a new scene or effect set
+// becomes `wanted`. A preset that does not load or whose expressions or cues are broken is
+// reported with file:line; nothing changes. `morphBeats` >= 0 overrides the preset's morph time
+// (a cue's "over").
+bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload, double now, double morphBeats = -1.0);
 
 }  // namespace sdfvj

@@ -2,8 +2,9 @@
 
 namespace sdfvj {
 
-std::unique_ptr<ReplayDriver> MakeReplayDriver(const Show&, const std::string&, const std::string&, std::string* error) {
-    *error = "--replay needs the full sdfvj build (this is the headless renderer without the input modules)";
+std::unique_ptr<ReplayDriver> MakeReplayDriver(const Show&, const std::string& take, const std::string&, std::string* error) {
+    *error = take.empty() ? "scripted presets need the full sdfvj build (this is the headless renderer without automation)"
+                          : "--replay needs the full sdfvj build (this is the headless renderer without the input modules)";
     return nullptr;
 }
 

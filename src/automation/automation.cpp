@@ -129,6 +129,25 @@ void TempoState::TapOnBeat(double now, double newBpm) {
     originBeats = std::round(originBeats);
 }
 
+void TapTempo::Tap(double now) {
+    if (!taps.empty() && now - taps.back() > 2.0) taps.clear();   // a pause starts a new count
+    taps.push_back(now);
+    if (taps.size() > 5) taps.erase(taps.begin());
+    if (taps.size() >= 2) {
+        std::vector<double> gaps;
+        for (size_t i = 1; i < taps.size(); ++i) gaps.push_back(taps[i] - taps[i - 1]);
+        std::sort(gaps.begin(), gaps.end());
+        double gap = gaps[gaps.size() / 2];
+        if (gap > 0.2 && gap < 2.0) bpm = 60.0 / gap;
+    }
+    origin = now;
+}
+
+float TapTempo::Phase(double now) const {
+    double beats = (now - origin) * bpm / 60.0;
+    return (float)(beats - std::floor(beats));
+}
+
 bool MidiClockFollower::OnEvent(const ControlEvent& e, TempoState& tempo) {
     if (e.source != EventSource::Midi || e.midiSize < 1) return false;
     const uint8_t status = e.midi[0];
@@ -169,6 +188,8 @@ bool MidiClockFollower::OnEvent(const ControlEvent& e, TempoState& tempo) {
 
 Automation::Automation() : impl_(std::make_unique<Impl>()) {}
 Automation::~Automation() = default;
+Automation::Automation(Automation&&) noexcept = default;
+Automation& Automation::operator=(Automation&&) noexcept = default;
 
 void Automation::Clear() { impl_ = std::make_unique<Impl>(); }
 
@@ -409,6 +430,37 @@ void StepMorph(ParamMorph& morph, ParamState& params, double now, const Automati
         params.target[(size_t)i] = params.value[(size_t)i] = v;
     }
     if (t >= 1.0) morph.tracks.clear();
+}
+
+void FeedAutomation(ShowAutomation& a, const std::vector<ControlEvent>& events) {
+    for (const ControlEvent& e : events) {
+        if (a.clock.OnEvent(e, a.tempo)) continue;
+        a.automation.OnEvent(e);
+    }
+}
+
+std::vector<CueDesc> StepAutomation(ShowAutomation& a, ParamState& params, const std::vector<float>& knobs, double now,
+                                    int frame, std::vector<std::string>* reports) {
+    const double beats = a.tempo.Beats(now);
+    std::vector<CueDesc> presets;
+    for (CueDesc& cue : a.automation.DueCues(beats)) {
+        if (!cue.preset.empty()) {
+            presets.push_back(std::move(cue));
+            continue;
+        }
+        MorphDesc how = a.automation.Desc().morph;
+        how.seconds = cue.overBeats * 60.0 / a.tempo.bpm;
+        std::vector<std::pair<std::string, float>> values(cue.values.begin(), cue.values.end());
+        StartMorph(a.morph, params, values, now, how);
+    }
+    AutomationFrame f;
+    f.time = now;
+    f.frame = frame;
+    f.beats = beats;
+    f.bpm = a.tempo.bpm;
+    a.automation.Apply(f, knobs, params, reports);
+    StepMorph(a.morph, params, now, &a.automation);
+    return presets;
 }
 
 }  // namespace sdfvj

@@ -40,6 +40,16 @@ struct TempoState {
     void TapOnBeat(double now, double newBpm);
 };
 
+// Tap tempo: the tempo of the last taps on a pad (median gap of up to five; a 2 s pause starts a
+// new count). Its bpm goes to TempoState::TapOnBeat.
+struct TapTempo {
+    double bpm = 120.0;
+    double origin = 0.0;            // time of a beat
+    std::vector<double> taps;
+    void Tap(double now);
+    float Phase(double now) const;
+};
+
 // MIDI clock (24 pulses a quarter note), start (0xFA), continue (0xFB), stop (0xFC) from any
 // input port: the tempo follows the pulses (median of the last 24 gaps).
 struct MidiClockFollower {
@@ -63,6 +73,8 @@ public:
     ~Automation();
     Automation(const Automation&) = delete;
     Automation& operator=(const Automation&) = delete;
+    Automation(Automation&&) noexcept;
+    Automation& operator=(Automation&&) noexcept;
 
     // Compiles every expression against these parameters. False with
     // "presets/x.json:LINE: what is wrong, what was expected"; then nothing changes.
@@ -112,5 +124,21 @@ void StartMorph(ParamMorph& morph, ParamState& params, const std::vector<std::pa
 // Moves the morphing parameters (target and value) to where the curve is at `now`; the morph
 // ends at its end. Parameters an expression drives are left to it.
 void StepMorph(ParamMorph& morph, ParamState& params, double now, const Automation* automation = nullptr);
+
+// Everything a show runs its automation with; `live` and `render --replay` share it, so a replayed
+// take renders what the show rendered.
+struct ShowAutomation {
+    Automation automation;
+    TempoState tempo;
+    MidiClockFollower clock;
+    ParamMorph morph;
+    TapTempo tap;
+};
+// Events for envelopes and the MIDI clock.
+void FeedAutomation(ShowAutomation& a, const std::vector<ControlEvent>& events);
+// One frame: cues due (those that set values start a morph over their beats here; those that
+// switch presets are returned for the caller), then expressions, then the morph.
+std::vector<CueDesc> StepAutomation(ShowAutomation& a, ParamState& params, const std::vector<float>& knobs, double now,
+                                    int frame, std::vector<std::string>* reports);
 
 }  // namespace sdfvj

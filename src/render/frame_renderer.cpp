@@ -56,6 +56,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     p.Set("u_time", (float)in.time);
     p.Set("u_frame", (float)in.frame);
     p.Set("u_beat", in.beat);
+    p.Set("u_bpm", in.bpm);
     p.Set("u_resolution", (float)width_, (float)height_);
     p.Set("u_camPos", scene.camPos[0], scene.camPos[1], scene.camPos[2]);
     p.Set("u_camTarget", scene.camTarget[0], scene.camTarget[1], scene.camTarget[2]);

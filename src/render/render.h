@@ -54,7 +54,8 @@ struct Quality {
 struct FrameInputs {
     double time = 0.0;
     int frame = 0;
-    float beat = 0.0f;
+    float beat = 0.0f;          // phase 0..1 within the beat
+    float bpm = 120.0f;
     Quality quality;
     std::vector<std::pair<std::string, float>> params;   // scene parameters by name (no u_ prefix)
     int effectsOff = 0;   // u_effectsOff: compiled-in effects switched off at run time (benchmark only)

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/automation_desc.h"
 #include "core/param_decl.h"
 
 namespace sdfvj {
@@ -86,6 +87,7 @@ struct Preset {
     std::string normals;
     std::string mapping;       // path relative to the data root
     std::string take;          // path relative to the data root
+    AutomationDesc automation; // scripted parameters, envelopes, cues, tempo, morph (automation module)
 };
 // Presets are strict: unknown keys are errors (with their line), params are finite numbers
 // (or booleans), effects and normals must parse. Errors are "path:line: what, expected ...".

@@ -136,7 +136,7 @@ TEST_CASE("live_state effects: /sdfvj/effect/ao i 0 asks for the variant without
 TEST_CASE("live_state presets: a preset for another scene waits for its program, then cuts to its values", "[live_state]") {
     LiveState s = OpenMidi();
     const SceneInfo midi = s.show.scene;
-    REQUIRE(ApplyPresetFile(s, (fs::path(DataRoot()) / "presets" / "bulb.json").string(), false));
+    REQUIRE(ApplyPresetFile(s, (fs::path(DataRoot()) / "presets" / "bulb.json").string(), false, 1.0));
     CHECK(s.wanted.scenePath.find("mandelbulb") != std::string::npos);
     FollowScene(s, midi);                      // still compiling: the midi scene stays on screen
     CHECK(FindParam(s.params, "twist") >= 0);
@@ -165,7 +165,7 @@ TEST_CASE("live_state files: a broken mapping save says file:line and keeps the 
     s.report.print = false;
     REQUIRE(s.mapping.entries.size() == 1);
     std::ofstream(mapping) << "[[map]]\ncc = 1\ntarget = \"twist\"\n[[map]]\ncc = \"seven\"\n";
-    REQUIRE_NOTHROW(ApplyFileChanges(s, {mapping.string()}));
+    REQUIRE_NOTHROW(ApplyFileChanges(s, {mapping.string()}, 1.0));
     CHECK(Said(s, "m.toml:5"));
     CHECK(Said(s, "keeping the previous mapping"));
     CHECK(s.mapping.entries.size() == 1);
@@ -180,4 +180,36 @@ TEST_CASE("live_state report: a flood of bad input prints at most one line a sec
     r.Limited(11.5, {"late"});
     REQUIRE(r.recent.size() == 2);
     CHECK(r.recent.back().find("and 999 more") != std::string::npos);
+}
+
+TEST_CASE("live_state report: bytes from outside are printed as text, and each kind of line is limited on its own", "[live_state]") {
+    CHECK(PrintableLine(std::string("pre\x01set\x1b[31m\xff", 13)) == "pre?set?[31m?");
+    CHECK(PrintableLine("caf\xc3\xa9\nline") == "caf\xc3\xa9\nline");
+    CHECK(PrintableLine(std::string(5000, 'x')).size() == 2003);
+    LiveReport r;
+    r.print = false;
+    r.Limited(1.0, {"bad osc"});
+    r.Limited(1.1, {"preset a"}, "preset");
+    r.Limited(1.2, {"preset b"}, "preset");
+    CHECK(r.recent.size() == 2);
+}
+
+TEST_CASE("live_state scripted preset: a broken expression keeps the previous preset, a good one runs on the show clock", "[live_state]") {
+    const fs::path dir = fs::temp_directory_path() / ("sdfvj-live-script-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    LiveState s = OpenMidi();
+    const fs::path bad = dir / "bad.json";
+    std::ofstream(bad) << "{\n  \"scene\": \"midi\",\n  \"params\": {\n    \"twist\": \"0.4 + * beat\"\n  }\n}\n";
+    CHECK_FALSE(ApplyPresetFile(s, bad.string(), false, 1.0));
+    CHECK(Said(s, "bad.json:4: expression for 'twist' does not parse"));
+    CHECK(s.currentPreset.empty());
+    const fs::path good = dir / "good.json";
+    std::ofstream(good) << "{\n  \"scene\": \"midi\",\n  \"bpm\": 60,\n  \"params\": {\n    \"twist\": \"lfo_saw(beat / 4)\"\n  }\n}\n";
+    REQUIRE(ApplyPresetFile(s, good.string(), false, 10.0));
+    FollowScene(s, s.show.scene);
+    RunAutomation(s, 12.0, 0);   // beat 22 of the show (120 bpm until 10 s, then 60): lfo_saw(5.5)
+    CHECK(s.params.value[(size_t)FindParam(s.params, "twist")] == Approx(0.0f).margin(1e-5));
+    RunAutomation(s, 13.0, 1);
+    CHECK(s.params.value[(size_t)FindParam(s.params, "twist")] == Approx(0.5f));
+    fs::remove_all(dir);
 }

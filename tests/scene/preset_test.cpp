@@ -66,7 +66,8 @@ TEST_CASE("preset: every wrong-typed or out-of-range field is an error on its li
         {"scene empty", "\"scene\": \"midi\"", "\"scene\": \"\"", 2, "scene is empty, expected a scene name"},
         {"scene missing", "\"scene\": \"midi\",", "", 1, "preset names no scene, expected"},
         {"params array", "\"params\": {\n    \"scale\": 1.0,\n    \"twist\": 0.5}", "\"params\": [1.0,\n 0.5]", 3, "params is array, expected an object"},
-        {"param string", "\"twist\": 0.5", "\"twist\": \"x\"", 5, "parameter 'twist' is string, expected a number"},
+        {"param array", "\"twist\": 0.5", "\"twist\": [1]", 5, "parameter 'twist' is array, expected a number in its range or an expression"},
+        {"param empty expression", "\"twist\": 0.5", "\"twist\": \"\"", 5, "expression for 'twist' is empty"},
         {"param null", "\"twist\": 0.5", "\"twist\": null", 5, "parameter 'twist' is null, expected a number"},
         {"param 1e300", "\"twist\": 0.5", "\"twist\": 1e300", 5, "parameter 'twist' is 1e+300, expected a number in [-1e+09, 1e+09]"},
         {"param 1e39", "\"twist\": 0.5", "\"twist\": 1e39", 5, "parameter 'twist' is 1e+39, expected a number in"},
@@ -83,7 +84,21 @@ TEST_CASE("preset: every wrong-typed or out-of-range field is an error on its li
         {"mapping null", "\"mapping\": \"mappings/akai_lpd8.toml\"", "\"mapping\": null", 8, "mapping is null, expected a string"},
         {"take object", "\"take\": \"presets/demo_take.mid\"", "\"take\": {}", 9, "take is object, expected a string"},
         {"unknown key", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"colour\": 1", 10,
-         "unknown key 'colour', expected scene, params, effects, normals, mapping or take"},
+         "unknown key 'colour', expected scene, params, effects, normals, mapping, take, bpm, morph, envelopes, cues or loop_bars"},
+        {"bpm string", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"bpm\": \"fast\"", 10,
+         "bpm is not a tempo, expected a number of beats per minute in [20, 400]"},
+        {"bpm huge", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"bpm\": 1e30", 10,
+         "bpm is not a tempo"},
+        {"morph easing", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"morph\": {\"seconds\": 2,\n \"easing\": \"wobbly\"}", 11,
+         "morph easing is not known, expected linear, smooth, ease_in, ease_out or cut"},
+        {"envelope sustain", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"envelopes\": {\"flash\":\n {\"note\": 36, \"sustain\": 2}}", 11,
+         "envelope sustain is not a level, expected a number in [0, 1]"},
+        {"envelope note", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"envelopes\": {\"flash\": {\"note\": 300}}", 10,
+         "envelope note is not a whole number in [0, 127]"},
+        {"cue without bar", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"cues\": [\n {\"preset\": \"walker\"}]", 11,
+         "cue 0 has no bar, expected \"bar\": N"},
+        {"cue set string", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"cues\": [{\"bar\": 4,\n \"set\": {\"twist\": \"x\"}}]", 11,
+         "cue value for 'twist' is not a number"},
         {"not an object", "{\n  \"scene\"", "[\n  \"scene\"", 2, "bad JSON"},
         {"deep nesting", "\"mapping\": \"mappings/akai_lpd8.toml\"", "\"mapping\": " + std::string(100000, '['), 8,
          "preset nests deeper than 64 levels, expected at most 64"},
@@ -141,4 +156,45 @@ TEST_CASE("preset: every shipped preset loads", "[scene]") {
         CHECK(LoadPreset(path, &p, &error));
         CHECK_FALSE(p.scene.empty());
     }
+}
+
+TEST_CASE("preset: a scripted preset's expressions, envelopes, cues, tempo and morph are read with their lines", "[scene]") {
+    const std::string text =
+        "{\n"                                                           // 1
+        "  \"scene\": \"midi\",\n"                                      // 2
+        "  \"bpm\": 128,\n"                                              // 3
+        "  \"morph\": {\"seconds\": 1.5, \"easing\": \"ease_out\"},\n"    // 4
+        "  \"params\": {\n"                                              // 5
+        "    \"scale\": 1.0,\n"                                          // 6
+        "    \"twist\": \"0.4 + 0.3 * lfo_sine(beat / 4)\"\n"            // 7
+        "  },\n"                                                        // 8
+        "  \"envelopes\": {\"flash\": {\"note\": 36, \"attack\": 0.01, \"release\": 0.5}},\n"  // 9
+        "  \"cues\": [{\"bar\": 8, \"preset\": \"walker\", \"over\": 2},\n"   // 10
+        "           {\"bar\": 4, \"set\": {\"twist\": 1.0}}],\n"           // 11
+        "  \"loop_bars\": 16\n"                                          // 12
+        "}\n";
+    const std::string path = WriteTemp("scripted.json", text);
+    Preset p;
+    std::string error;
+    REQUIRE(LoadPreset(path, &p, &error));
+    const AutomationDesc& a = p.automation;
+    CHECK(a.file == path);
+    CHECK(a.bpm == 128.0);
+    CHECK(a.morph.seconds == 1.5);
+    CHECK(a.morph.easing == Easing::EaseOut);
+    REQUIRE(a.expressions.size() == 1);
+    CHECK(a.expressions[0].param == "twist");
+    CHECK(a.expressions[0].text == "0.4 + 0.3 * lfo_sine(beat / 4)");
+    CHECK(a.expressions[0].line == 7);
+    CHECK(p.params.count("twist") == 0);
+    CHECK(p.params.at("scale") == 1.0f);
+    REQUIRE(a.envelopes.size() == 1);
+    CHECK(a.envelopes[0].note == 36);
+    CHECK(a.envelopes[0].release == 0.5);
+    REQUIRE(a.cues.size() == 2);
+    CHECK(a.cues[0].preset == "walker");
+    CHECK(a.cues[0].overBeats == 2.0);
+    CHECK(a.cues[1].values.at("twist") == 1.0f);
+    CHECK(a.cues[1].line == 11);
+    CHECK(a.loopBars == 16.0);
 }
