@@ -87,12 +87,13 @@ public:
 
     std::string Junk() { return in_.ConsumeRandomLengthString(16); }
 
-    // A field's value: the valid one most of the time, else a hostile one.
+    // A field's value: the valid one most of the time, else a hostile one. Choice 0 (what an
+    // exhausted provider returns) is always the valid skeleton, here and below.
     std::string Field(const std::string& valid) {
         switch (in_.ConsumeIntegralInRange<int>(0, 7)) {
-            case 0: return AnyValue(3);
-            case 1: return Number();
-            case 2: return String();
+            case 5: return AnyValue(3);
+            case 6: return Number();
+            case 7: return String();
             default: return valid;
         }
     }
@@ -100,10 +101,10 @@ public:
     // `"KEY": value` unless the field is dropped; the key's case is sometimes changed.
     void Member(std::vector<std::string>* members, std::string key, const std::string& value) {
         const int roll = in_.ConsumeIntegralInRange<int>(0, 15);
-        if (roll == 0) return;                                    // missing
-        if (roll == 1 && !key.empty()) key[0] = char(key[0] ^ 0x20);  // case typo
+        if (roll == 13) return;                                          // missing
+        if (roll == 14 && !key.empty()) key[0] = char(key[0] ^ 0x20);    // case typo
         members->push_back("\"" + key + "\": " + value);
-        if (roll == 2) members->push_back(String() + ": " + AnyValue(2));  // an unknown key too
+        if (roll == 15) members->push_back(String() + ": " + AnyValue(2));  // an unknown key too
     }
 
     static std::string Object(const std::vector<std::string>& members) {
@@ -115,8 +116,8 @@ public:
     // Last touches on the whole text: truncate it, or splice junk in, now and then.
     std::string Damage(std::string text) {
         switch (in_.ConsumeIntegralInRange<int>(0, 15)) {
-            case 0: return text.substr(0, in_.ConsumeIntegralInRange<size_t>(0, text.size()));
-            case 1: return text.insert(in_.ConsumeIntegralInRange<size_t>(0, text.size()), Junk());
+            case 14: return text.substr(0, in_.ConsumeIntegralInRange<size_t>(0, text.size()));
+            case 15: return text.insert(in_.ConsumeIntegralInRange<size_t>(0, text.size()), Junk());
             default: return text;
         }
     }

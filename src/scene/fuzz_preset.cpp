@@ -19,7 +19,8 @@ std::string BuildPreset(fuzz::JsonGen& g) {
     g.Member(&top, "scene", g.Field("\"midi\""));
     std::vector<std::string> params;
     for (int i = 0, n = g.in().ConsumeIntegralInRange<int>(0, 5); i < n; ++i)
-        g.Member(&params, "p" + std::to_string(i), g.Field(g.in().ConsumeBool() ? "0.5" : "true"));
+        g.Member(&params, "p" + std::to_string(i),
+                 g.Field(i == 1 ? "\"0.4 + 0.3 * lfo_sine(beat / 4)\"" : g.in().ConsumeBool() ? "0.5" : "true"));
     g.Member(&top, "params", g.Field(fuzz::JsonGen::Object(params)));
     static const char* kEffects[] = {"\"\"", "\"soft_shadows,ao\"", "\"none,-ao,reflections=3\"", "\"reflections=99999999999\"",
                                      "\"sparkles\"", "\" , ,fog\""};
@@ -27,6 +28,33 @@ std::string BuildPreset(fuzz::JsonGen& g) {
     g.Member(&top, "normals", g.Field(g.in().ConsumeBool() ? "\"tetrahedron\"" : "\"sideways\""));
     g.Member(&top, "mapping", g.Field("\"mappings/akai_lpd8.toml\""));
     g.Member(&top, "take", g.Field("\"presets/demo_take.mid\""));
+    // The scripted sections (bpm, morph, envelopes, cues, loop_bars).
+    g.Member(&top, "bpm", g.Field("128"));
+    g.Member(&top, "loop_bars", g.Field("16"));
+    std::vector<std::string> morph;
+    g.Member(&morph, "seconds", g.Field("1.5"));
+    g.Member(&morph, "easing", g.Field("\"ease_out\""));
+    g.Member(&top, "morph", g.Field(fuzz::JsonGen::Object(morph)));
+    std::vector<std::string> env, envs;
+    g.Member(&env, "note", g.Field("36"));
+    g.Member(&env, "channel", g.Field("0"));
+    g.Member(&env, "attack", g.Field("0.01"));
+    g.Member(&env, "decay", g.Field("0.1"));
+    g.Member(&env, "sustain", g.Field("0.5"));
+    g.Member(&env, "release", g.Field("0.5"));
+    g.Member(&envs, "flash", g.Field(fuzz::JsonGen::Object(env)));
+    g.Member(&top, "envelopes", g.Field(fuzz::JsonGen::Object(envs)));
+    std::string cues = "[";
+    for (int i = 0, n = g.in().ConsumeIntegralInRange<int>(0, 3); i < n; ++i) {
+        std::vector<std::string> cue, set;
+        g.Member(&cue, "bar", g.Field("8"));
+        g.Member(&cue, "preset", g.Field("\"walker\""));
+        g.Member(&cue, "over", g.Field("2"));
+        g.Member(&set, "twist", g.Field("1.0"));
+        g.Member(&cue, "set", g.Field(fuzz::JsonGen::Object(set)));
+        cues += (i ? ",\n  " : "") + fuzz::JsonGen::Object(cue);
+    }
+    g.Member(&top, "cues", g.Field(cues + "]"));
     return g.Damage(fuzz::JsonGen::Object(top) + "\n");
 }
 

@@ -29,7 +29,7 @@ std::string BuildHeader(fuzz::JsonGen& g) {
         g.Member(&in, "MAX", g.Field("1"));
         g.Member(&in, "DEFAULT", g.Field(g.in().ConsumeBool() ? "0.5" : "true"));
         g.Member(&in, "LABEL", g.Field("\"P\""));
-        inputs += (i ? ",\n  " : "") + (g.in().ConsumeIntegralInRange<int>(0, 15) ? fuzz::JsonGen::Object(in) : g.AnyValue(2));
+        inputs += (i ? ",\n  " : "") + (g.in().ConsumeIntegralInRange<int>(0, 15) != 15 ? fuzz::JsonGen::Object(in) : g.AnyValue(2));
     }
     g.Member(&top, "INPUTS", g.Field(inputs + "]"));
     std::vector<std::string> fx;
@@ -64,6 +64,7 @@ std::string BuildHeader(fuzz::JsonGen& g) {
 bool InRange(float v, float lo, float hi) { return std::isfinite(v) && v >= lo && v <= hi; }
 
 void CheckLoaded(const SceneInfo& s) {
+    if (s.name.empty()) std::abort();
     for (const ParamDecl& d : s.params) {
         if (!InRange(d.minValue, -1e9f, 1e9f) || !InRange(d.maxValue, d.minValue, 1e9f) ||
             !InRange(d.defaultValue, d.minValue, d.maxValue) || d.name.empty())

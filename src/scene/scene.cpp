@@ -223,6 +223,7 @@ struct HeaderChecker {
                 if (it.key() != k && Upper(it.key()) == k)
                     return Fail("/" + it.key(), "unknown key '" + it.key() + "', expected " + k + " (upper case)");
         if (j.contains("NAME") && !String(j["NAME"], "/NAME", "NAME", &s->name)) return false;
+        if (s->name.empty()) return Fail("/NAME", "NAME is empty, expected the scene's name");
         if (j.contains("DESCRIPTION") && !String(j["DESCRIPTION"], "/DESCRIPTION", "DESCRIPTION", &s->description))
             return false;
         if (j.contains("INPUTS")) {

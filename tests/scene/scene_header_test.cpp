@@ -101,6 +101,7 @@ TEST_CASE("scene header: LABEL 5 is an error on its line, not type_error.302", "
 TEST_CASE("scene header: every wrong-typed field is an error on its line", "[scene]") {
     ExpectCases({
         {"NAME number", "\"NAME\": \"t\"", "\"NAME\": 5", 3, "NAME is number, expected a string"},
+        {"NAME empty", "\"NAME\": \"t\"", "\"NAME\": \"\"", 3, "NAME is empty, expected the scene's name"},
         {"DESCRIPTION array", "\"DESCRIPTION\": \"d\"", "\"DESCRIPTION\": []", 4, "DESCRIPTION is array, expected a string"},
         {"INPUTS object", "\"INPUTS\": [", "\"INPUTS\": {\"x\": 1}, \"OTHER\": [", 5, "INPUTS is object, expected a list"},
         {"input not an object", "{\"NAME\": \"a\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": 0, \"MAX\": 1, \"LABEL\": \"A\"}",
