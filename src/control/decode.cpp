@@ -25,7 +25,19 @@ void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double t
     for (size_t i = 0; i < size; ++i) {
         uint8_t b = bytes[i];
         if (b >= 0xF8) {             // realtime (clock, start, active sensing...): may appear anywhere
-            ++d.ignored;
+            // Clock, start, continue and stop drive the show's tempo (automation); they do not
+            // touch running status. Active sensing, reset and the undefined ones are ignored.
+            if (b == 0xF8 || b == 0xFA || b == 0xFB || b == 0xFC) {
+                ControlEvent e;
+                e.time = time;
+                e.source = EventSource::Midi;
+                e.midi[0] = b;
+                e.midiSize = 1;
+                if (out) out->push_back(e);
+                ++d.messages;
+            } else {
+                ++d.ignored;
+            }
             continue;
         }
         if (b == 0xF0) {             // SysEx start cancels running status

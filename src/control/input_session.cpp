@@ -144,7 +144,7 @@ struct InputSession::Impl {
         p->owner = this;
         p->in = std::make_unique<RtMidiIn>(rtApi, client, 1024);
         p->in->setErrorCallback(QuietRtMidiError, nullptr);
-        p->in->ignoreTypes(true, true, true);   // SysEx, timing, active sensing never reach us
+        p->in->ignoreTypes(true, false, true);   // SysEx and active sensing never reach us; MIDI clock does (tempo)
         p->in->setCallback(&Impl::OnMidi, p.get());
         return p;
     }

@@ -305,6 +305,7 @@ void ApplyEvent(const Mapping& m, MappingState& ms, const ControlEvent& e, Param
     }
 
     if (e.midiSize == 0) return;
+    if (e.midi[0] >= 0xF0) return;   // clock, start, stop: the tempo's (automation), not a control
     const uint8_t st = e.midi[0], type = st & 0xF0;
     const int ch = (st & 0x0F) + 1;
     const int d1 = e.midiSize > 1 ? (e.midi[1] & 0x7F) : 0;

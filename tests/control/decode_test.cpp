@@ -18,14 +18,18 @@ std::vector<ControlEvent> Decode(MidiDecoder& d, std::vector<uint8_t> bytes) {
 
 TEST_CASE("midi decode: running status, realtime bytes inside messages, stray data") {
     MidiDecoder d;
+    // A MIDI clock pulse (0xF8) inside a running-status message is an event of its own (the
+    // tempo follows it) and does not break the message around it; active sensing is ignored.
     auto ev = Decode(d, {0xB0, 1, 10, 2, 20, 0xF8, 3, 0xFE, 30});
-    REQUIRE(ev.size() == 3);
+    REQUIRE(ev.size() == 4);
     CHECK(ev[1].midi[0] == 0xB0);
     CHECK(ev[1].midi[1] == 2);
     CHECK(ev[1].midi[2] == 20);
-    CHECK(ev[2].midi[1] == 3);
-    CHECK(ev[2].midi[2] == 30);
-    CHECK(d.ignored == 2);
+    CHECK(ev[2].midiSize == 1);
+    CHECK(ev[2].midi[0] == 0xF8);
+    CHECK(ev[3].midi[1] == 3);
+    CHECK(ev[3].midi[2] == 30);
+    CHECK(d.ignored == 1);
     // Running status carries across calls (ALSA raw delivers it that way).
     ev = Decode(d, {4, 40});
     REQUIRE(ev.size() == 1);
@@ -46,6 +50,28 @@ TEST_CASE("midi decode: running status, realtime bytes inside messages, stray da
     ev = Decode(fresh, {0xF2, 1, 2, 0x90, 60, 100});
     REQUIRE(ev.size() == 1);
     CHECK(fresh.stray == 3);
+}
+
+TEST_CASE("midi decode: clock, start, continue and stop become one-byte events that no mapping entry takes") {
+    MidiDecoder d;
+    auto ev = Decode(d, {0xFA, 0xF8, 0xF8, 0xFC, 0xFB, 0xFF, 0xF9});
+    REQUIRE(ev.size() == 5);
+    CHECK(ev[0].midi[0] == 0xFA);
+    CHECK(ev[3].midi[0] == 0xFC);
+    CHECK(ev[4].midi[0] == 0xFB);
+    for (const ControlEvent& e : ev) CHECK(e.midiSize == 1);
+    CHECK(d.ignored == 2);
+    // The mapping ignores them: a mapping of every kind of source, parameters unchanged.
+    Mapping m;
+    REQUIRE(ParseMapping("[[map]]\ncc = 0\ntarget = \"a\"\n[[map]]\nprogram = \"any\"\naction = \"preset\"\n", "m.toml", &m).ok);
+    ParamDecl a;
+    a.name = "a";
+    ParamState p = MakeParamState({a});
+    MappingState ms;
+    MappingActions acts;
+    for (const ControlEvent& e : ev) ApplyEvent(m, ms, e, p, &acts);
+    CHECK(p.target[0] == 0.0f);
+    CHECK(acts.presetSelect.empty());
 }
 
 TEST_CASE("osc decode: packets from bytes, wrong types and garbage are counted") {

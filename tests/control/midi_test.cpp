@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "automation/automation.h"
 #include "test_util.h"
 
 using namespace sdfvj;
@@ -120,10 +121,14 @@ preset = "intro"
     CHECK(r.acts.effectToggles == std::vector<std::pair<std::string, bool>>{{"shadows", true}});
     CHECK(r.acts.presetSelect == std::vector<std::string>{"intro"});
 
-    // SysEx, clock and active sensing never reach the queue (RtMidi ignoreTypes).
+    // SysEx and active sensing never reach the queue (RtMidi ignoreTypes); a clock pulse does
+    // (the show's tempo follows it) but moves no parameter.
+    base = r.queue.Pushed();
     Send(*out, {0xF0, 0x7E, 0x7F, 0x06, 0x01, 0xF7});
     Send(*out, {0xF8});
     Send(*out, {0xFE});
+    REQUIRE(r.Frame(base + 1));
+    CHECK(r.queue.Pushed() == base + 1);
     // Running status inside one JACK event, and a stray data byte.
     base = r.queue.Pushed();
     Send(*out, {0xB0, 1, 0, 16, 61});                            // scale min, encoder -3
@@ -274,4 +279,38 @@ TEST_CASE("midi replug: a controller port that vanishes and returns is heard aga
         CHECK(status().find(dev) != std::string::npos);
         CHECK(status().find("gone") == std::string::npos);
     }
+}
+
+TEST_CASE("midi clock: start, 24 pulses a beat and stop through JACK reach the queue and set the tempo") {
+    std::string vname = Unique("sdfvj-clock");
+    MidiRig r("no-controller-here", vname);
+    auto out = ConnectTo(vname);
+    REQUIRE(out);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    Send(*out, {0xFA});
+    const int pulses = 48;   // two beats at 120 bpm
+    for (int i = 0; i < pulses; ++i) {
+        Send(*out, {0xF8});
+        std::this_thread::sleep_for(std::chrono::microseconds(20833));
+    }
+    Send(*out, {0xFC});
+    REQUIRE(WaitFor([&] { return r.queue.Pushed() >= (size_t)pulses + 2; }, 3.0));
+    TempoState tempo;
+    tempo.bpm = 60.0;
+    MidiClockFollower clock;
+    int seen = 0, starts = 0, stops = 0;
+    for (const ControlEvent& e : r.queue.DrainUntil(Now())) {
+        if (e.midiSize == 1 && e.midi[0] == 0xF8) ++seen;
+        if (e.midiSize == 1 && e.midi[0] == 0xFA) ++starts;
+        if (e.midiSize == 1 && e.midi[0] == 0xFC) ++stops;
+        clock.OnEvent(e, tempo);
+    }
+    CHECK(seen == pulses);
+    CHECK(starts == 1);
+    CHECK(stops == 1);
+    INFO("tempo from the pulses: " << tempo.bpm << " bpm");
+    CHECK(tempo.bpm > 100.0);   // JACK delivers in 5.3 ms periods: the median gap is near 20.8 ms
+    CHECK(tempo.bpm < 145.0);
+    CHECK_FALSE(tempo.running);
+    CHECK(tempo.Beats(Now() + 10.0) == Approx(tempo.Beats(Now())));
 }
