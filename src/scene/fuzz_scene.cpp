@@ -3,6 +3,7 @@
 // header built from the fuzz bytes by JsonGen (valid skeleton, hostile fields). Invariants:
 // no crash, no sanitizer report, no exception; an error is "fuzz.glsl:LINE: ... expected ...";
 // a header that loads holds only finite, in-range values. scripts/fuzz.sh builds and runs it.
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -66,7 +67,8 @@ bool InRange(float v, float lo, float hi) { return std::isfinite(v) && v >= lo &
 void CheckLoaded(const SceneInfo& s) {
     if (s.name.empty()) std::abort();
     for (const ParamDecl& d : s.params) {
-        if (!InRange(d.minValue, -1e9f, 1e9f) || !InRange(d.maxValue, d.minValue, 1e9f) ||
+        if (!InRange(d.minValue, -FLT_MAX, FLT_MAX) || !InRange(d.maxValue, d.minValue, FLT_MAX) ||
+            !std::isfinite(d.maxValue - d.minValue) ||
             !InRange(d.defaultValue, d.minValue, d.maxValue) || d.name.empty())
             std::abort();
     }

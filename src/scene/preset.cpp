@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -16,7 +17,7 @@ namespace sdfvj {
 
 namespace {
 
-constexpr double kParamLimit = 1e9;  // as for a scene's DEFAULT/MIN/MAX
+constexpr double kParamLimit = std::numeric_limits<float>::max();  // as for a scene's DEFAULT/MIN/MAX
 
 // A finite number in [lo, hi] at `pointer`; false with a line otherwise.
 bool ReadNumber(const json& v, double lo, double hi, double* out) {
@@ -220,7 +221,7 @@ bool ParsePresetJson(const std::string& text, const std::string& path, Preset* o
             if (!std::isfinite(d) || std::fabs(d) > kParamLimit) {
                 std::ostringstream got;
                 got << d;
-                return fail(at, "parameter '" + it.key() + "' is " + got.str() + ", expected a number in [-1e+09, 1e+09]");
+                return fail(at, "parameter '" + it.key() + "' is " + got.str() + ", expected a number that fits a float");
             }
             p.params[it.key()] = float(d);
         }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -63,7 +64,9 @@ std::string Upper(std::string s) {
 
 // Ranges a header may declare. Wider values are typos or attacks, never a look anyone wants,
 // and they overflow float arithmetic in the shader (a range of 3e38 - -3e38 is inf).
-constexpr double kParamLimit = 1e9;     // DEFAULT/MIN/MAX
+// DEFAULT/MIN/MAX: anything a float holds (the stability scenes declare MAX 1e30 on purpose),
+// with MAX - MIN finite too, so normalising by the range never gives inf.
+constexpr double kParamLimit = std::numeric_limits<float>::max();
 constexpr double kCoordLimit = 1e6;     // CAMERA POSITION/TARGET, LIGHT DIRECTION
 constexpr double kColorLimit = 1e3;     // LIGHT COLOR, 0..kColorLimit (HDR allowed)
 constexpr size_t kMaxNameLength = 64;   // input NAME: a GLSL identifier, u_ prefixed
@@ -167,12 +170,14 @@ struct HeaderChecker {
             }
             if (!x.is_number())
                 return Fail(at + "/" + key, who + " has a non-numeric " + key + " (" + x.type_name() +
-                                                "), expected a number in [-1e+09, 1e+09]");
+                                                "), expected a number that fits a float");
             return Number(x, at + "/" + key, who + " " + key, -kParamLimit, kParamLimit, v);
         };
         if (!value("MIN", 0.0f, &d.minValue) || !value("MAX", 1.0f, &d.maxValue)) return false;
         if (!value("DEFAULT", d.minValue, &d.defaultValue)) return false;
         if (d.minValue > d.maxValue) return Fail(at + "/MIN", who + " has MIN > MAX, expected MIN <= MAX");
+        if (double(d.maxValue) - double(d.minValue) > kParamLimit)
+            return Fail(at + "/MIN", who + " has a range MAX - MIN that overflows a float, expected a narrower range");
         if (d.defaultValue < d.minValue || d.defaultValue > d.maxValue)
             return Fail(at + "/DEFAULT", who + " has DEFAULT outside [MIN, MAX], expected a default inside its range");
         d.label = d.name;
