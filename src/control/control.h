@@ -101,6 +101,7 @@ struct MappingEntry {
     std::string oscAddress;      // kind == Osc
     bool hiRes = false;          // CC: 14-bit pair, MSB on `number`, LSB on number+32; NRPN: 14-bit value
     std::string target;          // parameter name (continuous, trigger, toggle)
+    int targetIndex = 0;         // target = N (1-based): the scene's Nth input, whatever its name
     bool hasRange = false;       // false: the parameter's declared range
     float outMin = 0.0f, outMax = 1.0f;
     Curve curve = Curve::Linear;
@@ -120,6 +121,7 @@ struct Mapping {
     std::string path;            // file it came from ("" when built in code)
     std::string name;            // [profile] name
     std::string device;          // [profile] device: port-name substring it is meant for
+    std::vector<std::string> presets;   // [profile] presets: what preset pads 0, 1, 2... pick
     std::vector<MappingEntry> entries;
 };
 
@@ -131,7 +133,8 @@ struct LoadResult {
 // Parses a mapping file. On failure *out is left untouched (keep the last good mapping).
 LoadResult LoadMapping(const std::string& path, Mapping* out);
 LoadResult ParseMapping(const std::string& text, const std::string& path, Mapping* out);
-// Every target must be a declared parameter; an unknown one lists the valid names.
+// Every named target must be a declared parameter; an unknown one lists the valid names.
+// Positional targets (target = N) always fit: past the scene's last input they do nothing.
 // Returns false with one line per problem in *error.
 bool ValidateMapping(const Mapping& m, const std::vector<ParamDecl>& decls, std::string* error);
 
@@ -167,6 +170,8 @@ struct MappingActions {
     void Clear() { *this = MappingActions{}; }
 };
 
+// The parameter an entry drives in `params`: by name, or the Nth input; -1 when there is none.
+int TargetIndex(const MappingEntry& en, const ParamState& params);
 // Pure: applies one event. Built-in OSC addresses (/sdfvj/param/<name> f 0..1,
 // /sdfvj/raw/<name> f, /sdfvj/preset s|i, /sdfvj/effect/<name> i) work without any mapping.
 // `actions` may be null.

@@ -2,12 +2,19 @@
 // memory it needs between events (14-bit MSBs, NRPN selection, takeover, toggles) lives in
 // MappingState, so tests drive it without any device and replays give the same values.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
 #include "control/control.h"
 
 namespace sdfvj {
+
+int TargetIndex(const MappingEntry& en, const ParamState& params) {
+    if (en.targetIndex > 0) return en.targetIndex <= (int)params.decls.size() ? en.targetIndex - 1 : -1;
+    return en.target.empty() ? -1 : FindParam(params, en.target);
+}
+
 namespace {
 
 constexpr float kTakeoverTolerance = 1.5f / 127.0f;  // "close enough" for pickup, in 0..1
@@ -108,9 +115,10 @@ void ApplyPad(const Mapping& m, size_t ei, MappingState& ms, ParamState& p, bool
               int sourceNumber, MappingActions* a) {
     const MappingEntry& en = m.entries[ei];
     EntryState& es = ms.entries[ei];
-    int idx = en.target.empty() ? -1 : FindParam(p, en.target);
+    int idx = TargetIndex(en, p);
     auto needTarget = [&]() {
         if (idx >= 0) return true;
+        if (en.targetIndex > 0) return false;   // past the scene's last input: nothing to drive
         Reject(ms, a, "mapping entry at line " + std::to_string(en.line) + ": unknown parameter '" +
                           en.target + "', expected one of: " + ParamNameList(p.decls));
         return false;
@@ -137,8 +145,24 @@ void ApplyPad(const Mapping& m, size_t ei, MappingState& ms, ParamState& p, bool
             }
             return;
         case PadAction::Preset:
-            if (pressed && a)
-                a->presetSelect.push_back(en.preset.empty() ? std::to_string(sourceNumber) : en.preset);
+            if (pressed && a) {
+                std::string pick = en.preset.empty() ? std::to_string(sourceNumber) : en.preset;
+                // With a [profile] presets list, a number picks from that list (a pad keeps its
+                // preset when a file is added to presets/); without one, `sdfvj list`'s order.
+                const bool number = !pick.empty() && pick.size() < 4 &&
+                                    std::all_of(pick.begin(), pick.end(), [](char c) { return c >= '0' && c <= '9'; });
+                if (number && !m.presets.empty()) {
+                    size_t i = 0;
+                    std::from_chars(pick.data(), pick.data() + pick.size(), i);   // 1-3 digits: fits
+                    if (i >= m.presets.size()) {
+                        Reject(ms, a, "mapping entry at line " + std::to_string(en.line) + ": preset slot " + pick +
+                                          " is past the profile's " + std::to_string(m.presets.size()) + " presets");
+                        return;
+                    }
+                    pick = m.presets[i];
+                }
+                a->presetSelect.push_back(pick);
+            }
             return;
         case PadAction::Effect:
             if (pressed) {
@@ -174,7 +198,11 @@ void Dispatch(const Mapping& m, size_t ei, MappingState& ms, ParamState& p, cons
         ApplyPad(m, ei, ms, p, r.pressed, r.number, a);
         return;
     }
-    int idx = FindParam(p, en.target);
+    int idx = TargetIndex(en, p);
+    if (idx < 0 && en.targetIndex > 0) {   // knob 6 on a scene with five inputs: nothing to drive
+        ++ms.unmatched;
+        return;
+    }
     if (idx < 0) {
         Reject(ms, a, "mapping entry at line " + std::to_string(en.line) + ": unknown parameter '" +
                           en.target + "', expected one of: " + ParamNameList(p.decls));

@@ -126,7 +126,16 @@ MappingEntry ParseEntry(const std::string& path, const toml::table& t, bool pad,
         if (!h && hiResSet) Fail(path, *n, "cc14 is always 14-bit, expected hires = true or no hires key");
         en.hiRes = h;
     }
-    if (auto n = t.get("target")) en.target = GetString(path, *n, "target");
+    if (auto n = t.get("target")) {
+        // A name ("twist"), or a position: target = 3 is the scene's third input, so one
+        // controller profile drives every scene.
+        if (n->is_integer()) {
+            en.targetIndex = GetInt(path, *n, "target", 1, 64);
+            en.target = "#" + std::to_string(en.targetIndex);
+        } else {
+            en.target = GetString(path, *n, "target");
+        }
+    }
     if (auto n = t.get("range")) {
         const toml::array* arr = n->as_array();
         if (!arr || arr->size() != 2) Fail(path, *n, "bad value for 'range', expected [min, max]");
@@ -208,7 +217,18 @@ LoadResult ParseMapping(const std::string& text, const std::string& path, Mappin
                 if (key == "name") m.name = GetString(path, v, "name");
                 else if (key == "device") m.device = GetString(path, v, "device");
                 else if (key == "channel") channel = GetChannel(path, v);
-                else Fail(path, v, "unknown key '" + key + "' in [profile], expected name, device or channel");
+                else if (key == "presets") {
+                    const toml::array* arr = v.as_array();
+                    if (!arr || arr->size() > 128)
+                        Fail(path, v, "bad value for 'presets', expected a list of up to 128 preset names");
+                    for (auto&& e : *arr) {
+                        std::string name = GetString(path, e, "presets");
+                        if (name.empty() || name.find('/') != std::string::npos || name.size() > 128)
+                            Fail(path, e, "bad preset name in 'presets', expected a name from presets/ such as \"demo\"");
+                        m.presets.push_back(name);
+                    }
+                }
+                else Fail(path, v, "unknown key '" + key + "' in [profile], expected name, device, channel or presets");
             }
         }
         // Keep file order across [[map]] and [[pad]] so "later entries win" reads naturally.
@@ -248,7 +268,7 @@ LoadResult LoadMapping(const std::string& path, Mapping* out) {
 bool ValidateMapping(const Mapping& m, const std::vector<ParamDecl>& decls, std::string* error) {
     std::string all;
     for (const MappingEntry& en : m.entries) {
-        if (en.target.empty()) continue;
+        if (en.target.empty() || en.targetIndex > 0) continue;
         bool found = false;
         for (const ParamDecl& d : decls) found = found || d.name == en.target;
         if (!found)

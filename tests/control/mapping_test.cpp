@@ -410,3 +410,49 @@ TEST_CASE("midi mapping: shipped profiles load and map the midi scene to the fir
         CHECK(ms.rejected == 0);
     }
 }
+
+TEST_CASE("midi mapping: positional targets drive any scene's Nth input") {
+    Mapping m;
+    REQUIRE(ParseMapping("[[map]]\ncc = 1\ntarget = 1\n[[map]]\ncc = 2\ntarget = 3\n[[map]]\ncc = 3\ntarget = 9\n",
+                         "pos.toml", &m).ok);
+    REQUIRE(m.entries.size() == 3);
+    CHECK(m.entries[0].targetIndex == 1);
+    auto decl = [](const std::string& n, float lo, float hi) { ParamDecl d; d.name = n; d.minValue = lo; d.maxValue = hi; return d; };
+    for (const auto& decls : {std::vector<ParamDecl>{decl("twist", -3, 3), decl("scale", 0, 2), decl("glow", 0, 1)},
+                              std::vector<ParamDecl>{decl("power", 2, 12), decl("x", 0, 1), decl("bailout", 1, 4)}}) {
+        std::string problems;
+        CHECK(ValidateMapping(m, decls, &problems));
+        ParamState p = MakeParamState(decls);
+        MappingState ms;
+        MappingActions acts;
+        ApplyEvent(m, ms, Midi(0xB0, 1, 127), p, &acts);
+        ApplyEvent(m, ms, Midi(0xB0, 2, 0), p, &acts);
+        ApplyEvent(m, ms, Midi(0xB0, 3, 64), p, &acts);   // a 9th input the scene lacks: nothing
+        CHECK(p.target[0] == Approx(decls[0].maxValue));
+        CHECK(p.target[2] == Approx(decls[2].minValue));
+        CHECK(acts.messages.empty());
+        CHECK(ms.rejected == 0);
+    }
+    CHECK_FALSE(ParseMapping("[[map]]\ncc = 1\ntarget = 0\n", "pos.toml", &m).ok);
+}
+
+TEST_CASE("midi mapping: preset pads pick from the profile's list, not from the folder's order") {
+    Mapping m;
+    REQUIRE(ParseMapping("[profile]\npresets = [\"walker\", \"demo\"]\n[[pad]]\nnote = 36\naction = \"preset\"\npreset = \"1\"\n"
+                         "[[pad]]\nnote = 37\naction = \"preset\"\npreset = \"5\"\n[[pad]]\nnote = 38\naction = \"preset\"\npreset = \"bulb\"\n",
+                         "list.toml", &m).ok);
+    CHECK(m.presets == std::vector<std::string>{"walker", "demo"});
+    ParamState p = MakeParamState({});
+    MappingState ms;
+    MappingActions acts;
+    ApplyEvent(m, ms, Midi(0x90, 36, 100), p, &acts);
+    ApplyEvent(m, ms, Midi(0x90, 37, 100), p, &acts);   // slot 5 of 2: rejected with a line
+    ApplyEvent(m, ms, Midi(0x90, 38, 100), p, &acts);
+    CHECK(acts.presetSelect == std::vector<std::string>{"demo", "bulb"});
+    REQUIRE(acts.messages.size() == 1);
+    CHECK(acts.messages[0].find("preset slot 5 is past the profile's 2 presets") != std::string::npos);
+    Mapping bad;
+    LoadResult r = ParseMapping("[profile]\npresets = [\"a/b\"]\n", "bad.toml", &bad);
+    CHECK_FALSE(r.ok);
+    CHECK(r.error.rfind("bad.toml:2:", 0) == 0);
+}
