@@ -396,8 +396,8 @@ TEST_CASE("midi mapping: shipped profiles load and map the midi scene to the fir
         for (int k = 0; k < 4; ++k) {
             bool found = false;
             for (const MappingEntry& en : m.entries)
-                if (en.kind == SourceKind::Cc && en.number == pr.knobs[k] && en.target == names[k] &&
-                    en.action == PadAction::None)
+                if (en.kind == SourceKind::Cc && en.number == pr.knobs[k] &&
+                    (en.target == names[k] || en.targetIndex == k + 1) && en.action == PadAction::None)
                     found = true;
             CHECK(found);
         }
