@@ -25,6 +25,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/live_overlay.h"
 #include "app/live_session.h"
 #include "app/live_support.h"
 #include "render/compile_worker.h"
@@ -131,6 +132,12 @@ private:
     void LogParams(double now);
     void Draw(double now);
     void DrawOverlay();
+    // The overlay's helpers (live_overlay.h): what it shows, and acting on what the performer did.
+    OverlayModel OverlayModelNow();
+    void ApplyOverlayActions(const OverlayActions& a, double now);
+    void SavePreset(const std::string& name);
+    void FinishLearn();
+    void ToggleFullscreen();
     void Present();
     void SaveScreenshot(unsigned buffer);
     void Watch(const std::string& folder);
@@ -166,6 +173,12 @@ private:
     std::unique_ptr<FILE, int (*)(FILE*)> paramLog_{nullptr, &std::fclose};
     std::string shownError_;
     bool overlay_ = true, tabWasDown_ = false, shotWritten_ = false;
+    // The overlay's memory (monitor, frame graph, learn) and the keys it reads.
+    OverlayUi ui_;
+    double lastOverlay_ = -1.0, presetsListed_ = -1e9;
+    std::vector<std::string> presets_;          // ListPresets(), refreshed twice a second
+    bool f11WasDown_ = false, numberWasDown_[9] = {};
+    int windowed_[4] = {0, 0, 0, 0};            // x, y, w, h before F11 went fullscreen
     double last_ = 0.0, fps_ = 0.0;
     int frame_ = 0, fbw_ = 0, fbh_ = 0;
     uint64_t internalErrors_ = 0;
@@ -236,10 +249,47 @@ bool LiveSession::Frame() {
     return true;
 }
 
+// Keys the performer uses without the mouse. Ignored while the overlay edits text (a preset
+// name), so typing "set2" does not switch presets.
 void LiveSession::ReadKeys() {
-    const bool tabDown = glfwGetKey(window_, GLFW_KEY_TAB) == GLFW_PRESS;
-    if (tabDown && !tabWasDown_) overlay_ = !overlay_;
-    tabWasDown_ = tabDown;
+    const bool typing = ImGui::GetCurrentContext() && ImGui::GetIO().WantTextInput;
+    auto pressed = [&](int key, bool& wasDown) {
+        const bool down = glfwGetKey(window_, key) == GLFW_PRESS;
+        const bool edge = down && !wasDown && !typing;
+        wasDown = down;
+        return edge;
+    };
+    if (pressed(GLFW_KEY_TAB, tabWasDown_)) overlay_ = !overlay_;
+    if (pressed(GLFW_KEY_F11, f11WasDown_)) ToggleFullscreen();
+    for (int n = 1; n <= 9; ++n) {
+        if (!pressed(GLFW_KEY_0 + n, numberWasDown_[n - 1])) continue;
+        const std::string name = PresetForNumberKey(n, ListPresets());
+        if (name.empty()) state_.report.Say("sdfvj live: key " + std::to_string(n) + ": no preset " + std::to_string(n) +
+                                            " in presets/ (see `sdfvj list`)");
+        else ApplyOverlayActions(OverlayActions{{}, name, {}, {}}, Now());
+    }
+}
+
+// F11: the primary monitor at its own mode, and back to the window as it was.
+void LiveSession::ToggleFullscreen() {
+    if (glfwGetWindowMonitor(window_)) {
+        int w = windowed_[2], h = windowed_[3];
+        if (w <= 0 || h <= 0) {   // started with --fullscreen: the --size it was asked for
+            std::string err;
+            if (!ParseSize(o_.size, &w, &h, &err)) w = 1280, h = 720;
+        }
+        glfwSetWindowMonitor(window_, nullptr, windowed_[0], windowed_[1], w, h, GLFW_DONT_CARE);
+        return;
+    }
+    GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+    const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+    if (!mode) {
+        state_.report.Say("sdfvj live: F11: no monitor to go fullscreen on");
+        return;
+    }
+    glfwGetWindowPos(window_, &windowed_[0], &windowed_[1]);
+    glfwGetWindowSize(window_, &windowed_[2], &windowed_[3]);
+    glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
 }
 
 // Controllers, OSC and the rehearsal take all arrive through one queue; the recorder keeps
@@ -304,35 +354,104 @@ void LiveSession::Draw(double now) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-// The overlay: what the performer needs, nothing the audience should see (Tab hides it).
+// The overlay: what the performer needs, nothing the audience should see (Tab hides it). It is
+// drawn from a copy of the show (OverlayModelNow) and returns what the performer did, which is
+// applied here through the same paths as pads and OSC.
 void LiveSession::DrawOverlay() {
+    const double now = Now();
+    if (lastOverlay_ >= 0) ui_.frames.Add(float((now - lastOverlay_) * 1000.0));
+    lastOverlay_ = now;
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (overlay_) {
-        const Show& show = state_.show;
-        ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowBgAlpha(0.6f);
-        ImGui::Begin("sdfvj", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-        ImGui::Text("%s  [%s, %s]  %.1f fps", live_.Scene().name.c_str(), DescribeEffects(live_.Key().effects).c_str(),
-                    RenderPathName(show.path), fps_);
-        ParamState& params = state_.params;
-        for (size_t i = 0; i < params.decls.size(); ++i) {
-            const ParamDecl& d = params.decls[i];
-            float v = params.target[i];
-            if (ImGui::SliderFloat(d.label.c_str(), &v, d.minValue, d.maxValue)) SetParamTarget(params, (int)i, v);
-        }
-        for (const std::string& line : input_.StatusLines()) ImGui::TextDisabled("%s", line.c_str());
-        if (recorder_.IsOpen()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC  %zu events", recorder_.Recorded());
-        if (live_.Pending()) ImGui::TextDisabled("compiling %s ...", DescribeEffects(state_.wanted.effects).c_str());
-        if (!shownError_.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", shownError_.c_str());
-        if (!live_.Current()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "no program yet: save a fix and it starts");
-        ImGui::TextDisabled("Tab: hide overlay   Esc: quit");
-        ImGui::End();
-    }
+    OverlayActions actions;
+    if (overlay_) actions = sdfvj::DrawOverlay(OverlayModelNow(), ui_);
     ImGui::Render();
     glViewport(0, 0, fbw_, fbh_);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    ApplyOverlayActions(actions, now);
+    FinishLearn();
+}
+
+OverlayModel LiveSession::OverlayModelNow() {
+    OverlayModel m;
+    m.scene = live_.Scene().name;
+    m.effectsText = DescribeEffects(live_.Key().effects);
+    m.pathName = RenderPathName(state_.show.path);
+    m.fps = (float)fps_;
+    m.width = fbw_;
+    m.height = fbh_;
+    const ParamState& params = state_.params;
+    const Automation& scripts = state_.automation.automation;
+    for (size_t i = 0; i < params.decls.size(); ++i) {
+        const ParamDecl& d = params.decls[i];
+        m.params.push_back({d.name, d.label.empty() ? d.name : d.label, d.minValue, d.maxValue, params.value[i],
+                            params.target[i], ControlsFor(state_.mapping, d.name),
+                            scripts.Scripted(d.name) ? scripts.ExpressionText(d.name) : std::string()});
+    }
+    if (Now() - presetsListed_ > 0.5) {   // a directory listing, not every frame
+        presets_ = ListPresets();
+        presetsListed_ = Now();
+    }
+    m.presets = presets_;
+    m.currentPreset = state_.currentPreset;
+    m.effects = state_.wanted.effects;
+    m.statusLines = input_.StatusLines();
+    m.reportLines.assign(state_.report.recent.begin(), state_.report.recent.end());
+    m.shaderError = shownError_;
+    if (live_.Pending()) m.compiling = DescribeEffects(state_.wanted.effects);
+    m.hasProgram = live_.Current() != nullptr;
+    m.recording = recorder_.IsOpen();
+    m.recorded = m.recording ? recorder_.Recorded() : 0;
+    m.mappingFile = state_.mappingFile;
+    return m;
+}
+
+// Preset loads and effect toggles go through ApplyActions, as a pad or /sdfvj/preset and
+// /sdfvj/effect/<name> would; this frame's own actions were applied already and are put back.
+void LiveSession::ApplyOverlayActions(const OverlayActions& a, double now) {
+    for (const auto& [index, value] : a.setTargets)
+        if (index >= 0 && (size_t)index < state_.params.decls.size()) SetParamTarget(state_.params, index, value);
+    if (!a.loadPreset.empty() || !a.effectToggles.empty()) {
+        MappingActions frameActions = std::move(state_.actions);
+        state_.actions = MappingActions{};
+        if (!a.loadPreset.empty()) state_.actions.presetSelect.push_back(a.loadPreset);
+        state_.actions.effectToggles = a.effectToggles;
+        ApplyActions(state_, now);
+        state_.actions = std::move(frameActions);
+    }
+    if (!a.savePreset.empty()) SavePreset(a.savePreset);
+}
+
+// Save and save-as: the values the performer set (targets) and the scripts of the preset on
+// stage, as presets/NAME.json. A save over the preset on stage reloads it (the watcher).
+void LiveSession::SavePreset(const std::string& name) {
+    PresetSnapshot snap;
+    const std::vector<std::string> scenes = ListScenes();
+    const std::string& sceneName = state_.show.scene.name;
+    snap.scene = std::find(scenes.begin(), scenes.end(), sceneName) != scenes.end() ? sceneName : state_.show.scene.path;
+    const Automation& scripts = state_.automation.automation;
+    for (size_t i = 0; i < state_.params.decls.size(); ++i) {
+        const std::string& param = state_.params.decls[i].name;
+        snap.values.emplace_back(param, state_.params.target[i]);
+        if (scripts.Scripted(param)) snap.expressions[param] = scripts.ExpressionText(param);
+    }
+    snap.effects = state_.wanted.effects;
+    snap.basePreset = state_.presetFile;
+    std::string error;
+    const std::string path = SavePresetAs((fs::path(DataRoot()) / "presets").string(), name, snap, &error);
+    state_.report.Say(path.empty() ? "sdfvj live: " + error : "saved " + path);
+    presetsListed_ = -1e9;
+}
+
+// Learn found a control: the mapping file gets its [[map]] entry and the watcher reloads it.
+void LiveSession::FinishLearn() {
+    if (!ui_.learn.Armed() || ui_.learn.source.empty()) return;
+    const std::string error = AppendLearnedMapping(state_.mappingFile, ui_.learn.param, ui_.learn.source, state_.params.decls);
+    const std::string control = ui_.learn.source.substr(0, ui_.learn.source.find('\n'));
+    state_.report.Say(error.empty() ? "learned: " + control + " -> " + ui_.learn.param + ", written to " + state_.mappingFile
+                                    : error);
+    ArmLearn(ui_.learn, "");
 }
 
 void LiveSession::SaveScreenshot(unsigned buffer) {

@@ -1,0 +1,157 @@
+// live_overlay: the performer's overlay in `sdfvj live`. Plain data in, what the performer did out.
+//
+// Usage, per frame (render thread, between ImGui::NewFrame and ImGui::Render):
+//   ObserveEvents(ui, drainedEvents);               // the MIDI/OSC monitor and an armed learn
+//   ui.frames.Add(frameMs);
+//   OverlayModel m = ...;                            // what the show is doing, copied out of it
+//   OverlayActions a = DrawOverlay(m, ui);           // one ImGui window
+//   ... the session applies `a`: parameter targets, preset load/save, effect toggles, learn ...
+//
+// Nothing here reaches into the session: the overlay never writes the show's state itself, so
+// what a click does is the same code path as a pad or an OSC message, applied by the session.
+// The file helpers (SavePresetAs, AppendLearnedMapping) write atomically (temp file + rename) so
+// the watcher of a running show sees the old file or the new one, never half of one.
+#pragma once
+#include <cstddef>
+#include <deque>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "control/control.h"
+#include "scene/scene.h"
+
+namespace sdfvj {
+
+// ---------------------------------------------------------------------------------------------
+// Monitor, frame times, learn: the overlay's own memory between frames
+// ---------------------------------------------------------------------------------------------
+
+// The last few control events the frames drained, newest last.
+struct EventMonitor {
+    std::deque<ControlEvent> recent;
+    size_t capacity = 12;
+    void Add(const std::vector<ControlEvent>& events);
+};
+// One line for the monitor: "  1.234  MIDI  B0 02 7F  CC 2 ch1" or "  1.234  OSC   /x 0.5".
+std::string DescribeEvent(const ControlEvent& e);
+
+// The last frame times in ms (CPU side: wall time from one frame to the next), oldest first.
+struct FrameTimeGraph {
+    std::vector<float> ms;
+    size_t capacity = 120;
+    void Add(float frameMs);
+    float Average() const;
+    float Max() const;
+};
+
+// MIDI learn inside the show: armed on one parameter, it takes the next control that moves.
+struct LearnArm {
+    std::string param;                      // "" = not armed
+    std::string source;                     // the TOML source lines of the control, once found
+    std::map<int, int> ccFirst;             // first value seen per channel*128+cc ("moves" = a second value)
+    std::map<int, int> nrpnSelected;        // NRPN number selected per channel (CC 99/98)
+    bool Armed() const { return !param.empty(); }
+};
+// Arms (or re-arms) learn on `param`; an empty name disarms.
+void ArmLearn(LearnArm& learn, const std::string& param);
+// Feeds one event; returns the TOML source lines ("cc = 2\nchannel = 1") once a control moved,
+// else "". The same rules as `sdfvj learn`: a CC moves when it sends a second, different value;
+// a note-on becomes a toggle pad; NRPN waits for its number; /sdfvj/ addresses are not learned.
+std::string LearnFromEvent(LearnArm& learn, const ControlEvent& e);
+
+// Widget state ImGui needs across frames, and the monitor, graph and learn above.
+struct OverlayUi {
+    EventMonitor monitor;
+    FrameTimeGraph frames;
+    LearnArm learn;
+    char saveAsName[64] = {};
+};
+// The frame's drained events: into the monitor, and into learn when it is armed.
+void ObserveEvents(OverlayUi& ui, const std::vector<ControlEvent>& events);
+
+// ---------------------------------------------------------------------------------------------
+// What the overlay shows and what it returns
+// ---------------------------------------------------------------------------------------------
+
+// "CC 2 ch1", "CC 7/39 ch any" (14-bit), "note 36 ch10", "OSC /x", "pitch bend ch1", "program any".
+std::string ControlLabel(const MappingEntry& e);
+// Every control mapped to `param`, joined with ", "; "" when none.
+std::string ControlsFor(const Mapping& m, const std::string& param);
+
+struct OverlayParam {
+    std::string name, label;
+    float minValue = 0.0f, maxValue = 1.0f;
+    float value = 0.0f;             // what the frame renders
+    float target = 0.0f;            // where it glides (what the slider edits)
+    std::string controls;           // ControlsFor(mapping, name)
+    std::string expression;         // "" unless scripted: then the slider is read-only and shows `value`
+};
+
+struct OverlayModel {
+    std::string scene, effectsText, pathName;   // title line
+    float fps = 0.0f;
+    int width = 0, height = 0;                  // framebuffer
+    std::vector<OverlayParam> params;
+    std::vector<std::string> presets;           // ListPresets(): file names, index = number key - 1
+    std::string currentPreset;                  // file name of the preset on stage, "" = none
+    EffectSet effects;                          // the effects asked for (checkbox state)
+    std::vector<std::string> statusLines;       // devices
+    std::vector<std::string> reportLines;       // the session's recent lines, newest last
+    std::string shaderError;                    // "shaders/scenes/midi.glsl:42: ..." or ""
+    std::string compiling;                      // effects of a variant still compiling, "" = none
+    bool hasProgram = true;
+    bool recording = false;
+    size_t recorded = 0;
+    std::string mappingFile;                    // where learn writes, "" = learn unavailable
+};
+
+struct OverlayActions {
+    std::vector<std::pair<int, float>> setTargets;            // parameter index, new target
+    std::string loadPreset;                                   // a file name from presets
+    std::string savePreset;                                   // a name to save under (save or save-as)
+    std::vector<std::pair<std::string, bool>> effectToggles;  // as /sdfvj/effect/<name> i
+    bool Empty() const { return setTargets.empty() && loadPreset.empty() && savePreset.empty() && effectToggles.empty(); }
+};
+
+// Draws the overlay window; returns what the performer did this frame. Learn buttons arm and
+// cancel ui.learn directly (it is the overlay's own state).
+OverlayActions DrawOverlay(const OverlayModel& m, OverlayUi& ui);
+
+// "1".."9" pressed this frame -> the preset file name it picks (index in `presets`), or "".
+std::string PresetForNumberKey(int number, const std::vector<std::string>& presets);
+
+// ---------------------------------------------------------------------------------------------
+// Files
+// ---------------------------------------------------------------------------------------------
+
+// A name that can be presets/NAME.json: letters, digits, '_', '-', '.', at most 64 chars, not
+// starting with '.'. A trailing ".json" is allowed and dropped. False with one line otherwise.
+bool PresetFileName(const std::string& name, std::string* fileName, std::string* error);
+
+// What a saved preset holds: the values the show renders now, the expressions of a scripted
+// preset, and the effects asked for. The keys of `basePreset` (the preset on stage: mapping,
+// take, bpm, morph, envelopes, cues, loop_bars) are kept.
+struct PresetSnapshot {
+    std::string scene;                                   // scene name
+    std::vector<std::pair<std::string, float>> values;   // by parameter name
+    std::map<std::string, std::string> expressions;      // scripted parameters: name -> text
+    EffectSet effects;
+    std::string basePreset;                              // path of the preset on stage, "" = none
+};
+// Writes folder/NAME.json atomically and reads it back with LoadPreset (a snapshot that does not
+// read back is not written). Returns the path written, or "" with one line in *error.
+std::string SavePresetAs(const std::string& folder, const std::string& name, const PresetSnapshot& s,
+                         std::string* error);
+
+// Appends a [[map]] entry for `source` -> `param` to the mapping file, all or nothing: the new
+// text must parse (ParseMapping), have one more entry and validate against `decls`
+// (ValidateMapping); then it replaces the file atomically. Returns "" or one error line.
+std::string AppendLearnedMapping(const std::string& mappingPath, const std::string& param, const std::string& source,
+                                 const std::vector<ParamDecl>& decls);
+
+// Writes `text` to a temporary file next to `path` and renames it over `path`. False with a line.
+bool WriteFileAtomically(const std::string& path, const std::string& text, std::string* error);
+
+}  // namespace sdfvj
