@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -200,11 +201,18 @@ void DrawParams(const OverlayModel& m, OverlayUi& ui, OverlayActions& a) {
 
 void DrawPresets(const OverlayModel& m, OverlayUi& ui, OverlayActions& a) {
     if (!ImGui::CollapsingHeader("presets", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    for (size_t i = 0; i < m.presets.size(); ++i) {
-        const std::string& name = m.presets[i];
-        char label[96];
-        std::snprintf(label, sizeof label, "%s%.80s", i < 9 ? (std::to_string(i + 1) + "  ").c_str() : "   ", name.c_str());
-        if (ImGui::Selectable(label, name == m.currentPreset)) a.loadPreset = name;
+    // A short scrolling list: the overlay must leave the scene visible on a small screen.
+    const float rows = (float)std::clamp<size_t>(m.presets.size(), 1, 4);
+    if (ImGui::BeginListBox("##presets", ImVec2(260, rows * ImGui::GetTextLineHeightWithSpacing() + 4))) {
+        for (size_t i = 0; i < m.presets.size(); ++i) {
+            const std::string& name = m.presets[i];
+            char label[96];
+            std::snprintf(label, sizeof label, "%s%.80s", i < 9 ? (std::to_string(i + 1) + "  ").c_str() : "   ", name.c_str());
+            const bool onStage = name == m.currentPreset;
+            if (ImGui::Selectable(label, onStage)) a.loadPreset = name;
+            if (onStage && ImGui::IsWindowAppearing()) ImGui::SetScrollHereY();
+        }
+        ImGui::EndListBox();
     }
     if (!m.currentPreset.empty()) {
         if (ImGui::Button("save")) a.savePreset = fs::path(m.currentPreset).stem().string();
@@ -250,6 +258,8 @@ OverlayActions DrawOverlay(const OverlayModel& m, OverlayUi& ui) {
     OverlayActions a;
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.6f);
+    // Never taller than the screen: past that it scrolls.
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, std::max(100.0f, ImGui::GetIO().DisplaySize.y - 20)));
     ImGui::Begin("sdfvj", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::Text("%s  [%s, %s]  %.1f fps", m.scene.c_str(), m.effectsText.c_str(), m.pathName.c_str(), m.fps);
     DrawParams(m, ui, a);
