@@ -269,3 +269,102 @@ TEST_CASE("live_overlay learn: the next moving control is taken from the drained
     CHECK(bad.find("no_such_param") != std::string::npos);
     CHECK(Slurp(mapping) == before);
 }
+
+// ---------------------------------------------------------------------------------------------
+// DrawOverlay itself, in an ImGui context with no window or GL: the mouse is set by hand.
+// ---------------------------------------------------------------------------------------------
+
+#include <imgui.h>
+#include <imgui_internal.h>
+
+namespace {
+
+struct HeadlessImGui {
+    HeadlessImGui() {
+        ImGui::CreateContext();
+        ImGuiIO& io = ImGui::GetIO();
+        io.IniFilename = nullptr;
+        io.DisplaySize = ImVec2(640, 480);
+        io.DeltaTime = 1.0f / 60.0f;
+        unsigned char* pixels = nullptr;
+        int w = 0, h = 0;
+        io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);   // a built atlas is all NewFrame needs
+    }
+    ~HeadlessImGui() { ImGui::DestroyContext(); }
+    // One frame with the mouse at `pos`, button down or up; returns the overlay's actions.
+    OverlayActions Frame(const OverlayModel& m, OverlayUi& ui, ImVec2 pos, bool down, ImGuiID* hovered = nullptr) {
+        ImGuiIO& io = ImGui::GetIO();
+        io.MousePos = pos;
+        io.MouseDown[0] = down;
+        ImGui::NewFrame();
+        OverlayActions a = DrawOverlay(m, ui);
+        if (hovered) *hovered = GImGui->HoveredId;
+        ImGui::Render();
+        return a;
+    }
+    // Where the item with `id` is: scans the mouse over the screen until ImGui says it is hovered.
+    bool Find(const OverlayModel& m, OverlayUi& ui, ImGuiID id, ImVec2* at) {
+        for (float y = 12; y < 400; y += 4)
+            for (float x = 12; x < 620; x += 8) {
+                ImGuiID h = 0;
+                Frame(m, ui, ImVec2(x, y), false, &h);
+                if (h == id) {
+                    *at = ImVec2(x, y);
+                    return true;
+                }
+            }
+        return false;
+    }
+};
+
+OverlayModel TwoParamModel() {
+    OverlayModel m;
+    m.scene = "midi";
+    m.pathName = "fragment";
+    m.params.push_back({"scale", "Scale", 0.5f, 2.0f, 1.0f, 1.0f, "CC 1 ch1", ""});
+    m.params.push_back({"twist", "Twist", -3.0f, 3.0f, 0.7f, 0.7f, "", "0.4 + 0.3 * lfo_sine(beat / 4)"});
+    m.presets = {"a.json", "b.json"};
+    m.mappingFile = "m.toml";
+    return m;
+}
+
+// The id ImGui gives a widget labelled `label` under PushID(index) in the overlay window.
+ImGuiID ParamWidgetId(int index, const char* label) {
+    ImGuiWindow* w = ImGui::FindWindowByName("sdfvj");
+    REQUIRE(w != nullptr);
+    const ImGuiID seed = ImHashData(&index, sizeof index, w->ID);
+    return ImHashStr(label, 0, seed);
+}
+
+}  // namespace
+
+TEST_CASE("live_overlay draw: a click on a checkbox returns the effect toggle, a scripted slider ignores clicks") {
+    HeadlessImGui imgui;
+    OverlayModel m = TwoParamModel();
+    OverlayUi ui;
+    REQUIRE(imgui.Frame(m, ui, ImVec2(-1, -1), false).Empty());   // nothing touched, nothing done
+
+    ImVec2 ao;
+    REQUIRE(imgui.Find(m, ui, ImGui::FindWindowByName("sdfvj")->GetID("ao"), &ao));
+    CHECK(imgui.Frame(m, ui, ao, true).Empty());
+    OverlayActions click = imgui.Frame(m, ui, ao, false);
+    REQUIRE(click.effectToggles.size() == 1);
+    CHECK(click.effectToggles[0] == std::make_pair(std::string("ao"), true));
+
+    // The free slider: a click sets a target; the scripted one: nothing.
+    ImVec2 scale, twist;
+    REQUIRE(imgui.Find(m, ui, ParamWidgetId(0, "Scale"), &scale));
+    OverlayActions set = imgui.Frame(m, ui, scale, true);
+    imgui.Frame(m, ui, scale, false);
+    REQUIRE(set.setTargets.size() == 1);
+    CHECK(set.setTargets[0].first == 0);
+    REQUIRE(imgui.Find(m, ui, ParamWidgetId(1, "Twist"), &twist));
+    CHECK(imgui.Frame(m, ui, twist, true).setTargets.empty());
+    CHECK(imgui.Frame(m, ui, ImVec2(twist.x + 40, twist.y), true).setTargets.empty());   // dragged
+    CHECK(imgui.Frame(m, ui, twist, false).Empty());
+    ImVec2 learn;
+    REQUIRE(imgui.Find(m, ui, ParamWidgetId(0, "learn"), &learn));
+    imgui.Frame(m, ui, learn, true);
+    imgui.Frame(m, ui, learn, false);
+    CHECK(ui.learn.param == "scale");
+}
