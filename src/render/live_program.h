@@ -31,6 +31,9 @@ public:
     void Wait();
 
     const Program* Current() const { return current_.get(); }
+    // The program on screen, shared: a crossfade keeps the old scene's program alive while it
+    // fades out, whatever the cache does meanwhile.
+    std::shared_ptr<const Program> CurrentShared() const { return current_; }
     const SceneInfo& Scene() const { return scene_; }
     const VariantKey& Key() const { return key_; }
     const std::string& Error() const { return error_; }   // empty when the last build succeeded

@@ -156,6 +156,22 @@ private:
     double lastGpuMs_ = 0.0;
 };
 
+// Mixes two rendered frames (FrameRenderer textures of one size) into a target framebuffer
+// (0 = the window): a scene change that morphs fades from the old scene's frame to the new one's.
+class Crossfade {
+public:
+    Crossfade() = default;
+    ~Crossfade();
+    Crossfade(const Crossfade&) = delete;
+    Crossfade& operator=(const Crossfade&) = delete;
+    bool Init(std::string* error);     // compiles its small program once; false with a reason
+    // t = 0 shows `from`, t = 1 shows `to`.
+    void Draw(unsigned fromTexture, unsigned toTexture, float t, unsigned targetFramebuffer, int width, int height);
+private:
+    unsigned program_ = 0, vao_ = 0;
+    int mixLocation_ = -1;
+};
+
 // Median of benchmark samples (0 for none).
 double MedianMs(std::vector<double> samples);
 
