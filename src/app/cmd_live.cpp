@@ -166,6 +166,20 @@ private:
     std::vector<std::string> watched_;   // canonical folders
     LiveProgram live_;
     FrameRenderer renderer_;
+    // A scene change with a morph time fades from the old scene's frame to the new one's; the old
+    // program stays alive (shared) and keeps rendering with its last values until the fade ends.
+    struct Fade {
+        std::shared_ptr<const Program> program;
+        SceneInfo scene;
+        std::vector<std::pair<std::string, float>> params;
+        double start = 0.0, seconds = 0.0;
+        Easing easing = Easing::Smooth;
+    } fade_;
+    std::shared_ptr<const Program> shown_;   // the program the last frame showed, and its scene
+    SceneInfo shownScene_;
+    FrameRenderer fadeRenderer_;
+    Crossfade crossfade_;
+    void StartFadeIfSceneChanged(double now);
     FrameInputs in_;
     TakeRecorder recorder_;
     Take rehearsal_;
@@ -298,6 +312,7 @@ std::vector<ControlEvent> LiveSession::PollInput(double now) {
     if (replay_)
         for (ControlEvent& e : replay_->Until(now)) queue_.Push(std::move(e));
     std::vector<ControlEvent> events = queue_.DrainUntil(now);
+    ObserveEvents(ui_, events);   // the overlay's monitor, and learn when it is armed
     if (recorder_.IsOpen())
         for (const ControlEvent& e : events) recorder_.Record(e);
     return events;
@@ -311,6 +326,21 @@ void LiveSession::Reload() {
     ApplyFileChanges(state_, changed, Now());
     if (!(state_.wanted == live_.Key())) live_.Request(state_.wanted);
     live_.Update(changed);
+    StartFadeIfSceneChanged(Now());
+}
+
+void LiveSession::StartFadeIfSceneChanged(double now) {
+    if (live_.CurrentShared() == shown_) return;
+    const MorphDesc& how = state_.show.preset.automation.morph;
+    std::string error;
+    if (shown_ && live_.Scene().path != shownScene_.path && how.seconds > 0 && how.easing != Easing::Cut &&
+        crossfade_.Init(&error)) {
+        fade_ = Fade{shown_, shownScene_, in_.params, now, how.seconds, how.easing};
+    } else if (!error.empty()) {
+        state_.report.Say("sdfvj live: " + error + " — scene changes cut instead of fading");
+    }
+    shown_ = live_.CurrentShared();
+    shownScene_ = live_.Scene();
 }
 
 // The program on screen decides the parameters (its header may have changed), and its error
@@ -348,9 +378,18 @@ void LiveSession::Draw(double now) {
     in_.beat = BeatPhase(state_, now);
     in_.bpm = (float)state_.automation.tempo.bpm;
     renderer_.Draw(*live_.Current(), live_.Scene(), in_);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBlitFramebuffer(0, 0, fbw_, fbh_, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    const double t = fade_.program ? (now - fade_.start) / fade_.seconds : 1.0;
+    if (t < 1.0 && fadeRenderer_.Resize(fbw_, fbh_, &error)) {
+        FrameInputs old = in_;
+        old.params = fade_.params;
+        fadeRenderer_.Draw(*fade_.program, fade_.scene, old);
+        crossfade_.Draw(fadeRenderer_.Texture(), renderer_.Texture(), Ease(fade_.easing, t), 0, fbw_, fbh_);
+    } else {
+        fade_ = Fade{};   // done: the old program may go
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        glBlitFramebuffer(0, 0, fbw_, fbh_, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -86,45 +86,10 @@ void ArmLearn(LearnArm& learn, const std::string& param) {
     learn.param = param;
 }
 
-// The rules of LearnSource in src/control/learn.cpp (`sdfvj learn`), kept in step with it.
 std::string LearnFromEvent(LearnArm& learn, const ControlEvent& e) {
     if (!learn.Armed() || !learn.source.empty()) return "";
-    std::string src;
-    if (e.source == EventSource::Osc) {
-        if (e.address.empty() || e.address.rfind("/sdfvj/", 0) == 0) return "";
-        // The address goes into a TOML string: only what cannot break out of one.
-        for (char c : e.address)
-            if (c == '"' || c == '\\' || (unsigned char)c < 0x20 || (unsigned char)c >= 0x7F) return "";
-        src = "osc = \"" + e.address + "\"";
-    } else {
-        if (e.midiSize < 2) return "";
-        const int type = e.midi[0] & 0xF0, ch = (e.midi[0] & 0x0F) + 1;
-        const std::string chan = "\nchannel = " + std::to_string(ch);
-        if (type == 0xB0 && e.midiSize == 3) {
-            const int cc = e.midi[1];
-            int& sel = learn.nrpnSelected.try_emplace(ch, -1).first->second;
-            if (cc == 99) { sel = (sel < 0 ? 0 : (sel & 0x7F)) | (e.midi[2] << 7) | (1 << 20); return ""; }
-            if (cc == 98) { sel = (sel < 0 ? 0 : (sel & ~0x7F)) | e.midi[2] | (1 << 21); return ""; }
-            if (cc == 101 || cc == 100) { sel = 0; return ""; }
-            if (cc == 6 && sel > 0 && (sel & (3 << 20)) == (3 << 20)) src = "nrpn = " + std::to_string(sel & 0x3FFF) + chan;
-            else if (cc == 6 || cc == 38) return "";
-            else {
-                const int key = ch * 128 + cc;
-                auto it = learn.ccFirst.find(key);
-                if (it == learn.ccFirst.end()) { learn.ccFirst[key] = e.midi[2]; return ""; }
-                if (it->second == e.midi[2]) return "";
-                src = "cc = " + std::to_string(cc) + chan;
-            }
-        } else if (type == 0x90 && e.midiSize == 3 && e.midi[2] > 0) {
-            src = "note = " + std::to_string(e.midi[1]) + chan + "\naction = \"toggle\"";
-        } else if (type == 0xE0) {
-            src = "pitchbend = true" + chan;
-        } else {
-            return "";
-        }
-    }
-    learn.source = src;
-    return src;
+    learn.source = LearnSource(e, learn.state);   // the rules of `sdfvj learn` (control.h)
+    return learn.source;
 }
 
 void ObserveEvents(OverlayUi& ui, const std::vector<ControlEvent>& events) {
@@ -284,37 +249,6 @@ OverlayActions DrawOverlay(const OverlayModel& m, OverlayUi& ui) {
 // Files
 // ---------------------------------------------------------------------------------------------
 
-bool WriteFileAtomically(const std::string& path, const std::string& text, std::string* error) {
-    std::error_code ec;
-    fs::path target = fs::is_symlink(path, ec) ? fs::canonical(path, ec) : fs::path(path);
-    fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    std::string tmp = (folder / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
-    int fd = mkstemp(tmp.data());
-    if (fd < 0) {
-        *error = "cannot write " + path + ": " + std::strerror(errno) + " (expected a writable folder " + folder.string() + ")";
-        return false;
-    }
-    struct stat st;
-    bool ok = fchmod(fd, stat(target.c_str(), &st) == 0 ? (st.st_mode & 07777) : mode_t(0644)) == 0;
-    for (size_t done = 0; ok && done < text.size();) {
-        ssize_t n = write(fd, text.data() + done, text.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) ok = false;
-        else done += size_t(n);
-    }
-    ok = ok && fsync(fd) == 0;
-    int saved = errno;
-    ok = close(fd) == 0 && ok;
-    if (ok && rename(tmp.c_str(), target.c_str()) != 0) {
-        ok = false;
-        saved = errno;
-    }
-    if (!ok) {
-        unlink(tmp.c_str());
-        *error = "cannot write " + path + ": " + std::strerror(saved);
-    }
-    return ok;
-}
 
 bool PresetFileName(const std::string& name, std::string* fileName, std::string* error) {
     std::string stem = name;
@@ -387,35 +321,7 @@ std::string SavePresetAs(const std::string& folder, const std::string& name, con
 
 std::string AppendLearnedMapping(const std::string& mappingPath, const std::string& param, const std::string& source,
                                  const std::vector<ParamDecl>& decls) {
-    std::string text;
-    std::error_code ec;
-    if (fs::exists(mappingPath, ec)) {
-        std::ifstream in(mappingPath, std::ios::binary);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        if (!in) return mappingPath + ":1:1: cannot read the file, expected a readable mapping file";
-        text = ss.str();
-    }
-    Mapping before;
-    LoadResult r = ParseMapping(text, mappingPath, &before);
-    if (!r.ok) return r.error + " (learn did not write)";
-    std::string next = text;
-    if (!next.empty() && next.back() != '\n') next += '\n';
-    next += "\n# learned in `sdfvj live`\n[[map]]\n" + source + "\ntarget = \"" + param + "\"\n";
-    Mapping after;
-    r = ParseMapping(next, mappingPath, &after);
-    if (!r.ok) return r.error + " (after adding the learned entry; " + mappingPath + " is unchanged)";
-    if (after.entries.size() != before.entries.size() + 1 || after.entries.back().target != param)
-        return mappingPath + ":1:1: the learned entry did not read back as one more [[map]] for '" + param + "' (" +
-               mappingPath + " is unchanged)";
-    // Only the new entry must fit this scene: the file may hold entries for other scenes.
-    Mapping added;
-    added.entries.push_back(after.entries.back());
-    std::string problems;
-    if (!ValidateMapping(added, decls, &problems)) return problems + " (" + mappingPath + " is unchanged)";
-    std::string error;
-    if (!WriteFileAtomically(mappingPath, next, &error)) return error;
-    return "";
+    return AddLearnedEntry(mappingPath, param, source, decls, "learned in `sdfvj live`");
 }
 
 }  // namespace sdfvj

@@ -50,8 +50,7 @@ struct FrameTimeGraph {
 struct LearnArm {
     std::string param;                      // "" = not armed
     std::string source;                     // the TOML source lines of the control, once found
-    std::map<int, int> ccFirst;             // first value seen per channel*128+cc ("moves" = a second value)
-    std::map<int, int> nrpnSelected;        // NRPN number selected per channel (CC 99/98)
+    LearnState state;                       // what `LearnSource` has seen so far (control.h)
     bool Armed() const { return !param.empty(); }
 };
 // Arms (or re-arms) learn on `param`; an empty name disarms.
@@ -150,8 +149,5 @@ std::string SavePresetAs(const std::string& folder, const std::string& name, con
 // (ValidateMapping); then it replaces the file atomically. Returns "" or one error line.
 std::string AppendLearnedMapping(const std::string& mappingPath, const std::string& param, const std::string& source,
                                  const std::vector<ParamDecl>& decls);
-
-// Writes `text` to a temporary file next to `path` and renames it over `path`. False with a line.
-bool WriteFileAtomically(const std::string& path, const std::string& text, std::string* error);
 
 }  // namespace sdfvj

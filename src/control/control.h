@@ -206,6 +206,12 @@ void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double t
 // (a /sdfvj/ address with wrong argument types); *why says what was wrong.
 bool DecodeOscMessage(const char* path, const char* types, const void* const* argv, int argc,
                       double time, ControlEvent* out, std::string* why);
+struct InputCounters;
+// The body of InputSession's liblo method handler: decode, count, queue. The fuzzer runs it
+// behind a real lo_server, so it fuzzes exactly what production runs. False, with *why, for a
+// message sdfvj cannot use.
+bool HandleOscMessage(const char* path, const char* types, const void* const* argv, int argc, double time,
+                      EventQueue& queue, InputCounters& counters, std::string* why);
 // Raw OSC packet bytes -> events (liblo's deserialiser, then DecodeOscMessage). Counts.
 struct OscDecodeCounts { uint64_t malformed = 0, wrongType = 0, ok = 0; };
 void DecodeOscPacket(const uint8_t* data, size_t size, double time, std::vector<ControlEvent>* out,
@@ -255,6 +261,24 @@ public:
 private:
     std::unique_ptr<Impl> impl_;
 };
+
+// MIDI learn, shared by `sdfvj learn` and learn in the live overlay.
+struct LearnState {
+    std::map<int, int> ccFirst;        // first value seen per channel*128+cc ("moves" = a second value)
+    std::map<int, int> nrpnSelected;   // NRPN number selected per channel (CC 99/98)
+};
+// The TOML source lines of the control an event shows moving ("cc = 2\nchannel = 1"), or "".
+// A CC moves when it sends a second, different value; a note-on becomes a toggle pad; NRPN waits
+// for its number; /sdfvj/ addresses and addresses that cannot sit in a TOML string are not learned.
+std::string LearnSource(const ControlEvent& e, LearnState& state);
+// Appends a [[map]] for `param` with `source` to the mapping file, all or nothing: the new text
+// must parse, add exactly that entry and (when `decls` is not empty) fit the scene; it is written
+// atomically. Returns "" or one `file:line:col: ...` line; on failure the file is unchanged.
+std::string AddLearnedEntry(const std::string& mappingPath, const std::string& param, const std::string& source,
+                            const std::vector<ParamDecl>& decls, const std::string& comment);
+// Writes `text` to a temporary file next to `path` and renames it over `path`: a reader (a
+// running `live` reloading the file) sees the old file or the new one, never a mix.
+bool WriteFileAtomically(const std::string& path, const std::string& text, std::string* error);
 
 // "index: name" for every MIDI input port on the active API (JACK when a server runs, else ALSA).
 std::vector<std::string> ListMidiPorts();

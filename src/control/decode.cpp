@@ -155,7 +155,6 @@ bool DecodeOscMessage(const char* path, const char* types, const void* const* ar
 // The body of the liblo method handler that InputSession registers (Impl::OnOsc): decode,
 // count, queue. It lives here so the fuzzer (fuzz_input.cpp) runs exactly what production
 // runs behind a real lo_server. Returns false, with *why, for a message sdfvj cannot use.
-// Declared in control.h's decoding section once that lands; until then callers declare it.
 bool HandleOscMessage(const char* path, const char* types, const void* const* argv, int argc, double time,
                       EventQueue& queue, InputCounters& counters, std::string* why) {
     ControlEvent e;

@@ -14,12 +14,6 @@
 
 #include "control/control.h"
 
-namespace sdfvj {
-// decode.cpp: the body of InputSession's liblo handler (to move into control.h).
-bool HandleOscMessage(const char* path, const char* types, const void* const* argv, int argc, double time,
-                      EventQueue& queue, InputCounters& counters, std::string* why);
-}  // namespace sdfvj
-
 using namespace sdfvj;
 
 namespace {

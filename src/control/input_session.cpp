@@ -327,8 +327,6 @@ struct InputSession::Impl {
 
     // The body is HandleOscMessage (decode.cpp), which the fuzzer drives through a real lo_server.
     static int OnOsc(const char* path, const char* types, lo_arg** argv, int argc, lo_message, void* user) {
-        bool HandleOscMessage(const char*, const char*, const void* const*, int, double, EventQueue&, InputCounters&,
-                              std::string*);  // decode.cpp; to move into control.h
         auto* s = static_cast<Impl*>(user);
         std::string why;
         if (!HandleOscMessage(path, types, reinterpret_cast<const void* const*>(argv), argc, s->clock(), s->queue,

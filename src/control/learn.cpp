@@ -28,40 +28,6 @@
 namespace sdfvj {
 namespace {
 
-// The TOML source line for a learned event, or "" if the event is not something to learn.
-// Takes the MSB of NRPN/14-bit pairs into account by waiting: the caller passes every event.
-std::string LearnSource(const ControlEvent& e, std::map<int, int>* ccFirst, std::map<int, int>* nrpnSelected) {
-    if (e.source == EventSource::Osc) {
-        if (e.address.rfind("/sdfvj/", 0) == 0) return "";
-        return "osc = \"" + e.address + "\"";
-    }
-    uint8_t type = e.midi[0] & 0xF0;
-    int ch = (e.midi[0] & 0x0F) + 1;
-    std::string chan = "\nchannel = " + std::to_string(ch);
-    if (type == 0xB0) {
-        int cc = e.midi[1];
-        // NRPN: CC 99/98 select a number, CC 6 carries its value. RPN (101/100) deselects.
-        int& sel = (*nrpnSelected)[ch];
-        if (cc == 99) { sel = (sel < 0 ? 0 : (sel & 0x7F)) | (e.midi[2] << 7) | (1 << 20); return ""; }
-        if (cc == 98) { sel = (sel < 0 ? 0 : (sel & ~0x7F)) | e.midi[2] | (1 << 21); return ""; }
-        if (cc == 101 || cc == 100) { sel = 0; return ""; }
-        if (cc == 6 && (sel & (3 << 20)) == (3 << 20)) return "nrpn = " + std::to_string(sel & 0x3FFF) + chan;
-        if (cc == 6 || cc == 38) return "";
-        // "Moves": a second, different value on the same CC (a pad press sends one 127).
-        int key = ch * 128 + cc;
-        auto it = ccFirst->find(key);
-        if (it == ccFirst->end()) {
-            (*ccFirst)[key] = e.midi[2];
-            return "";
-        }
-        if (it->second == e.midi[2]) return "";
-        return "cc = " + std::to_string(cc) + chan;
-    }
-    if (type == 0x90 && e.midi[2] > 0) return "note = " + std::to_string(e.midi[1]) + chan + "\naction = \"toggle\"";
-    if (type == 0xE0) return "pitchbend = true" + chan;
-    return "";
-}
-
 constexpr int kLearnOscPort = 9000;   // the same default as `sdfvj live --osc-port`
 
 // True when a UDP port can be bound right now (by us, on every address, as liblo does).
@@ -100,14 +66,50 @@ bool ReadWhole(const std::string& path, std::string* text, bool* exists) {
     return !f.bad();
 }
 
-// Writes `text` to a temporary file next to `path` and renames it over `path`: readers (a
-// running `live` reloading its mapping) see the old file or the new one, never a mix.
-bool WriteAtomically(const std::string& path, const std::string& text, std::string* error) {
+}  // namespace
+
+std::string LearnSource(const ControlEvent& e, LearnState& state) {
+    if (e.source == EventSource::Osc) {
+        if (e.address.empty() || e.address.rfind("/sdfvj/", 0) == 0) return "";
+        // The address goes into a TOML string: only what cannot break out of one.
+        for (char c : e.address)
+            if (c == '"' || c == '\\' || (unsigned char)c < 0x20 || (unsigned char)c >= 0x7F) return "";
+        return "osc = \"" + e.address + "\"";
+    }
+    if (e.midiSize < 2) return "";   // clock, start, stop: not a control
+    const int type = e.midi[0] & 0xF0, ch = (e.midi[0] & 0x0F) + 1;
+    const std::string chan = "\nchannel = " + std::to_string(ch);
+    if (type == 0xB0 && e.midiSize == 3) {
+        const int cc = e.midi[1];
+        // NRPN: CC 99/98 select a number, CC 6 carries its value. RPN (101/100) deselects.
+        int& sel = state.nrpnSelected.try_emplace(ch, -1).first->second;
+        if (cc == 99) { sel = (sel < 0 ? 0 : (sel & 0x7F)) | (e.midi[2] << 7) | (1 << 20); return ""; }
+        if (cc == 98) { sel = (sel < 0 ? 0 : (sel & ~0x7F)) | e.midi[2] | (1 << 21); return ""; }
+        if (cc == 101 || cc == 100) { sel = 0; return ""; }
+        if (cc == 6 && sel > 0 && (sel & (3 << 20)) == (3 << 20)) return "nrpn = " + std::to_string(sel & 0x3FFF) + chan;
+        if (cc == 6 || cc == 38) return "";
+        // "Moves": a second, different value on the same CC (a pad press sends one 127).
+        const int key = ch * 128 + cc;
+        auto it = state.ccFirst.find(key);
+        if (it == state.ccFirst.end()) {
+            state.ccFirst[key] = e.midi[2];
+            return "";
+        }
+        if (it->second == e.midi[2]) return "";
+        return "cc = " + std::to_string(cc) + chan;
+    }
+    if (type == 0x90 && e.midiSize == 3 && e.midi[2] > 0)
+        return "note = " + std::to_string(e.midi[1]) + chan + "\naction = \"toggle\"";
+    if (type == 0xE0) return "pitchbend = true" + chan;
+    return "";
+}
+
+bool WriteFileAtomically(const std::string& path, const std::string& text, std::string* error) {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::path target = fs::is_symlink(path, ec) ? fs::canonical(path, ec) : fs::path(path);
     fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    std::string tmp = (folder / ("." + target.filename().string() + ".learn-XXXXXX")).string();
+    std::string tmp = (folder / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
     int fd = mkstemp(tmp.data());
     if (fd < 0) {
         *error = path + ":1:1: cannot write next to the file (" + std::strerror(errno) +
@@ -132,13 +134,13 @@ bool WriteAtomically(const std::string& path, const std::string& text, std::stri
     }
     if (!ok) {
         unlink(tmp.c_str());
-        *error = path + ":1:1: cannot write the file (" + std::strerror(savedErrno) + "), expected a writable mapping file";
+        *error = path + ":1:1: cannot write the file (" + std::strerror(savedErrno) + "), expected a writable file";
     }
     return ok;
 }
 
-// Adds one learned entry to the mapping file, all or nothing. Returns "" or one error line.
-std::string AddLearnedEntry(const std::string& mappingPath, const std::string& param, const std::string& source) {
+std::string AddLearnedEntry(const std::string& mappingPath, const std::string& param, const std::string& source,
+                            const std::vector<ParamDecl>& decls, const std::string& comment) {
     std::string text;
     bool exists = false;
     if (!ReadWhole(mappingPath, &text, &exists))
@@ -146,26 +148,27 @@ std::string AddLearnedEntry(const std::string& mappingPath, const std::string& p
     Mapping before;
     if (exists) {
         LoadResult r = ParseMapping(text, mappingPath, &before);
-        if (!r.ok) return r.error;
+        if (!r.ok) return r.error + " (learn did not write)";
     }
-    std::string entry = "\n# learned by `sdfvj learn --param " + param + "`\n[[map]]\n" + source + "\ntarget = \"" +
-                        param + "\"\n";
     std::string next = text;
     if (!next.empty() && next.back() != '\n') next += '\n';
-    next += entry;
+    next += "\n# " + comment + "\n[[map]]\n" + source + "\ntarget = \"" + param + "\"\n";
     Mapping after;
     LoadResult r = ParseMapping(next, mappingPath, &after);
-    if (!r.ok)
-        return r.error + " (after adding the learned entry; " + mappingPath + " is unchanged)";
+    if (!r.ok) return r.error + " (after adding the learned entry; " + mappingPath + " is unchanged)";
     if (after.entries.size() != before.entries.size() + 1 || after.entries.back().target != param)
         return mappingPath + ":1:1: the learned entry did not read back as one more [[map]] for '" + param +
                "', expected the file to take new [[map]] tables (" + mappingPath + " is unchanged)";
+    if (!decls.empty()) {   // only the new entry must fit this scene: the file may hold others
+        Mapping added;
+        added.entries.push_back(after.entries.back());
+        std::string problems;
+        if (!ValidateMapping(added, decls, &problems)) return problems + " (" + mappingPath + " is unchanged)";
+    }
     std::string error;
-    if (!WriteAtomically(mappingPath, next, &error)) return error;
+    if (!WriteFileAtomically(mappingPath, next, &error)) return error;
     return "";
 }
-
-}  // namespace
 
 int RunLearn(const std::string& param, const std::string& mappingPath, double timeoutSeconds) {
     if (!IsParamName(param)) {
@@ -200,12 +203,12 @@ int RunLearn(const std::string& param, const std::string& mappingPath, double ti
         std::fprintf(stderr, "learn: UDP port %d is taken (a running `sdfvj live`?), send OSC to port %d instead\n",
                      kLearnOscPort, session.OscPort());
     std::fprintf(stderr, "learn: move the control for '%s' (%.0f s)...\n", param.c_str(), timeoutSeconds);
-    std::map<int, int> ccFirst, nrpnSelected;
+    LearnState learnState;
     while (clock() < timeoutSeconds) {
         for (const ControlEvent& e : queue.DrainUntil(clock())) {
-            std::string src = LearnSource(e, &ccFirst, &nrpnSelected);
+            std::string src = LearnSource(e, learnState);
             if (src.empty()) continue;
-            std::string error = AddLearnedEntry(mappingPath, param, src);
+            std::string error = AddLearnedEntry(mappingPath, param, src, {}, "learned by `sdfvj learn --param " + param + "`");
             if (!error.empty()) {
                 std::fprintf(stderr, "%s\n", error.c_str());
                 return 2;
