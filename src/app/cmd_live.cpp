@@ -194,6 +194,8 @@ private:
     bool f11WasDown_ = false, numberWasDown_[9] = {};
     int windowed_[4] = {0, 0, 0, 0};            // x, y, w, h before F11 went fullscreen
     double last_ = 0.0, fps_ = 0.0;
+    bool dragWasDown_ = false, zeroWasDown_ = false;
+    double dragX_ = 0.0, dragY_ = 0.0;
     int frame_ = 0, fbw_ = 0, fbh_ = 0;
     uint64_t internalErrors_ = 0;
 };
@@ -274,6 +276,20 @@ void LiveSession::ReadKeys() {
         return edge;
     };
     if (pressed(GLFW_KEY_TAB, tabWasDown_)) overlay_ = !overlay_;
+    // Mouse drag orbits the camera around the scene's target (where the overlay does not want the
+    // mouse); 0 puts the scene's own camera back.
+    double mx = 0, my = 0;
+    glfwGetCursorPos(window_, &mx, &my);
+    const bool dragging = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS &&
+                          !(ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse);
+    if (dragging && dragWasDown_) {
+        in_.orbitYaw -= float(mx - dragX_) * 0.01f;
+        in_.orbitPitch = std::clamp(in_.orbitPitch + float(my - dragY_) * 0.01f, -1.5f, 1.5f);
+    }
+    dragWasDown_ = dragging;
+    dragX_ = mx;
+    dragY_ = my;
+    if (pressed(GLFW_KEY_0, zeroWasDown_)) in_.orbitYaw = in_.orbitPitch = 0.0f;
     if (pressed(GLFW_KEY_F11, f11WasDown_)) ToggleFullscreen();
     for (int n = 1; n <= 9; ++n) {
         if (!pressed(GLFW_KEY_0 + n, numberWasDown_[n - 1])) continue;

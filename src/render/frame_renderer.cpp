@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -50,6 +51,20 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
     return true;
 }
 
+Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch) {
+    if (yaw == 0.0f && pitch == 0.0f) return scene.camPos;
+    const double ox = scene.camPos[0] - scene.camTarget[0], oy = scene.camPos[1] - scene.camTarget[1],
+                 oz = scene.camPos[2] - scene.camTarget[2];
+    const double dist = std::sqrt(ox * ox + oy * oy + oz * oz);
+    if (dist <= 0.0) return scene.camPos;
+    const double limit = 1.5;   // about 86 degrees: never over the pole, where "up" flips
+    const double elevation = std::clamp(std::asin(std::clamp(oy / dist, -1.0, 1.0)) + pitch, -limit, limit);
+    const double azimuth = std::atan2(ox, oz) + yaw;
+    const double flat = dist * std::cos(elevation);
+    return {float(scene.camTarget[0] + flat * std::sin(azimuth)), float(scene.camTarget[1] + dist * std::sin(elevation)),
+            float(scene.camTarget[2] + flat * std::cos(azimuth))};
+}
+
 void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const FrameInputs& in, bool timeGpu) {
     if (!program.IsValid() || !fbo_) return;   // a program that failed to build just skips its draws
     const Program& p = program;
@@ -58,7 +73,8 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     p.Set("u_beat", in.beat);
     p.Set("u_bpm", in.bpm);
     p.Set("u_resolution", (float)width_, (float)height_);
-    p.Set("u_camPos", scene.camPos[0], scene.camPos[1], scene.camPos[2]);
+    const Vec3f cam = OrbitCamera(scene, in.orbitYaw, in.orbitPitch);
+    p.Set("u_camPos", cam[0], cam[1], cam[2]);
     p.Set("u_camTarget", scene.camTarget[0], scene.camTarget[1], scene.camTarget[2]);
     p.Set("u_fov", scene.fov);
     p.Set("u_lightDir", scene.lightDir[0], scene.lightDir[1], scene.lightDir[2]);

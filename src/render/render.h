@@ -59,7 +59,12 @@ struct FrameInputs {
     Quality quality;
     std::vector<std::pair<std::string, float>> params;   // scene parameters by name (no u_ prefix)
     int effectsOff = 0;   // u_effectsOff: compiled-in effects switched off at run time (benchmark only)
+    float orbitYaw = 0.0f, orbitPitch = 0.0f;   // radians around the scene's camera target (live's mouse orbit)
 };
+
+// The scene's camera position turned by `yaw` around the vertical through its target and by
+// `pitch` up or down (kept short of the poles); the distance to the target is kept.
+Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch);
 
 // A linked program and the uniforms it actually declares.
 class Program {

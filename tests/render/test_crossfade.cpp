@@ -1,6 +1,7 @@
 // Crossfade: a scene change that morphs mixes the old scene's frame with the new one's.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdlib>
 
 #include "app/show.h"
@@ -57,4 +58,24 @@ TEST_CASE("crossfade: the mix of two scenes' frames is each at its end and their
         worst = std::max(worst, std::abs(half.rgba[i] - avg));
     }
     CHECK(worst <= 1);   // 8-bit rounding is the only difference
+}
+
+TEST_CASE("orbit: the mouse orbit turns the camera around its target at the same distance", "[crossfade]") {
+    SceneInfo s;
+    s.camPos = {0, 2, -6};
+    s.camTarget = {0, 1, 0};
+    auto dist = [&](const Vec3f& p) {
+        return std::sqrt((p[0] - 0) * (p[0] - 0) + (p[1] - 1) * (p[1] - 1) + (p[2] - 0) * (p[2] - 0));
+    };
+    CHECK(OrbitCamera(s, 0, 0) == s.camPos);
+    const Vec3f half = OrbitCamera(s, 3.14159265f, 0);      // half a turn: behind the target
+    CHECK(half[0] == Approx(0).margin(1e-4));
+    CHECK(half[1] == Approx(2));
+    CHECK(half[2] == Approx(6));
+    const Vec3f quarter = OrbitCamera(s, 1.5707963f, 0.3f);
+    CHECK(dist(quarter) == Approx(dist(s.camPos)));
+    CHECK(quarter[1] > 2.0f);                               // pitched up
+    const Vec3f pole = OrbitCamera(s, 0, 10.0f);            // held short of the pole
+    CHECK(pole[1] - 1 < dist(s.camPos));
+    CHECK(std::fabs(pole[2]) > 0.01f);
 }
