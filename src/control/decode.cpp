@@ -1,6 +1,8 @@
 // Decoding on the input threads: MIDI bytes and OSC messages -> ControlEvents. This is the
 // code the fuzz target (fuzz_input.cpp) hammers: it must accept any bytes without crashing.
 #include <cmath>
+#include <cfloat>
+#include <cmath>
 #include <cstring>
 
 #include <lo/lo.h>
@@ -110,16 +112,32 @@ bool DecodeOscMessage(const char* path, const char* types, const void* const* ar
         const lo_arg* v = argv ? argv[k] : nullptr;
         if (!v && types[k] != 'T' && types[k] != 'F' && types[k] != 'N' && types[k] != 'I')
             return fail(e.address + ": missing argument data");
+        // liblo's argument pointers point into the packet, 4-byte aligned: an 8-byte lo_arg member
+        // (or the union itself) must not be read through them. Bytes are copied out instead.
+        auto load = [&](auto* out) { std::memcpy(out, static_cast<const void*>(v), sizeof *out); };
         switch (types[k]) {
-            case 'f': a.f = v->f; break;
-            case 'd': a.type = 'f'; a.f = float(v->d); break;
-            case 'i': a.i = v->i; a.f = float(v->i); break;
-            case 'h': a.type = 'i'; a.i = int32_t(std::max<int64_t>(INT32_MIN, std::min<int64_t>(INT32_MAX, v->h))); a.f = float(a.i); break;
+            case 'f': load(&a.f); break;
+            case 'd': {   // out of float's range is infinite (then rejected as not finite), never UB
+                double d = 0;
+                load(&d);
+                a.type = 'f';
+                a.f = std::fabs(d) <= FLT_MAX ? float(d) : std::isnan(d) ? NAN : d > 0 ? INFINITY : -INFINITY;
+                break;
+            }
+            case 'i': load(&a.i); a.f = float(a.i); break;
+            case 'h': {
+                int64_t h = 0;
+                load(&h);
+                a.type = 'i';
+                a.i = int32_t(std::max<int64_t>(INT32_MIN, std::min<int64_t>(INT32_MAX, h)));
+                a.f = float(a.i);
+                break;
+            }
             case 'T': a.type = 'i'; a.i = 1; a.f = 1.0f; break;
             case 'F': a.type = 'i'; a.i = 0; a.f = 0.0f; break;
             case 's': case 'S': {
                 a.type = 's';
-                const char* s = &v->s;
+                const char* s = reinterpret_cast<const char*>(v);
                 size_t n = strnlen(s, kMaxOscString + 1);
                 if (n > kMaxOscString) return fail(e.address + ": string argument longer than 1024 bytes");
                 a.s.assign(s, n);

@@ -2,6 +2,8 @@
 #include <lo/lo.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
 #include <thread>
 
 #include "test_util.h"
@@ -131,4 +133,28 @@ TEST_CASE("midi queue: drains in order up to a time, drops and counts when full"
     for (auto& p : producers) p.join();
     CHECK(got == 20000);
     CHECK(big.Dropped() == 0);
+}
+
+TEST_CASE("osc decode: arguments at 4-byte aligned addresses (as liblo hands them) decode without misaligned reads") {
+    // liblo's argv points into the packet; an 8-byte lo_arg read there is undefined behaviour
+    // (UBSan stopped `live` in the stage soak). The sanitizer pass runs this test.
+    alignas(8) unsigned char buf[64] = {};
+    unsigned char* at = buf + 4;   // 4-byte aligned, not 8
+    const float f = 0.25f;
+    const double d = 1e300;        // beyond float: an infinity, then rejected as not finite
+    const int64_t h = 5000000000LL;
+    std::vector<ControlEvent> out;
+    ControlEvent e;
+    std::string why;
+    std::memcpy(at, &f, sizeof f);
+    const void* argv[1] = {at};
+    REQUIRE(DecodeOscMessage("/sdfvj/param/twist", "f", argv, 1, 0.0, &e, &why));
+    CHECK(e.args[0].f == 0.25f);
+    std::memcpy(at, &d, sizeof d);
+    DecodeOscMessage("/x", "d", argv, 1, 0.0, &e, &why);
+    REQUIRE(e.args.size() == 1);
+    CHECK(std::isinf(e.args[0].f));
+    std::memcpy(at, &h, sizeof h);
+    REQUIRE(DecodeOscMessage("/x", "h", argv, 1, 0.0, &e, &why));
+    CHECK(e.args[0].i == INT32_MAX);
 }
