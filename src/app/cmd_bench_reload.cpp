@@ -49,7 +49,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::unique_ptr<CompileWorker> worker;
     if (mode >= 1) {
         if (!shared.CreateShared(gl, &error, mode == 1)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); break; }
-        worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2);
+        worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2,
+                                                 [&shared] { shared.ReleaseCurrent(); });
         if (!worker->Ok()) { std::fprintf(stderr, "sdfvj bench reload: the worker's context failed\n"); break; }
         PendingProgram::SetWorker(worker.get());
     }

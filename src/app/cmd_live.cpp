@@ -87,10 +87,12 @@ public:
         }
         if (compileWindow_) {
             GLFWwindow* cw = compileWindow_;
-            worker_ = std::make_unique<CompileWorker>([cw] {
-                glfwMakeContextCurrent(cw);
-                return glfwGetCurrentContext() == cw;
-            });
+            worker_ = std::make_unique<CompileWorker>(
+                [cw] {
+                    glfwMakeContextCurrent(cw);
+                    return glfwGetCurrentContext() == cw;
+                },
+                false, [] { glfwMakeContextCurrent(nullptr); });
             if (worker_->Ok()) PendingProgram::SetWorker(worker_.get());
             else std::fprintf(stderr, "sdfvj live: no compile thread; shaders compile on the render thread\n");
         }

@@ -86,8 +86,9 @@ void Prime(unsigned prog, RenderPath path, bool floatImage) {
 
 }  // namespace
 
-CompileWorker::CompileWorker(std::function<bool()> bindContext, bool handOverBinary) : handOverBinary_(handOverBinary) {
-    thread_ = std::thread([this, bindContext] { Loop(bindContext); });
+CompileWorker::CompileWorker(std::function<bool()> bindContext, bool handOverBinary, std::function<void()> releaseContext)
+    : handOverBinary_(handOverBinary) {
+    thread_ = std::thread([this, bindContext, releaseContext] { Loop(bindContext, releaseContext); });
 }
 
 CompileWorker::~CompileWorker() {
@@ -137,7 +138,7 @@ void CompileWorker::Forget(uint64_t ticket) {
     }
 }
 
-void CompileWorker::Loop(std::function<bool()> bind) {
+void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> release) {
     // Compiles yield the CPU to the frame: on llvmpipe both share the same few cores, and a
     // stream of reloads or effect toggles must not starve drawing (the stage soak measured
     // frame gaps of over a second while compiles ran at the render thread's priority).
@@ -148,7 +149,10 @@ void CompileWorker::Loop(std::function<bool()> bind) {
         state_ = ok ? 1 : -1;
     }
     started_.notify_all();
-    if (!ok) return;
+    if (!ok) {
+        if (release) release();
+        return;
+    }
     for (;;) {
         Job job;
         {
@@ -165,7 +169,16 @@ void CompileWorker::Loop(std::function<bool()> bind) {
                 }
             }
             wake_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
-            if (stop_) return;
+            if (stop_) {
+                // Programs linked here that nobody took: deleted on this context, then the
+                // context is let go before the thread ends.
+                for (auto& [ticket, done] : done_)
+                    if (done.program) glDeleteProgram(done.program);
+                done_.clear();
+                lock.unlock();
+                if (release) release();
+                return;
+            }
             job = std::move(jobs_.front());
             jobs_.pop_front();
             // A job nobody waits for any more (the performer toggled on before it started) is

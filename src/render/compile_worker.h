@@ -30,7 +30,11 @@ public:
     // With `handOverBinary` the worker's context need not be shared: each linked program is
     // read back with glGetProgramBinary and deleted there, and Finish() loads the binary on the
     // render thread's context (no object crosses contexts, so no share-group lock).
-    explicit CompileWorker(std::function<bool()> bindContext, bool handOverBinary = false);
+    // `releaseContext` runs on the worker thread as it ends, after the worker deleted the programs
+    // nobody took: it must make no context current there (a thread that ends with a context still
+    // current leaks the driver's per-thread state).
+    explicit CompileWorker(std::function<bool()> bindContext, bool handOverBinary = false,
+                           std::function<void()> releaseContext = {});
     ~CompileWorker();
     CompileWorker(const CompileWorker&) = delete;
     CompileWorker& operator=(const CompileWorker&) = delete;
@@ -48,7 +52,7 @@ public:
 private:
     struct Job { uint64_t ticket; std::string text; RenderPath path; };
     struct Done { unsigned program; std::string log; std::vector<uint8_t> binary; unsigned format = 0; };
-    void Loop(std::function<bool()> bind);
+    void Loop(std::function<bool()> bind, std::function<void()> release);
 
     std::mutex mutex_;
     std::condition_variable wake_, started_;

@@ -91,6 +91,12 @@ bool HeadlessContext::MakeCurrent() {
     return display_ && eglMakeCurrent((EGLDisplay)display_, EGL_NO_SURFACE, EGL_NO_SURFACE, (EGLContext)context_);
 }
 
+void HeadlessContext::ReleaseCurrent() {
+    if (!display_) return;
+    eglMakeCurrent((EGLDisplay)display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglReleaseThread();
+}
+
 HeadlessContext::~HeadlessContext() {
     if (!display_) return;
     if (shared_) {   // the display belongs to the main context

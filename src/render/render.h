@@ -29,6 +29,9 @@ public:
     // CompileWorker in binary hand-over mode).
     bool CreateShared(const HeadlessContext& main, std::string* error, bool share = true);
     bool MakeCurrent();
+    // Makes no context current on the calling thread and frees EGL's state for it (a worker
+    // thread calls this before it ends).
+    void ReleaseCurrent();
     std::string Description() const { return description_; }  // "EGL device platform: llvmpipe (...)"
 private:
     void* display_ = nullptr;

@@ -187,7 +187,7 @@ TEST_CASE("variant: a library save while an effect toggle compiles keeps the pro
     HeadlessContext shared;
     std::string err;
     REQUIRE(shared.CreateShared(*TestContext(), &err, true));
-    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, false);
+    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, false, [&shared] { shared.ReleaseCurrent(); });
     REQUIRE(worker.Ok());
     PendingProgram::SetWorker(&worker);
     struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
@@ -233,7 +233,7 @@ void WorkerReload(bool binary) {
     HeadlessContext shared;
     std::string err;
     REQUIRE(shared.CreateShared(*TestContext(), &err, !binary));
-    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, binary);
+    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, binary, [&shared] { shared.ReleaseCurrent(); });
     REQUIRE(worker.Ok());
     PendingProgram::SetWorker(&worker);
     struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
