@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     cmdRender->add_option("--out", render.out, "folder for frame_00000.png, ...")->capture_default_str();
     cmdRender->add_option("--replay", render.replay, "a Standard MIDI File whose events drive the parameters");
     cmdRender->add_option("--mapping", render.mapping, "mapping for --replay (default: the preset's, else generic_8knob)");
-    cmdRender->add_option("--video", render.video, "pipe frames to ffmpeg and write this .mp4 instead of PNGs");
+    cmdRender->add_option("--video", render.video, "pipe frames to ffmpeg (H.264) and write this .mp4 instead of PNGs; odd sizes are padded to even (libx264 needs them)");
     cmdRender->add_flag("--quiet", render.quiet, "no progress bar");
 
     BenchOptions bench;
