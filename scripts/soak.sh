@@ -246,8 +246,17 @@ finalSeen=$(echo "$lastLine" | awk -v want=$finalValue '{ for (i = 2; i <= NF; +
 
 rssGrowth=$(( (rssEnd - rssStart) / 1024 ))
 if [ $aliveAtEnd = 1 ] && [ $rssGrowth -gt "$rssLimit" ]; then fail "VmRSS grew by $rssGrowth MB (limit $rssLimit MB)"; fi
-rssMid=$(awk -v h=$((storm / 2)) '$1 <= h { v = $2 } END { print v + 0 }' "$work/rss.log" 2>/dev/null)
-rssLate=$(( (rssEnd - rssMid) / 1024 ))
+# RSS swings by 100 MB within a minute (programs compiled and dropped, Mesa's JIT code, the
+# sanitizer's quarantine): the second half compares the median of the minute around the middle
+# of the storm with the median of its last minute, so a trend counts and a swing does not.
+rssMedian() {  # rssMedian FROM TO -> median VmRSS (kB) of the samples with FROM <= t < TO
+    awk -v a="$1" -v b="$2" '$1 >= a && $1 < b { v[n++] = $2 } END {
+        if (!n) { print 0; exit } for (i = 0; i < n; ++i) for (j = i + 1; j < n; ++j) if (v[j] < v[i]) { t = v[i]; v[i] = v[j]; v[j] = t }
+        print v[int(n / 2)] }' "$work/rss.log" 2>/dev/null
+}
+rssMid=$(rssMedian $((storm / 2 - 30)) $((storm / 2 + 30)))
+rssLateEnd=$(rssMedian $((storm - 60)) $((storm)))
+rssLate=$(( (rssLateEnd - rssMid) / 1024 ))
 # A 15 s storm is all warm-up (the 10-minute run levels off after 2-3 minutes): --quick reports it only.
 if [ $quick = 0 ] && [ $aliveAtEnd = 1 ] && [ "$rssMid" -gt 0 ] && [ $rssLate -gt "$rssLateLimit" ]; then
     fail "VmRSS grew by $rssLate MB over the second half of the storm (limit $rssLateLimit MB): a leak?"
@@ -305,7 +314,7 @@ echo "frames          ${frames:-0} logged after the first second, live clock rea
 echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms); longest: $gaps"
 [ -n "$around" ] && echo "around the longest gaps, what sdfvj printed (live time, s):" && echo "$around"
 echo "machine load    $loadStart at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end (1/5/15 min; $(nproc) cores)"
-echo "VmRSS           first frame $((rssFirst / 1024)) MB, baseline $((rssStart / 1024)) MB, end $((rssEnd / 1024)) MB, peak $((rssPeak / 1024)) MB; growth ${rssGrowth} MB (limit ${rssLimit} MB), ${rssLate} MB over the second half ($([ $quick = 1 ] && echo "not checked in --quick" || echo "limit ${rssLateLimit} MB"))"
+echo "VmRSS           first frame $((rssFirst / 1024)) MB, baseline $((rssStart / 1024)) MB, end $((rssEnd / 1024)) MB, peak $((rssPeak / 1024)) MB; growth ${rssGrowth} MB (limit ${rssLimit} MB), ${rssLate} MB over the second half (median of its last minute against the middle one; $([ $quick = 1 ] && echo "not checked in --quick" || echo "limit ${rssLateLimit} MB"))"
 echo "VmRSS timeline  $(awk -v n="$storm" 'BEGIN { step = n / 8 < 1 ? 1 : int(n / 8) } $1 % step == 0 { printf "%s%ds %dMB", sep, $1, $2 / 1024; sep = ", " }' "$work/rss.log" 2>/dev/null)"
 echo "final value     /sdfvj/raw/twist $finalValue in the last frame: $finalSeen"
 echo "sanitizer       $sanReports report lines"
