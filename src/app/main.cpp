@@ -121,6 +121,12 @@ int main(int argc, char** argv) {
                         "renders, after mapping and smoothing (for tests, and for debugging a mapping)");
     cmdLive->add_flag("--hide-overlay", live.hideOverlay,
                       "start with the overlay hidden, as after Tab (clean screenshots); Tab shows it");
+    cmdLive->footer(
+        "In the window: Tab hides the overlay (for the audience), F11 toggles fullscreen, 1-9 pick presets, "
+        "a mouse drag orbits the camera and 0 puts it back, Esc quits. The overlay edits values, learns a "
+        "control (click 'learn', move a knob), saves presets, toggles effects and shows the last MIDI/OSC "
+        "events. Saving a shader, mapping or preset reloads it; a broken save keeps the last good one and "
+        "prints file:line. Presets may script parameters (docs/presets.md).");
 
     std::string learnParam, learnMapping = "mappings/learned.toml";
     double learnTimeout = 30;
