@@ -443,7 +443,7 @@ OverlayModel LiveSession::OverlayModelNow() {
     for (size_t i = 0; i < params.decls.size(); ++i) {
         const ParamDecl& d = params.decls[i];
         m.params.push_back({d.name, d.label.empty() ? d.name : d.label, d.minValue, d.maxValue, params.value[i],
-                            params.target[i], ControlsFor(state_.mapping, d.name),
+                            params.target[i], ControlsFor(state_.mapping, params, (int)i),
                             scripts.Scripted(d.name) ? scripts.ExpressionText(d.name) : std::string()});
     }
     if (Now() - presetsListed_ > 0.5) {   // a directory listing, not every frame

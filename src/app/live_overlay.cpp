@@ -117,10 +117,11 @@ std::string ControlLabel(const MappingEntry& e) {
     return "?";
 }
 
-std::string ControlsFor(const Mapping& m, const std::string& param) {
+std::string ControlsFor(const Mapping& m, const ParamState& params, int index) {
     std::string s;
     for (const MappingEntry& e : m.entries)
-        if (e.target == param && (e.action == PadAction::None || e.action == PadAction::Trigger || e.action == PadAction::Toggle))
+        if (TargetIndex(e, params) == index &&
+            (e.action == PadAction::None || e.action == PadAction::Trigger || e.action == PadAction::Toggle))
             s += (s.empty() ? "" : ", ") + ControlLabel(e);
     return s;
 }

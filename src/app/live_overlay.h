@@ -76,8 +76,9 @@ void ObserveEvents(OverlayUi& ui, const std::vector<ControlEvent>& events);
 
 // "CC 2 ch1", "CC 7/39 ch any" (14-bit), "note 36 ch10", "OSC /x", "pitch bend ch1", "program any".
 std::string ControlLabel(const MappingEntry& e);
-// Every control mapped to `param`, joined with ", "; "" when none.
-std::string ControlsFor(const Mapping& m, const std::string& param);
+// The controls mapped to parameter `index` of `params` (by name or by position, target = N),
+// joined with ", "; "" when none.
+std::string ControlsFor(const Mapping& m, const ParamState& params, int index);
 
 struct OverlayParam {
     std::string name, label;

@@ -222,10 +222,14 @@ TEST_CASE("live_overlay sliders: each shows the controls mapped to it") {
     std::string text = "[[map]]\ncc = 2\nchannel = 1\ntarget = \"twist\"\n"
                        "[[map]]\nosc = \"/x\"\ntarget = \"twist\"\n"
                        "[[map]]\nnote = 36\naction = \"toggle\"\ntarget = \"scale\"\n";
+    text += "[[map]]\ncc = 20\nchannel = 1\ntarget = 4\n";   // positional: the 4th input
     REQUIRE(ParseMapping(text, "t.toml", &m).ok);
-    CHECK(ControlsFor(m, "twist") == "CC 2 ch1, OSC /x");
-    CHECK(ControlsFor(m, "scale") == "note 36");
-    CHECK(ControlsFor(m, "smoothness").empty());
+    auto decl = [](const char* n) { ParamDecl d; d.name = n; return d; };
+    const ParamState p = MakeParamState({decl("scale"), decl("twist"), decl("smoothness"), decl("glow")});
+    CHECK(ControlsFor(m, p, 1) == "CC 2 ch1, OSC /x");
+    CHECK(ControlsFor(m, p, 0) == "note 36");
+    CHECK(ControlsFor(m, p, 2).empty());
+    CHECK(ControlsFor(m, p, 3) == "CC 20 ch1");
 }
 
 TEST_CASE("live_overlay learn: the next moving control is taken from the drained events and appended to the mapping") {
