@@ -199,6 +199,7 @@ private:
     bool dragWasDown_ = false, zeroWasDown_ = false;
     double dragX_ = 0.0, dragY_ = 0.0;
     int frame_ = 0, fbw_ = 0, fbh_ = 0;
+    float renderScale_ = 1.0f;   // --render-scale and the overlay's resolution slider
     uint64_t internalErrors_ = 0;
 };
 
@@ -215,6 +216,7 @@ bool LiveSession::Start(std::string* error) {
         std::setvbuf(paramLog_.get(), nullptr, _IOLBF, 0);
     }
     overlay_ = !o_.hideOverlay;   // --hide-overlay: start as after Tab (clean screenshots)
+    renderScale_ = (float)std::clamp(o_.renderScale, 0.25, 1.0);
     in_.quality = state_.show.quality;
     if (o_.show.path == "auto") {
         std::string log;
@@ -390,14 +392,16 @@ void LiveSession::Draw(double now) {
     glViewport(0, 0, fbw_, fbh_);
     glClearColor(0.08f, 0.08f, 0.1f, 1.0f);   // until a first program compiles
     glClear(GL_COLOR_BUFFER_BIT);
-    if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(fbw_, fbh_, &error)) return;
+    // The scene renders at renderScale_ of the window and is upscaled (linear) when it is smaller.
+    const int rw = std::max(1, (int)std::lround(fbw_ * renderScale_)), rh = std::max(1, (int)std::lround(fbh_ * renderScale_));
+    if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;
     in_.time = now;
     in_.frame = frame_++;
     in_.beat = BeatPhase(state_, now);
     in_.bpm = (float)state_.automation.tempo.bpm;
     renderer_.Draw(*live_.Current(), live_.Scene(), in_);
     const double t = fade_.program ? (now - fade_.start) / fade_.seconds : 1.0;
-    if (t < 1.0 && fadeRenderer_.Resize(fbw_, fbh_, &error)) {
+    if (t < 1.0 && fadeRenderer_.Resize(rw, rh, &error)) {
         FrameInputs old = in_;
         old.params = fade_.params;
         fadeRenderer_.Draw(*fade_.program, fade_.scene, old);
@@ -406,7 +410,7 @@ void LiveSession::Draw(double now) {
         fade_ = Fade{};   // done: the old program may go
         glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        glBlitFramebuffer(0, 0, fbw_, fbh_, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBlitFramebuffer(0, 0, rw, rh, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, rw == fbw_ && rh == fbh_ ? GL_NEAREST : GL_LINEAR);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -438,6 +442,7 @@ OverlayModel LiveSession::OverlayModelNow() {
     m.fps = (float)fps_;
     m.width = fbw_;
     m.height = fbh_;
+    m.renderScale = renderScale_;
     const ParamState& params = state_.params;
     const Automation& scripts = state_.automation.automation;
     for (size_t i = 0; i < params.decls.size(); ++i) {
@@ -467,6 +472,7 @@ OverlayModel LiveSession::OverlayModelNow() {
 // Preset loads and effect toggles go through ApplyActions, as a pad or /sdfvj/preset and
 // /sdfvj/effect/<name> would; this frame's own actions were applied already and are put back.
 void LiveSession::ApplyOverlayActions(const OverlayActions& a, double now) {
+    if (a.renderScale > 0.0f) renderScale_ = std::clamp(a.renderScale, 0.25f, 1.0f);
     for (const auto& [index, value] : a.setTargets)
         if (index >= 0 && (size_t)index < state_.params.decls.size()) SetParamTarget(state_.params, index, value);
     if (!a.loadPreset.empty() || !a.effectToggles.empty()) {

@@ -90,6 +90,7 @@ struct LiveOptions {
     std::string screenshot;             // write the last frame here on exit
     std::string logParams;              // append "time name=value ..." per frame to this file
     bool hideOverlay = false;           // start with the overlay hidden (as after Tab)
+    double renderScale = 1.0;           // the scene renders at this fraction of the window (0.25..1)
 };
 int RunLive(const LiveOptions& o);
 #endif

@@ -208,14 +208,19 @@ void DrawMonitor(const OverlayUi& ui) {
     for (const ControlEvent& e : ui.monitor.recent) ImGui::TextUnformatted(DescribeEvent(e).c_str());
 }
 
-void DrawTimes(const OverlayModel& m, const OverlayUi& ui) {
+void DrawTimes(const OverlayModel& m, const OverlayUi& ui, OverlayActions& a) {
     const FrameTimeGraph& g = ui.frames;
     char caption[64];
     std::snprintf(caption, sizeof caption, "avg %.1f ms  max %.1f ms", g.Average(), g.Max());
     ImGui::PlotLines("##frames", g.ms.data(), (int)g.ms.size(), 0, caption, 0.0f, std::max(33.4f, g.Max()), ImVec2(360, 48));
     ImGui::SameLine();
     ImGui::TextDisabled("frame ms\n(CPU)");
-    ImGui::TextDisabled("%s path, %dx%d", m.pathName.c_str(), m.width, m.height);
+    ImGui::TextDisabled("%s path, %dx%d, scene at %dx%d", m.pathName.c_str(), m.width, m.height,
+                        (int)std::lround(m.width * m.renderScale), (int)std::lround(m.height * m.renderScale));
+    // A slow machine keeps its frame rate by rendering fewer pixels (upscaled with filtering).
+    float scale = m.renderScale;
+    ImGui::SetNextItemWidth(180);
+    if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f, "%.2f")) a.renderScale = scale;
 }
 
 }  // namespace
@@ -231,7 +236,7 @@ OverlayActions DrawOverlay(const OverlayModel& m, OverlayUi& ui) {
     DrawParams(m, ui, a);
     DrawEffects(m, a);
     DrawPresets(m, ui, a);
-    DrawTimes(m, ui);
+    DrawTimes(m, ui, a);
     DrawMonitor(ui);
     for (const std::string& line : m.statusLines) ImGui::TextDisabled("%s", line.c_str());
     if (m.recording) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC  %zu events", m.recorded);

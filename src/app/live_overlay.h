@@ -93,6 +93,7 @@ struct OverlayModel {
     std::string scene, effectsText, pathName;   // title line
     float fps = 0.0f;
     int width = 0, height = 0;                  // framebuffer
+    float renderScale = 1.0f;                   // the scene renders at this fraction of the window
     std::vector<OverlayParam> params;
     std::vector<std::string> presets;           // ListPresets(): file names, index = number key - 1
     std::string currentPreset;                  // file name of the preset on stage, "" = none
@@ -112,7 +113,10 @@ struct OverlayActions {
     std::string loadPreset;                                   // a file name from presets
     std::string savePreset;                                   // a name to save under (save or save-as)
     std::vector<std::pair<std::string, bool>> effectToggles;  // as /sdfvj/effect/<name> i
-    bool Empty() const { return setTargets.empty() && loadPreset.empty() && savePreset.empty() && effectToggles.empty(); }
+    float renderScale = 0.0f;                                 // > 0: render the scene at this fraction
+    bool Empty() const {
+        return setTargets.empty() && loadPreset.empty() && savePreset.empty() && effectToggles.empty() && renderScale <= 0.0f;
+    }
 };
 
 // Draws the overlay window; returns what the performer did this frame. Learn buttons arm and

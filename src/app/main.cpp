@@ -121,6 +121,11 @@ int main(int argc, char** argv) {
                         "renders, after mapping and smoothing (for tests, and for debugging a mapping)");
     cmdLive->add_flag("--hide-overlay", live.hideOverlay,
                       "start with the overlay hidden, as after Tab (clean screenshots); Tab shows it");
+    cmdLive->add_option("--render-scale", live.renderScale,
+                        "render the scene at this fraction of the window, upscaled (0.25..1; the overlay's "
+                        "'resolution' slider changes it live): a slow machine keeps its frame rate")
+        ->check(CLI::Range(0.25, 1.0))
+        ->capture_default_str();
     cmdLive->footer(
         "In the window: Tab hides the overlay (for the audience), F11 toggles fullscreen, 1-9 pick presets, "
         "a mouse drag orbits the camera and 0 puts it back, Esc quits. The overlay edits values, learns a "

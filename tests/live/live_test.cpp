@@ -183,3 +183,21 @@ TEST_CASE("live without a display exits 2 with one clear line") {
     CHECK(std::count(out.begin(), out.end(), '\n') == 1);
     CHECK(out.find("no display") != std::string::npos);
 }
+
+TEST_CASE("live render scale: --render-scale 0.25 fills the window with the scene rendered at a quarter of its size") {
+    LiveRun full("scale-full", {"--param", "spin=0"}, false), quarter("scale-quarter", {"--param", "spin=0", "--render-scale", "0.25"}, false);
+    const int rcFull = full.Wait(), rcQuarter = quarter.Wait();
+    INFO(ReadText(full.log) << ReadText(quarter.log));
+    REQUIRE(rcFull == 0);
+    REQUIRE(rcQuarter == 0);
+    Image a, b;
+    REQUIRE(LoadPng(full.shot, &a));
+    REQUIRE(LoadPng(quarter.shot, &b));
+    REQUIRE(b.width == kW);
+    REQUIRE(b.height == kH);
+    CHECK(LumaSpread(b) > 5.0);                    // the scene, not a blank window
+    ImageDiff d = CompareImages(a, b, 24);
+    INFO("quarter against full: mean " << d.meanAbs << ", " << d.fractionOver * 100 << "% of pixels over 24/255");
+    CHECK(d.meanAbs < 12.0);                       // the same picture, softer
+    CHECK(d.maxAbs > 0);                           // but not the full-size render
+}
