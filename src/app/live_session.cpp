@@ -270,7 +270,9 @@ void FollowScene(LiveState& state, const SceneInfo& onScreen) {
 
 void RunAutomation(LiveState& state, double now, int frame) {
     std::vector<std::string> reports;
-    const std::vector<float> knobs = KnobPositions(state.mapping, state.mappingState);
+    // knob1..16 only matter to expressions: no vector is built per frame for a preset without any.
+    const bool scripted = !state.automation.automation.Desc().expressions.empty();
+    const std::vector<float> knobs = scripted ? KnobPositions(state.mapping, state.mappingState) : std::vector<float>{};
     for (const CueDesc& cue : StepAutomation(state.automation, state.params, knobs, now, frame, &reports)) {
         const std::string name = ResolvePresetRequest(cue.preset, state.currentPreset, ListPresets());
         if (name.empty()) {

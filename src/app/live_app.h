@@ -1,0 +1,191 @@
+// The pieces of `sdfvj live` that own the window, GL, devices and files: LiveWindow (the window,
+// ImGui and the compile thread's context) and LiveSession (one show). cmd_live.cpp holds the frame,
+// live_session_ui.cpp the keys and the overlay's glue. Render thread only. Internal to `sdfvj`.
+#pragma once
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <memory>
+
+#include "app/commands.h"
+#include "app/live_overlay.h"
+#include "app/live_session.h"
+#include "render/compile_worker.h"
+#include "render/live_program.h"
+#include "shader/watch.h"
+#include "take/take.h"
+
+namespace sdfvj {
+
+// The window and its GL context, Dear ImGui on it, and the optional compile thread's hidden
+// window. Created first and destroyed last: every GL object of the session dies before it.
+class LiveWindow {
+public:
+    ~LiveWindow() {
+        PendingProgram::SetWorker(nullptr);
+        worker_.reset();   // no compile may outlive the windows
+        if (imgui_) {
+            ImGui_ImplOpenGL3_Shutdown();
+            ImGui_ImplGlfw_Shutdown();
+            ImGui::DestroyContext();
+        }
+        if (compileWindow_) glfwDestroyWindow(compileWindow_);
+        if (window_) glfwDestroyWindow(window_);
+        if (glfw_) glfwTerminate();
+    }
+    bool Open(int w, int h, bool fullscreen, std::string* error) {
+        if (!(glfw_ = glfwInit())) {
+            *error = "no display (GLFW could not start); use `sdfvj render` for headless output";
+            return false;
+        }
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        window_ = glfwCreateWindow(w, h, "sdfvj", fullscreen ? glfwGetPrimaryMonitor() : nullptr, nullptr);
+        if (!window_) {
+            *error = "cannot open an OpenGL 4.5 core window on this display";
+            return false;
+        }
+        glfwMakeContextCurrent(window_);
+        glfwSwapInterval(1);
+        std::fprintf(stderr, "GL: %s, %s\n", (const char*)glGetString(GL_RENDERER), (const char*)glGetString(GL_VERSION));
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr;
+        ImGui_ImplGlfw_InitForOpenGL(window_, true);
+        ImGui_ImplOpenGL3_Init("#version 450");
+        imgui_ = true;
+        // Where it helps (Mesa; see PreferCompileThread), shader compiles run on a worker thread
+        // with a hidden window's context that shares programs with this one, so a reload or a
+        // variant switch does not stall frames. Elsewhere the driver's parallel compile is used.
+        if (PreferCompileThread()) {
+            glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+            compileWindow_ = glfwCreateWindow(1, 1, "sdfvj compiler", nullptr, window_);
+            glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+        }
+        if (compileWindow_) {
+            GLFWwindow* cw = compileWindow_;
+            worker_ = std::make_unique<CompileWorker>(
+                [cw] {
+                    glfwMakeContextCurrent(cw);
+                    return glfwGetCurrentContext() == cw;
+                },
+                false, [] { glfwMakeContextCurrent(nullptr); });
+            if (worker_->Ok()) PendingProgram::SetWorker(worker_.get());
+            else std::fprintf(stderr, "sdfvj live: no compile thread; shaders compile on the render thread\n");
+        }
+        return true;
+    }
+    GLFWwindow* Get() const { return window_; }
+private:
+    bool glfw_ = false, imgui_ = false;
+    GLFWwindow* window_ = nullptr;
+    GLFWwindow* compileWindow_ = nullptr;
+    std::unique_ptr<CompileWorker> worker_;
+};
+
+// One show: owns what it runs on; Frame() is the frame loop's body (cmd_live.cpp).
+class LiveSession {
+public:
+    LiveSession(const LiveOptions& o, LiveState state, GLFWwindow* window)
+        : o_(o), state_(std::move(state)), window_(window), start_(std::chrono::steady_clock::now()),
+          input_(InputConfig(o), queue_, [this] { return Now(); }) {}
+
+    // Everything that may fail with a message before the first frame. False: exit code 2.
+    bool Start(std::string* error);
+    // One frame. False when the show is over (Esc, window closed, --seconds).
+    bool Frame();
+    void Finish();
+
+private:
+    static InputOptions InputConfig(const LiveOptions& o) {
+        InputOptions io;
+        io.midiPort = o.midi;
+        io.oscPort = o.oscPort;
+        io.oscFeedback = o.oscFeedback;
+        return io;
+    }
+    double Now() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+    void ReadKeys();
+    std::vector<ControlEvent> PollInput(double now);
+    void Reload();
+    void UpdateProgram();
+    void LogParams(double now);
+    void Draw(double now);
+    void DrawOverlay();
+    // The overlay's helpers (live_overlay.h): what it shows, and acting on what the performer did.
+    OverlayModel OverlayModelNow();
+    void ApplyOverlayActions(const OverlayActions& a, double now);
+    void SavePreset(const std::string& name);
+    void FinishLearn();
+    void ToggleFullscreen();
+    void Present();
+    void SaveScreenshot(unsigned buffer);
+    void Watch(const std::string& folder);
+    // The last-resort guard around each stage: a bug reported, never a stopped show.
+    template <class Stage> void Guard(const char* name, Stage&& stage) {
+        try {
+            stage();
+        } catch (const std::exception& e) {
+            ++internalErrors_;
+            state_.report.Limited(Now(), {std::string("sdfvj live: internal error in ") + name + ": " + e.what() +
+                                          " — the show goes on with the last good state"});
+        } catch (...) {
+            ++internalErrors_;
+            state_.report.Limited(Now(), {std::string("sdfvj live: internal error in ") + name +
+                                          " — the show goes on with the last good state"});
+        }
+    }
+
+    const LiveOptions& o_;
+    LiveState state_;
+    GLFWwindow* window_;
+    std::chrono::steady_clock::time_point start_;
+    EventQueue queue_;
+    InputSession input_;
+    FolderWatcher watcher_;
+    std::vector<std::string> watched_;   // canonical folders
+    LiveProgram live_;
+    FrameRenderer renderer_;
+    // A scene change with a morph time fades from the old scene's frame to the new one's; the old
+    // program stays alive (shared) and keeps rendering with its last values until the fade ends.
+    struct Fade {
+        std::shared_ptr<const Program> program;
+        SceneInfo scene;
+        std::vector<std::pair<std::string, float>> params;
+        double start = 0.0, seconds = 0.0;
+        Easing easing = Easing::Smooth;
+    } fade_;
+    std::shared_ptr<const Program> shown_;   // the program the last frame showed, and its scene
+    SceneInfo shownScene_;
+    FrameRenderer fadeRenderer_;
+    Crossfade crossfade_;
+    void StartFadeIfSceneChanged(double now);
+    FrameInputs in_;
+    TakeRecorder recorder_;
+    Take rehearsal_;
+    std::unique_ptr<ReplayCursor> replay_;
+    std::unique_ptr<FILE, int (*)(FILE*)> paramLog_{nullptr, &std::fclose};
+    std::string shownError_;
+    bool overlay_ = true, tabWasDown_ = false, shotWritten_ = false;
+    // The overlay's memory (monitor, frame graph, learn) and the keys it reads.
+    OverlayUi ui_;
+    double lastOverlay_ = -1.0, presetsListed_ = -1e9;
+    std::vector<std::string> presets_;          // ListPresets(), refreshed twice a second
+    bool f11WasDown_ = false, numberWasDown_[9] = {};
+    int windowed_[4] = {0, 0, 0, 0};            // x, y, w, h before F11 went fullscreen
+    double last_ = 0.0, fps_ = 0.0;
+    bool dragWasDown_ = false, zeroWasDown_ = false;
+    double dragX_ = 0.0, dragY_ = 0.0;
+    int frame_ = 0, fbw_ = 0, fbh_ = 0;
+    float renderScale_ = 1.0f;   // --render-scale and the overlay's resolution slider
+    uint64_t internalErrors_ = 0;
+};
+
+}  // namespace sdfvj
