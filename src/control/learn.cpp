@@ -16,6 +16,7 @@
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <memory>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -29,19 +30,6 @@ namespace sdfvj {
 namespace {
 
 constexpr int kLearnOscPort = 9000;   // the same default as `sdfvj live --osc-port`
-
-// True when a UDP port can be bound right now (by us, on every address, as liblo does).
-bool UdpPortFree(int port) {
-    int s = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-    if (s < 0) return true;   // cannot tell; let liblo try and report
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_ANY);
-    a.sin_port = htons(uint16_t(port));
-    bool free = bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
-    close(s);
-    return free;
-}
 
 // Parameter names are scene uniforms (u_<name>): a TOML string of them needs no escaping.
 bool IsParamName(const std::string& s) {
@@ -195,13 +183,19 @@ int RunLearn(const std::string& param, const std::string& mappingPath, double ti
     auto clock = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     InputOptions opt;
     opt.log = false;
-    // A running `sdfvj live` holds 9000: learn must still start, on a port of its own.
-    opt.oscPort = UdpPortFree(kLearnOscPort) ? kLearnOscPort : 0;
-    InputSession session(opt, queue, clock);
-    for (const std::string& s : session.StatusLines()) std::fprintf(stderr, "%s\n", s.c_str());
-    if (opt.oscPort == 0 && session.OscPort() > 0)
+    // A running `sdfvj live` holds 9000: learn must still start, on a port of its own. Binding is
+    // the test (a check before it would race with whoever binds between the two).
+    opt.oscPort = kLearnOscPort;
+    auto session = std::make_unique<InputSession>(opt, queue, clock);
+    if (session->OscPort() <= 0) {
+        session.reset();
+        opt.oscPort = 0;
+        session = std::make_unique<InputSession>(opt, queue, clock);
+    }
+    for (const std::string& s : session->StatusLines()) std::fprintf(stderr, "%s\n", s.c_str());
+    if (opt.oscPort == 0 && session->OscPort() > 0)
         std::fprintf(stderr, "learn: UDP port %d is taken (a running `sdfvj live`?), send OSC to port %d instead\n",
-                     kLearnOscPort, session.OscPort());
+                     kLearnOscPort, session->OscPort());
     std::fprintf(stderr, "learn: move the control for '%s' (%.0f s)...\n", param.c_str(), timeoutSeconds);
     LearnState learnState;
     while (clock() < timeoutSeconds) {
