@@ -1,0 +1,174 @@
+// ISF module: hosts ISF 2.0 shaders (the Interactive Shader Format of VDMX, Resolume, ...) as
+// generators (a scene of their own) and as filters in a post chain over the raymarched frame.
+//
+// Usage (render thread, a GL 4.5 context current):
+//   IsfChain post;
+//   if (!post.Load({"shaders/isf/bloom.fs", "shaders/isf/rgb_split.fs"}, &error)) ...   // file:line: ...
+//   for (const std::string& n : post.Notices()) log(n);     // what of ISF sdfvj does not support
+//   IsfFrameInputs in;  in.time = t;  in.params = {{"amount", 0.5f}};
+//   unsigned tex = post.Render(frameRenderer.Texture(), w, h, in);   // the chain's output texture
+//   std::vector<uint8_t> rgba = ReadTextureRgba(tex, w, h);
+// A generator is a chain whose first file has no image input: post.Render(0, w, h, in).
+//
+// Parsing (IsfFile) needs no GL and throws nothing: every failure is a value
+// "file.fs:LINE: what is wrong, expected what". docs/isf.md lists what is not supported; each
+// such feature in a file gives one line in IsfFile::notices and the file still runs.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/param_decl.h"
+#include "shader/shader.h"
+
+namespace sdfvj {
+
+enum class IsfInputType { Event, Bool, Long, Float, Point2D, Color, Image, Audio, AudioFFT };
+const char* IsfInputTypeName(IsfInputType t);
+
+// One entry of INPUTS. Vector values use as many components as the type has (point2D 2, color 4).
+struct IsfInput {
+    std::string name;                    // the GLSL uniform name, as written
+    std::string label;                   // LABEL, else the name
+    IsfInputType type = IsfInputType::Float;
+    std::array<float, 4> defaultValue{}, minValue{}, maxValue{};
+    std::vector<int> values;             // long: VALUES (may be empty: MIN..MAX then)
+    std::vector<std::string> labels;     // long: LABELS, one per value
+    int maxSamples = 0;                  // audio/audioFFT: MAX (0: native)
+    int line = 0;                        // where it is declared in the .fs
+};
+
+// One entry of PASSES. An empty target renders to the effect's output.
+struct IsfPass {
+    std::string target;
+    std::string widthExpr, heightExpr;   // "" = the render size; else an expression ($WIDTH, $HEIGHT, $input)
+    bool persistent = false;             // kept across frames (feedback)
+    bool floatTarget = false;            // RGBA32F instead of RGBA8
+    int line = 0;
+};
+
+// One entry of IMPORTED: an image file loaded once and sampled by name.
+struct IsfImport {
+    std::string name;
+    std::string path;                    // resolved against the .fs file's folder
+    int line = 0;
+};
+
+enum class IsfKind { Generator, Filter, Shadertoy };
+
+struct IsfFile {
+    std::string path;
+    IsfKind kind = IsfKind::Generator;   // Filter: it has an image input (by convention "inputImage")
+    std::string isfVersion;              // ISFVSN ("" = 1.0)
+    std::string description, credit;
+    std::vector<std::string> categories;
+    std::vector<IsfInput> inputs;
+    std::vector<IsfPass> passes;         // never empty after parsing: one pass to the output at least
+    std::vector<IsfImport> imports;
+    std::string body;                    // the GLSL after the JSON comment
+    int bodyLine = 1;                    // line of the .fs where `body` starts
+    std::string vertexPath, vertexBody;  // the .vs of the same name, when there is one
+    std::vector<std::string> notices;    // "file.fs:LINE: unsupported ..., what sdfvj does instead"
+};
+
+// Parses a whole .fs (text in memory); `path` names it in errors and resolves IMPORTED paths.
+// A file without a JSON header that defines mainImage() is a Shadertoy generator.
+bool ParseIsfText(const std::string& text, const std::string& path, IsfFile* out, std::string* error);
+// Reads path (and path with .vs beside it) and parses.
+bool LoadIsfFile(const std::string& path, IsfFile* out, std::string* error);
+// True for names ending in .fs (ISF fragment shaders), case-insensitive.
+bool IsIsfPath(const std::string& path);
+
+// The inputs as scene parameters, addressed by mappings, OSC, presets and --param like any scene
+// input: float -> name, bool/event -> name (0/1), long -> name (int, MIN..MAX of VALUES),
+// point2D -> name_x, name_y, color -> name_r, name_g, name_b, name_a. Images have none.
+std::vector<ParamDecl> IsfParams(const IsfFile& file);
+// Applies --param NAME=VALUE overrides to `values` (clamped; unknown names are an error).
+bool ApplyIsfParamOverrides(const std::vector<ParamDecl>& decls, const std::vector<std::string>& overrides,
+                            std::vector<std::pair<std::string, float>>* values, std::string* error);
+
+// Evaluates a PASSES WIDTH/HEIGHT expression: numbers, $NAME variables, + - * / % ^, unary -,
+// parentheses, pi, e and floor ceil round abs sqrt exp log sin cos tan min max pow. No exceptions;
+// error says what and where ("unknown variable '$blur'").
+bool EvalIsfExpression(const std::string& expr, const std::map<std::string, double>& vars, double* out,
+                       std::string* error);
+
+// The GL 4.5 core program sources for a file: a preamble with the ISF built-ins and the input
+// uniforms, the body with its GLSL 1.x words translated (gl_FragColor, texture2D, varying), and
+// `#line` directives so a driver error names the .fs and its line (MapCompileLog).
+struct IsfSources {
+    ShaderSource vertex, fragment;
+};
+bool TranslateIsf(const IsfFile& file, IsfSources* out, std::string* error);
+
+// Per-frame values an ISF program reads.
+struct IsfFrameInputs {
+    double time = 0.0, timeDelta = 0.0;
+    int frame = 0;
+    std::array<float, 4> date{2024, 1, 1, 0};   // DATE: year, month, day, seconds in the day
+    std::array<float, 4> mouse{};               // Shadertoy iMouse (pixels)
+    std::vector<std::pair<std::string, float>> params;   // IsfParams names -> value (clamped here)
+};
+
+// One ISF file with its program, buffers and imported images. Owns GL objects: create, use and
+// destroy it on the render thread with the context current.
+class IsfEffect {
+public:
+    IsfEffect();
+    ~IsfEffect();
+    IsfEffect(const IsfEffect&) = delete;
+    IsfEffect& operator=(const IsfEffect&) = delete;
+    // Parses, translates, compiles and imports. On failure the effect keeps what it had before
+    // (keep-last-good) and error is one or more "file:line: ..." lines.
+    bool Load(const std::string& path, std::string* error);
+    bool IsValid() const;
+    const IsfFile& File() const;
+    const std::vector<ParamDecl>& Params() const;
+    // Runs every pass at w x h. `input` is the previous stage's texture (0: none, image inputs
+    // then read black). Returns the texture holding the output, valid until the next Render.
+    unsigned Render(unsigned input, int w, int h, const IsfFrameInputs& in);
+    // Re-reads the .fs/.vs when their bytes changed; a failed reload keeps the running program.
+    // Returns 0 unchanged, 1 reloaded, -1 failed (error set).
+    int ReloadIfChanged(std::string* error);
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
+
+// A post chain (or a generator followed by filters): each stage reads the previous one's output.
+class IsfChain {
+public:
+    // Loads every file; false with the first file's error (nothing replaced on failure).
+    bool Load(const std::vector<std::string>& paths, std::string* error);
+    bool Empty() const { return effects_.empty(); }
+    size_t Size() const { return effects_.size(); }
+    IsfEffect& Stage(size_t i) { return *effects_[i]; }
+    // Every stage's notices, one line each.
+    std::vector<std::string> Notices() const;
+    // All stages' parameters (a name two stages share is one parameter).
+    std::vector<ParamDecl> Params() const;
+    unsigned Render(unsigned input, int w, int h, const IsfFrameInputs& in);
+    // Hot reload for live: call when a watched file changed (or once a second). Each stage that
+    // changed is rebuilt; one that fails keeps running its last good program and adds a line to
+    // `errors`. Returns true when any stage was reloaded.
+    bool ReloadIfChanged(std::vector<std::string>* errors);
+private:
+    std::vector<std::unique_ptr<IsfEffect>> effects_;
+};
+
+// "a.fs,b.fs" -> {"a.fs", "b.fs"}; a bare name ("bloom") means shaders/isf/bloom.fs.
+std::vector<std::string> SplitIsfList(const std::string& list);
+// Resolves a post-effect or scene name to a file: a path as given, else shaders/isf/NAME(.fs).
+std::string ResolveIsfPath(const std::string& nameOrPath);
+
+// RGBA8 rows of a texture, top row first (as FrameRenderer::ReadPixels).
+std::vector<uint8_t> ReadTextureRgba(unsigned texture, int w, int h);
+
+// Reads an image file (PNG, JPEG, BMP, TGA via stb_image) as RGBA8 rows, BOTTOM row first (GL's
+// order). False with "path: why" on failure.
+bool LoadImageRgba(const std::string& path, int* w, int* h, std::vector<uint8_t>* rgba, std::string* error);
+
+}  // namespace sdfvj

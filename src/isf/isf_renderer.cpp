@@ -1,0 +1,374 @@
+// The ISF pass graph on the current GL context: one program per file, a double-buffered texture
+// per TARGET (a pass reads the previous content of its own target while writing the new one,
+// which is what PERSISTENT feedback needs), imported images, and a chain of effects.
+// Render thread only: every function here makes GL calls.
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "isf/isf.h"
+
+namespace sdfvj {
+
+namespace {
+
+constexpr int kMaxSide = 16384;
+
+// Two textures (front: the last content, back: being drawn) and their framebuffers.
+struct Buffer {
+    unsigned tex[2] = {0, 0}, fbo[2] = {0, 0};
+    int w = 0, h = 0, front = 0;
+    bool isFloat = false;
+
+    void Release() {
+        glDeleteFramebuffers(2, fbo);
+        glDeleteTextures(2, tex);
+        tex[0] = tex[1] = fbo[0] = fbo[1] = 0;
+        w = h = 0;
+    }
+    // (Re)creates both textures cleared to transparent black when size or format changed.
+    void Ensure(int width, int height, bool floatTarget) {
+        if (tex[0] && w == width && h == height && isFloat == floatTarget) return;
+        Release();
+        glCreateTextures(GL_TEXTURE_2D, 2, tex);
+        glCreateFramebuffers(2, fbo);
+        const float zero[4] = {0, 0, 0, 0};
+        for (int i = 0; i < 2; ++i) {
+            glTextureStorage2D(tex[i], 1, floatTarget ? GL_RGBA32F : GL_RGBA8, width, height);
+            glClearTexImage(tex[i], 0, GL_RGBA, GL_FLOAT, zero);
+            glNamedFramebufferTexture(fbo[i], GL_COLOR_ATTACHMENT0, tex[i], 0);
+        }
+        w = width;
+        h = height;
+        isFloat = floatTarget;
+        front = 0;
+    }
+    unsigned Front() const { return tex[front]; }
+};
+
+unsigned OnePixelTexture(const uint8_t rgba[4]) {
+    unsigned t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, GL_RGBA8, 1, 1);
+    glTextureSubImage2D(t, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    return t;
+}
+
+unsigned CompileStage(GLenum kind, const ShaderSource& src, std::string* log) {
+    unsigned s = glCreateShader(kind);
+    const char* text = src.text.c_str();
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (ok) return s;
+    GLint len = 0;
+    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+    std::string raw(size_t(std::max(len, 1)), '\0');
+    glGetShaderInfoLog(s, len, nullptr, raw.data());
+    *log += MapCompileLog(raw.c_str(), src);
+    glDeleteShader(s);
+    return 0;
+}
+
+// Links the two stages; 0 with file:line messages in `error` on failure.
+unsigned BuildProgram(const IsfSources& src, const std::string& path, std::string* error) {
+    std::string log;
+    unsigned vs = CompileStage(GL_VERTEX_SHADER, src.vertex, &log);
+    unsigned fs = CompileStage(GL_FRAGMENT_SHADER, src.fragment, &log);
+    if (!vs || !fs) {
+        if (vs) glDeleteShader(vs);
+        if (fs) glDeleteShader(fs);
+        *error = log.empty() ? path + ":1: the shader does not compile" : log;
+        while (!error->empty() && error->back() == '\n') error->pop_back();
+        return 0;
+    }
+    unsigned p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (ok) return p;
+    GLint len = 0;
+    glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
+    std::string raw(size_t(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(p, len, nullptr, raw.data());
+    glDeleteProgram(p);
+    *error = path + ":1: the shader does not link: " + std::string(raw.c_str());
+    while (!error->empty() && error->back() == '\n') error->pop_back();
+    return 0;
+}
+
+uint64_t FilesHash(const std::string& fsPath) {
+    std::string bytes;
+    for (std::string p : {fsPath, fsPath.substr(0, fsPath.size() - 3) + ".vs"}) {
+        std::ifstream in(p, std::ios::binary);
+        std::stringstream ss;
+        if (in) ss << in.rdbuf();
+        bytes += ss.str() + '\0';
+    }
+    return HashBytes(bytes);
+}
+
+}  // namespace
+
+struct IsfEffect::State {
+    std::string path;
+    IsfFile file;
+    std::vector<ParamDecl> params;
+    unsigned program = 0, vao = 0, sampler = 0, black = 0, silence = 0;
+    std::map<std::string, int> locations;
+    std::map<std::string, Buffer> buffers;          // by TARGET; "" is the output
+    std::map<std::string, unsigned> imports;        // IMPORTED name -> texture
+    uint64_t hash = 0;                              // of the bytes last loaded (or last tried)
+    std::vector<unsigned> boundUnits;
+
+    int Location(const std::string& name) {
+        auto it = locations.find(name);
+        if (it != locations.end()) return it->second;
+        return locations[name] = glGetUniformLocation(program, name.c_str());
+    }
+    void BindImage(const std::string& name, unsigned texture) {
+        const int loc = Location(name);
+        if (loc < 0) return;
+        const unsigned unit = (unsigned)boundUnits.size();
+        glBindTextureUnit(unit, texture);
+        glBindSampler(unit, sampler);
+        glUniform1i(loc, (int)unit);
+        boundUnits.push_back(unit);
+    }
+    void ReleaseProgram() {
+        if (program) glDeleteProgram(program);
+        for (auto& [n, t] : imports) glDeleteTextures(1, &t);
+        imports.clear();
+        locations.clear();
+        program = 0;
+    }
+};
+
+IsfEffect::IsfEffect() : s_(std::make_unique<State>()) {}
+
+IsfEffect::~IsfEffect() {
+    s_->ReleaseProgram();
+    for (auto& [n, b] : s_->buffers) b.Release();
+    if (s_->vao) glDeleteVertexArrays(1, &s_->vao);
+    if (s_->sampler) glDeleteSamplers(1, &s_->sampler);
+    if (s_->black) glDeleteTextures(1, &s_->black);
+    if (s_->silence) glDeleteTextures(1, &s_->silence);
+}
+
+bool IsfEffect::IsValid() const { return s_->program != 0; }
+const IsfFile& IsfEffect::File() const { return s_->file; }
+const std::vector<ParamDecl>& IsfEffect::Params() const { return s_->params; }
+
+bool IsfEffect::Load(const std::string& path, std::string* error) {
+    State& s = *s_;
+    s.hash = FilesHash(path);
+    s.path = path;
+    IsfFile file;
+    IsfSources src;
+    if (!LoadIsfFile(path, &file, error) || !TranslateIsf(file, &src, error)) return false;
+    std::map<std::string, unsigned> imports;
+    auto dropImports = [&] { for (auto& [n, t] : imports) glDeleteTextures(1, &t); };
+    for (const IsfImport& im : file.imports) {
+        int w = 0, h = 0;
+        std::vector<uint8_t> rgba;
+        std::string why;
+        if (!LoadImageRgba(im.path, &w, &h, &rgba, &why)) {
+            dropImports();
+            *error = path + ":" + std::to_string(im.line) + ": IMPORTED '" + im.name + "': " + why;
+            return false;
+        }
+        unsigned t = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        glTextureStorage2D(t, 1, GL_RGBA8, w, h);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        imports[im.name] = t;
+    }
+    const unsigned program = BuildProgram(src, path, error);
+    if (!program) {
+        dropImports();
+        return false;
+    }
+    // Success: swap in. Buffers of targets the new file still has are kept (feedback survives a reload).
+    s.ReleaseProgram();
+    s.program = program;
+    s.imports = std::move(imports);
+    s.file = std::move(file);
+    s.params = IsfParams(s.file);
+    for (auto it = s.buffers.begin(); it != s.buffers.end();) {
+        const bool used = std::any_of(s.file.passes.begin(), s.file.passes.end(), [&](const IsfPass& p) { return p.target == it->first; });
+        if (used) ++it;
+        else { it->second.Release(); it = s.buffers.erase(it); }
+    }
+    if (!s.vao) {
+        glCreateVertexArrays(1, &s.vao);
+        glCreateSamplers(1, &s.sampler);
+        glSamplerParameteri(s.sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glSamplerParameteri(s.sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glSamplerParameteri(s.sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(s.sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        const uint8_t black[4] = {0, 0, 0, 255}, grey[4] = {128, 128, 128, 255};
+        s.black = OnePixelTexture(black);
+        s.silence = OnePixelTexture(grey);   // an "audio" wave at rest is 0.5
+    }
+    return true;
+}
+
+int IsfEffect::ReloadIfChanged(std::string* error) {
+    if (s_->path.empty() || FilesHash(s_->path) == s_->hash) return 0;
+    return Load(s_->path, error) ? 1 : -1;   // Load records the new hash either way: one report per save
+}
+
+unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& in) {
+    State& s = *s_;
+    if (!s.program) return input;   // a file that never loaded passes its input through
+    const IsfFile& f = s.file;
+    auto valueOf = [&](const ParamDecl& d) {
+        for (const auto& [n, v] : in.params)
+            if (n == d.name) return ClampParam(d, v);
+        return d.defaultValue;
+    };
+    std::map<std::string, float> values;
+    for (const ParamDecl& d : s.params) values[d.name] = valueOf(d);
+    std::map<std::string, double> vars{{"WIDTH", w}, {"HEIGHT", h}};
+    for (const IsfInput& i : f.inputs) {
+        auto it = values.find(i.type == IsfInputType::Point2D ? i.name + "_x" : i.type == IsfInputType::Color ? i.name + "_r" : i.name);
+        if (it != values.end()) vars[i.name] = it->second;
+    }
+    int inputW = 1, inputH = 1;
+    if (input) {
+        glGetTextureLevelParameteriv(input, 0, GL_TEXTURE_WIDTH, &inputW);
+        glGetTextureLevelParameteriv(input, 0, GL_TEXTURE_HEIGHT, &inputH);
+    }
+
+    glUseProgram(s.program);
+    glBindVertexArray(s.vao);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    unsigned output = input;
+    for (size_t pi = 0; pi < f.passes.size(); ++pi) {
+        const IsfPass& pass = f.passes[pi];
+        auto side = [&](const std::string& expr, int full) {
+            double v = full;
+            std::string why;
+            if (!expr.empty() && !EvalIsfExpression(expr, vars, &v, &why)) v = full;   // checked at load; an input made it inf
+            return (int)std::clamp(std::round(v), 1.0, double(kMaxSide));
+        };
+        const int pw = side(pass.widthExpr, w), ph = side(pass.heightExpr, h);
+        Buffer& b = s.buffers[pass.target];
+        b.Ensure(pw, ph, pass.floatTarget);
+        glBindFramebuffer(GL_FRAMEBUFFER, b.fbo[b.front ^ 1]);
+        glViewport(0, 0, pw, ph);
+
+        auto set1i = [&](const char* n, int v) { if (int l = s.Location(n); l >= 0) glUniform1i(l, v); };
+        auto set1f = [&](const char* n, float v) { if (int l = s.Location(n); l >= 0) glUniform1f(l, v); };
+        auto set4f = [&](const char* n, const std::array<float, 4>& v) { if (int l = s.Location(n); l >= 0) glUniform4f(l, v[0], v[1], v[2], v[3]); };
+        if (f.kind == IsfKind::Shadertoy) {
+            if (int l = s.Location("iResolution"); l >= 0) glUniform3f(l, (float)pw, (float)ph, 1.0f);
+            if (int l = s.Location("iChannelResolution[0]"); l >= 0) glUniform3f(l, (float)inputW, (float)inputH, 1.0f);
+            set1f("iTime", (float)in.time);
+            set1f("iTimeDelta", (float)in.timeDelta);
+            set1f("iFrameRate", in.timeDelta > 0 ? float(1.0 / in.timeDelta) : 60.0f);
+            set1i("iFrame", in.frame);
+            set4f("iMouse", in.mouse);
+            set4f("iDate", in.date);
+            s.BindImage("iChannel0", input ? input : s.black);
+            for (const char* ch : {"iChannel1", "iChannel2", "iChannel3"}) s.BindImage(ch, s.black);
+        } else {
+            set1i("PASSINDEX", (int)pi);
+            if (int l = s.Location("RENDERSIZE"); l >= 0) glUniform2f(l, (float)pw, (float)ph);
+            set1f("TIME", (float)in.time);
+            set1f("TIMEDELTA", (float)in.timeDelta);
+            set4f("DATE", in.date);
+            set1i("FRAMEINDEX", in.frame);
+            for (const IsfInput& i : f.inputs) {
+                const int l = s.Location(i.name);
+                if (i.type == IsfInputType::Image) { s.BindImage(i.name, input ? input : s.black); continue; }
+                if (i.type == IsfInputType::Audio || i.type == IsfInputType::AudioFFT) {
+                    s.BindImage(i.name, i.type == IsfInputType::Audio ? s.silence : s.black);
+                    continue;
+                }
+                if (l < 0) continue;
+                switch (i.type) {
+                    case IsfInputType::Float: glUniform1f(l, values[i.name]); break;
+                    case IsfInputType::Bool: case IsfInputType::Event: case IsfInputType::Long:
+                        glUniform1i(l, (int)std::lround(values[i.name])); break;
+                    case IsfInputType::Point2D: glUniform2f(l, values[i.name + "_x"], values[i.name + "_y"]); break;
+                    case IsfInputType::Color:
+                        glUniform4f(l, values[i.name + "_r"], values[i.name + "_g"], values[i.name + "_b"], values[i.name + "_a"]);
+                        break;
+                    default: break;
+                }
+            }
+            for (const IsfPass& p : f.passes) {
+                if (p.target.empty()) continue;
+                auto it = s.buffers.find(p.target);
+                s.BindImage(p.target, it != s.buffers.end() && it->second.tex[0] ? it->second.Front() : s.black);
+            }
+            for (const auto& [name, t] : s.imports) s.BindImage(name, t);
+        }
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        for (unsigned u : s.boundUnits) glBindSampler(u, 0);   // sampler objects would override others' textures
+        s.boundUnits.clear();
+        b.front ^= 1;
+        output = b.Front();
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    return output;
+}
+
+bool IsfChain::Load(const std::vector<std::string>& paths, std::string* error) {
+    std::vector<std::unique_ptr<IsfEffect>> loaded;
+    for (const std::string& p : paths) {
+        auto e = std::make_unique<IsfEffect>();
+        if (!e->Load(p, error)) return false;
+        loaded.push_back(std::move(e));
+    }
+    effects_ = std::move(loaded);
+    return true;
+}
+
+std::vector<std::string> IsfChain::Notices() const {
+    std::vector<std::string> out;
+    for (const auto& e : effects_)
+        for (const std::string& n : e->File().notices) out.push_back(n);
+    return out;
+}
+
+std::vector<ParamDecl> IsfChain::Params() const {
+    std::vector<ParamDecl> out;
+    for (const auto& e : effects_)
+        for (const ParamDecl& d : e->Params())
+            if (std::none_of(out.begin(), out.end(), [&](const ParamDecl& o) { return o.name == d.name; })) out.push_back(d);
+    return out;
+}
+
+unsigned IsfChain::Render(unsigned input, int w, int h, const IsfFrameInputs& in) {
+    unsigned t = input;
+    for (auto& e : effects_) t = e->Render(t, w, h, in);
+    return t;
+}
+
+bool IsfChain::ReloadIfChanged(std::vector<std::string>* errors) {
+    bool any = false;
+    for (auto& e : effects_) {
+        std::string error;
+        const int r = e->ReloadIfChanged(&error);
+        if (r > 0) any = true;
+        if (r < 0) errors->push_back(error + " — still showing the previous shader");
+    }
+    return any;
+}
+
+}  // namespace sdfvj
