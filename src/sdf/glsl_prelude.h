@@ -33,6 +33,7 @@
 #undef SDF_LIB_DOMAIN_GLSL
 #undef SDF_LIB_COMBINATORS_GLSL
 #undef SDF_LIB_SHADING_GLSL
+#undef SDF_LIB_FIELD_GLSL
 #undef SDF_RENDER_UNIFORMS_GLSL
 #undef SDF_RENDER_RENDER_GLSL
 // what a scene declares for render.glsl (its bounding volume) must not carry over to the next
