@@ -49,6 +49,9 @@ enum class Easing { Linear, Smooth, EaseIn, EaseOut, Cut };
 struct MorphDesc {
     double seconds = 0.0;          // 0 = glide through the per-knob smoothing (as before)
     Easing easing = Easing::Smooth;
+    // A switch to another scene: true morphs the two fields in one program (render/field_morph.h),
+    // false (or where the scenes cannot share a program) crossfades their frames.
+    bool fieldMorph = true;
 };
 
 // Parses an easing name: linear, smooth, ease_in, ease_out, cut.

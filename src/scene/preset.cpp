@@ -55,8 +55,13 @@ bool ParseAutomationSections(const json& j, const std::string& text, const JsonL
                 } else if (it.key() == "easing") {
                     if (!it.value().is_string() || !ParseEasing(it.value().get_ref<const std::string&>(), &a->morph.easing))
                         return fail(at, "morph easing is not known, expected linear, smooth, ease_in, ease_out or cut");
+                } else if (it.key() == "scenes") {
+                    const bool ok = it.value().is_string() && (it.value().get_ref<const std::string&>() == "field" ||
+                                                               it.value().get_ref<const std::string&>() == "crossfade");
+                    if (!ok) return fail(at, "morph scenes is not known, expected \"field\" or \"crossfade\"");
+                    a->morph.fieldMorph = it.value().get_ref<const std::string&>() == "field";
                 } else {
-                    return fail(at, "unknown key '" + it.key() + "' in morph, expected seconds or easing");
+                    return fail(at, "unknown key '" + it.key() + "' in morph, expected seconds, easing or scenes");
                 }
             }
         } else {

@@ -139,6 +139,65 @@ bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource
     return true;
 }
 
+bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const VariantKey& key, ShaderSource* out,
+                          std::string* error) {
+    ShaderSource s;
+    s.files.push_back("<generated>");
+    s.text = "#version 450 core\n";
+    for (const auto& d : VariantDefines(key.effects, key.path)) s.text += "#define " + d + "\n";
+    const fs::path root = fs::path(DataRoot()) / "shaders";
+    if (!ExpandIncludes((root / "render" / "uniforms.glsl").string(), &s, error)) return false;
+    s.text += LineDirective(1, 0) + "uniform float u_morph;\n";
+    // The scene's own names, renamed while its text is read; its bound and ground macros saved.
+    static const char* kRenamed[] = {"map", "sceneLipschitz", "sceneBound", "mapGround"};
+    auto include = [&](const SceneInfo& scene, const std::string& prefix) {
+        s.text += LineDirective(1, 0);
+        for (const ParamDecl& p : scene.params) s.text += "uniform float u_" + prefix + "_" + p.name + ";\n";
+        for (const char* name : kRenamed) s.text += "#define " + std::string(name) + " " + prefix + "_" + name + "\n";
+        for (const ParamDecl& p : scene.params) s.text += "#define u_" + p.name + " u_" + prefix + "_" + p.name + "\n";
+        if (!ExpandIncludes(scene.path, &s, error)) return false;
+        s.text += LineDirective(1, 0);
+        for (const char* name : kRenamed) s.text += "#undef " + std::string(name) + "\n";
+        for (const ParamDecl& p : scene.params) s.text += "#undef u_" + p.name + "\n";
+        for (const char* macro : {"BOUND", "GROUND"}) {
+            const std::string m = std::string("SCENE_") + macro, saved = "MORPH_" + prefix + "_" + macro;
+            s.text += "#if defined(" + m + ") && " + m + "\n#define " + saved + " 1\n#else\n#define " + saved +
+                      " 0\n#endif\n#undef " + m + "\n";
+        }
+        return true;
+    };
+    if (!include(from, "m0") || !include(to, "m1")) return false;
+    s.text += LineDirective(1, 0);
+    s.text +=
+        "vec4 map(vec3 p) { return mix(m0_map(p), m1_map(p), u_morph); }\n"
+        "float sceneLipschitz() { return mix(m0_sceneLipschitz(), m1_sceneLipschitz(), u_morph); }\n"
+        // Off the union of the two spheres each field is its own ground (or empty), so the mix is
+        // the mix of the grounds there: one sphere around both is a bound of the morph.
+        "#if MORPH_m0_BOUND && MORPH_m1_BOUND && MORPH_m0_GROUND == MORPH_m1_GROUND\n"
+        "#define SCENE_BOUND 1\n"
+        "vec4 sceneBound() {\n"
+        "    vec4 a = m0_sceneBound(), b = m1_sceneBound();\n"
+        "    vec3 ca = vec3(a.x, a.y, a.z), cb = vec3(b.x, b.y, b.z);\n"
+        "    float d = length(cb - ca);\n"
+        "    if (d + b.w <= a.w) return a;\n"
+        "    if (d + a.w <= b.w) return b;\n"
+        "    float r = 0.5f * (d + a.w + b.w);\n"
+        "    vec3 c = ca + (cb - ca) * ((r - a.w) / d);\n"
+        "    return vec4(c.x, c.y, c.z, r + 1e-3f);\n"
+        "}\n"
+        "#if MORPH_m0_GROUND\n"
+        "#define SCENE_GROUND 1\n"
+        "vec4 mapGround(vec3 p) { return mix(m0_mapGround(p), m1_mapGround(p), u_morph); }\n"
+        "#endif\n"
+        "#endif\n";
+    if (!ExpandIncludes((root / "render" / "render.glsl").string(), &s, error)) return false;
+    const char* mainFile = key.path == RenderPath::Compute ? "main_comp.glsl" : "main_frag.glsl";
+    if (!ExpandIncludes((root / "render" / mainFile).string(), &s, error)) return false;
+    s.hash = HashBytes(s.text);
+    *out = std::move(s);
+    return true;
+}
+
 std::string MapCompileLog(const std::string& log, const ShaderSource& src) {
     static const std::regex kMesa(R"(^(\d+):(\d+)\(\d+\):\s*(.*)$)");
     static const std::regex kNvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");

@@ -37,6 +37,17 @@ bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* err
 // scene's generated parameter uniforms, the scene, render.glsl and the path's main().
 bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error);
 
+// A program whose field morphs from scene `from` to scene `to` (seed 003's scene interpolation):
+//   map(p) = mix(map_from(p), map_to(p), u_morph),  sceneLipschitz() = mix(L_from, L_to, u_morph)
+// (the gradient of a mix is at most the mix of the bounds, so every step stays safe). Each scene
+// is included once with its map/sceneLipschitz/sceneBound/mapGround and its inputs renamed by the
+// preprocessor: `from`'s input NAME becomes uniform u_m0_NAME, `to`'s u_m1_NAME. Where both scenes
+// declare a bounding sphere and agree on a ground, the morph bounds both with one sphere. Two scenes
+// that define the same helper name do not compile together: the caller falls back to a crossfade.
+// key.scenePath is ignored; key.effects and key.path select the variant.
+bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const VariantKey& key, ShaderSource* out,
+                          std::string* error);
+
 // The #defines a variant compiles with, one "NAME VALUE" per entry (also used by tests).
 std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path);
 
