@@ -38,7 +38,6 @@ struct ExprParser {
 
     // expr := term (('+'|'-') term)*
     bool Expr(double* out) {
-        if (++depth > 64) return Fail("the expression nests too deep");
         double v = 0;
         if (!Term(&v)) return false;
         for (;;) {
@@ -47,40 +46,45 @@ struct ExprParser {
             else if (Accept('-')) { if (!Term(&r)) return false; v -= r; }
             else break;
         }
-        --depth;
         *out = v;
         return true;
     }
-    // term := power (('*'|'/'|'%') power)*
+    // term := unary (('*'|'/'|'%') unary)*
     bool Term(double* out) {
         double v = 0;
-        if (!Power(&v)) return false;
+        if (!Unary(&v)) return false;
         for (;;) {
             double r = 0;
-            if (Accept('*')) { if (!Power(&r)) return false; v *= r; }
-            else if (Accept('/')) { if (!Power(&r)) return false; v /= r; }
-            else if (Accept('%')) { if (!Power(&r)) return false; v = std::fmod(v, r); }
+            if (Accept('*')) { if (!Unary(&r)) return false; v *= r; }
+            else if (Accept('/')) { if (!Unary(&r)) return false; v /= r; }
+            else if (Accept('%')) { if (!Unary(&r)) return false; v = std::fmod(v, r); }
             else break;
         }
         *out = v;
         return true;
     }
-    // power := unary ('^' power)?   (right associative)
+    // power := primary ('^' unary)?   (right associative; -2^2 is -(2^2), 2^-1 is 0.5)
     bool Power(double* out) {
         double v = 0;
-        if (!Unary(&v)) return false;
+        if (!Primary(&v)) return false;
         if (Accept('^')) {
             double r = 0;
-            if (!Power(&r)) return false;
+            if (!Unary(&r)) return false;
             v = std::pow(v, r);
         }
         *out = v;
         return true;
     }
+    // unary := ('-'|'+') unary | power
     bool Unary(double* out) {
-        if (Accept('-')) { if (!Unary(out)) return false; *out = -*out; return true; }
-        if (Accept('+')) return Unary(out);
-        return Primary(out);
+        if (depth > 200) return Fail("the expression nests too deep");   // recursion depth, not length
+        ++depth;
+        bool ok;
+        if (Accept('-')) { ok = Unary(out); *out = -*out; }
+        else if (Accept('+')) ok = Unary(out);
+        else ok = Power(out);
+        --depth;
+        return ok;
     }
     bool Primary(double* out) {
         Skip();
@@ -91,10 +95,13 @@ struct ExprParser {
             return true;
         }
         if (s[i] == '$') {
-            ++i;
+            const size_t at = i++;
             std::string n = Name();
             auto it = vars.find(n);
-            if (it == vars.end()) return Fail("unknown variable '$" + n + "', expected $WIDTH, $HEIGHT or an input's name");
+            if (it == vars.end()) {
+                i = at;   // the message points at the '$'
+                return Fail("unknown variable '$" + n + "', expected $WIDTH, $HEIGHT or an input's name");
+            }
             *out = it->second;
             return true;
         }
