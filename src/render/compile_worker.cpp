@@ -6,6 +6,10 @@
 
 #include <epoxy/gl.h>
 
+#include <chrono>
+
+#include "render/program_cache.h"
+
 namespace sdfvj {
 
 namespace {
@@ -106,23 +110,19 @@ bool CompileWorker::Ok() {
     return state_ == 1;
 }
 
-uint64_t CompileWorker::Submit(const std::string& text, RenderPath path) {
+uint64_t CompileWorker::Submit(const std::string& text, RenderPath path, bool store) {
     std::lock_guard<std::mutex> lock(mutex_);
     uint64_t t = next_++;
-    jobs_.push_back(Job{t, text, path});
+    jobs_.push_back(Job{t, text, path, store});
     wake_.notify_all();
     return t;
 }
 
-bool CompileWorker::Poll(uint64_t ticket, unsigned* program, std::string* rawLog, std::vector<uint8_t>* binary,
-                         unsigned* format) {
+bool CompileWorker::Poll(uint64_t ticket, Result* result) {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = done_.find(ticket);
     if (it == done_.end()) return false;
-    *program = it->second.program;
-    *rawLog = it->second.log;
-    if (binary) *binary = std::move(it->second.binary);
-    if (format) *format = it->second.format;
+    *result = std::move(it->second);
     done_.erase(it);
     return true;
 }
@@ -190,7 +190,9 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
         }
         std::string log;
         Done done;
-        unsigned prog = CompileLink(job.text, job.path, &log, handOverBinary_);
+        const auto t0 = std::chrono::steady_clock::now();
+        auto elapsedMs = [t0] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); };
+        unsigned prog = CompileLink(job.text, job.path, &log, handOverBinary_ || job.store);
         if (prog && handOverBinary_) {
             GLint length = 0;
             glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &length);
@@ -202,10 +204,17 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
             done.format = format;
             glDeleteProgram(prog);
             prog = 0;
-            if (done.binary.empty()) log = "the driver gave no program binary (GL_PROGRAM_BINARY_LENGTH 0)";
+            // The driver cannot hand a program over (Mesa gives binaries only with its disk cache
+            // on): the render thread compiles this one itself rather than failing the reload.
+            done.noBinary = done.binary.empty();
+            done.buildMs = elapsedMs();
+            if (job.store && !done.noBinary) StoreCachedBinary(done.format, done.binary, job.text, job.path);
         } else if (prog) {
             Prime(prog, job.path, job.text.find("rgba32f") != std::string::npos);
+            done.buildMs = elapsedMs();   // the cache store below is not part of the compile
+            if (job.store) StoreCachedProgram(prog, job.text, job.path);
         }
+        if (!prog && !done.noBinary && done.binary.empty()) done.buildMs = elapsedMs();   // failed
         done.program = prog;
         done.log = log;
         std::lock_guard<std::mutex> lock(mutex_);

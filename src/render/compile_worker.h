@@ -40,18 +40,27 @@ public:
     CompileWorker& operator=(const CompileWorker&) = delete;
     // False when the worker's context could not be made current (then nothing is compiled here).
     bool Ok();
-    uint64_t Submit(const std::string& text, RenderPath path);
-    // True once the ticket is done: `program` is the linked program (0 on failure, then
-    // `rawLog` holds the driver's messages). A ticket is reported once.
-    // In binary mode `program` stays 0 on success and `binary`/`format` hold the program binary.
-    bool Poll(uint64_t ticket, unsigned* program, std::string* rawLog, std::vector<uint8_t>* binary = nullptr,
-              unsigned* format = nullptr);
+    // Queues a compile of `text`. With `store`, a program that links is also written to the
+    // on-disk program cache (program_cache.h) from this thread, off the render thread's time.
+    uint64_t Submit(const std::string& text, RenderPath path, bool store = false);
+    // What a finished ticket gives back.
+    struct Result {
+        unsigned program = 0;            // the linked program (0 on failure, or in binary mode)
+        std::string log;                 // the driver's raw messages on failure
+        std::vector<uint8_t> binary;     // binary mode: the program binary, and its format
+        unsigned format = 0;
+        bool noBinary = false;           // binary mode, but the driver gave none (GL_PROGRAM_BINARY_LENGTH 0,
+                                         // Mesa with its disk cache off): the caller compiles it itself
+        double buildMs = 0.0;            // compile + link (+ priming draw) on the worker
+    };
+    // True once the ticket is done, filling `result`. A ticket is reported once.
+    bool Poll(uint64_t ticket, Result* result);
     // The caller no longer wants this ticket; its program is deleted when done.
     void Forget(uint64_t ticket);
 
 private:
-    struct Job { uint64_t ticket; std::string text; RenderPath path; };
-    struct Done { unsigned program; std::string log; std::vector<uint8_t> binary; unsigned format = 0; };
+    struct Job { uint64_t ticket; std::string text; RenderPath path; bool store; };
+    using Done = Result;
     void Loop(std::function<bool()> bind, std::function<void()> release);
 
     std::mutex mutex_;

@@ -1,17 +1,36 @@
 #include "render/live_program.h"
 
+#include <epoxy/gl.h>
+
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 namespace fs = std::filesystem;
 
 namespace sdfvj {
 
+bool LiveProgram::TieredCompileDefault() {
+    const char* env = std::getenv("SDFVJ_TIERED");
+    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
+    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
+    const GLubyte* vendor = glGetString(GL_VENDOR);
+    return vendor && std::strstr((const char*)vendor, "NVIDIA") != nullptr;
+}
+
+void LiveProgram::CancelBuilds() {
+    pending_.Cancel();
+    quick_.Cancel();
+}
+
 void LiveProgram::Request(const VariantKey& key) {
     key_ = key;
     auto it = cache_.find(key);
     if (it != cache_.end()) {
-        pending_.Cancel();
+        CancelBuilds();
         current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
@@ -35,7 +54,7 @@ void LiveProgram::Rebuild() {
     auto it = cache_.find(key_);
     if (it != cache_.end() && it->second.program->Source().hash == src.hash) {
         // A no-op save, or a broken save undone: the cached program is the right one again.
-        pending_.Cancel();
+        CancelBuilds();
         current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
@@ -45,11 +64,31 @@ void LiveProgram::Rebuild() {
     pendingScene_ = scene;
     pendingKey_ = key_;
     pendingHash_ = src.hash;
+    if (pending_.BeginFromCache(src, key_.path)) {
+        quick_.Cancel();
+        return;   // compiled in an earlier run: Update() puts it on screen
+    }
+    // The quick tier is queued first: on a compile worker (one job at a time) it must not wait
+    // behind the optimized build.
+    if (Tiered()) quick_.Begin(src, key_.path, BuildTier::Quick);
+    else quick_.Cancel();
     pending_.Begin(src, key_.path);
     ++compiles_;
 }
 
+void LiveProgram::FinishQuick() {
+    auto program = std::make_unique<Program>();
+    std::string log;
+    // A quick tier that fails says nothing: the optimized build of the same source reports.
+    if (!quick_.Finish(program.get(), &log)) return;
+    if (pendingKey_ != key_ || !pending_.Active()) return;
+    current_ = std::move(program);   // on screen, not in cache_: the optimized program goes there
+    scene_ = pendingScene_;
+    error_.clear();
+}
+
 void LiveProgram::Finish() {
+    quick_.Cancel();   // the optimized program is here: a quick tier still compiling is not needed
     auto program = std::make_unique<Program>();
     std::string log;
     if (!pending_.Finish(program.get(), &log)) {
@@ -91,12 +130,49 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
         }
         if (affectsCurrent) Rebuild();
     }
+    if (quick_.Active() && quick_.Ready()) FinishQuick();
     if (pending_.Active() && pending_.Ready()) Finish();
     return current_.get() != before;
 }
 
 void LiveProgram::Wait() {
     if (pending_.Active()) Finish();
+    quick_.Cancel();
+}
+
+std::string NudgeFirstConstant(const std::string& text, double delta, bool* found) {
+    *found = false;
+    const size_t header = text.find("*/");
+    size_t i = text.find('{', header == std::string::npos ? 0 : header + 2);
+    auto isDigit = [&](size_t k) { return k < text.size() && text[k] >= '0' && text[k] <= '9'; };
+    auto isWord = [&](size_t k) {
+        return k < text.size() && (std::isalnum((unsigned char)text[k]) || text[k] == '_');
+    };
+    for (; i != std::string::npos && i < text.size(); ++i) {
+        if (text.compare(i, 2, "//") == 0) {   // skip line and block comments
+            i = text.find('\n', i);
+            if (i == std::string::npos) break;
+            continue;
+        }
+        if (text.compare(i, 2, "/*") == 0) {
+            i = text.find("*/", i);
+            if (i == std::string::npos) break;
+            ++i;
+            continue;
+        }
+        if (!isDigit(i) || (i > 0 && (isWord(i - 1) || text[i - 1] == '.'))) continue;
+        size_t k = i;
+        while (isDigit(k)) ++k;
+        if (k >= text.size() || text[k] != '.' || !isDigit(k + 1)) continue;
+        ++k;
+        while (isDigit(k)) ++k;
+        if (k >= text.size() || text[k] != 'f' || isWord(k + 1)) continue;
+        char nudge[40];
+        std::snprintf(nudge, sizeof nudge, "+%.9ff)", delta);
+        *found = true;
+        return text.substr(0, i) + "(" + text.substr(i, k + 1 - i) + nudge + text.substr(k + 1);
+    }
+    return text;
 }
 
 }  // namespace sdfvj

@@ -8,6 +8,10 @@
 // screen and Error() says "shaders/scenes/midi.glsl:42: ..." until the file is fixed. A save
 // that leaves the assembled source unchanged (same content hash) compiles nothing. A change to
 // an #included file rebuilds every variant that includes it. Variants are cached by VariantKey.
+// A build first looks in the on-disk program cache (program_cache.h): a source compiled in an
+// earlier run is on screen at once. Tiered (by default where the driver takes the quick tier's
+// hint, NVIDIA): a quick tier (QuickTierText) is compiled first and goes on screen, the optimized
+// program compiles behind it and replaces it when ready; the image is the same.
 // Render thread only (GL).
 #pragma once
 #include <map>
@@ -38,7 +42,13 @@ public:
     const VariantKey& Key() const { return key_; }
     const std::string& Error() const { return error_; }   // empty when the last build succeeded
     int CompilesStarted() const { return compiles_; }
-    bool Pending() const { return pending_.Active(); }
+    bool Pending() const { return pending_.Active() || quick_.Active(); }
+    // Tiered compiles on or off (default: TieredCompileDefault()). Takes effect at the next build.
+    void SetTiered(bool on) { tiered_ = on ? 1 : 0; }
+    bool Tiered() const { return tiered_ == 1 || (tiered_ < 0 && TieredCompileDefault()); }
+    // True where the driver honours `#pragma optionNV(inline none)` (GL_VENDOR contains NVIDIA),
+    // unless SDFVJ_TIERED=0. Needs a current context.
+    static bool TieredCompileDefault();
 
 private:
     // Programs are shared between the cache and the screen: evicting a cache entry (its files
@@ -49,6 +59,8 @@ private:
     };
     void Rebuild();   // reassemble key_ and compile when the source hash differs
     void Finish();
+    void FinishQuick();
+    void CancelBuilds();
 
     VariantKey key_;
     SceneInfo scene_;                       // header of the program on screen
@@ -56,10 +68,19 @@ private:
     VariantKey pendingKey_;
     std::shared_ptr<const Program> current_;
     std::map<VariantKey, Cached> cache_;
-    PendingProgram pending_;
+    PendingProgram pending_;               // the optimized program (or one from the disk cache)
+    PendingProgram quick_;                 // its quick tier, while tiered
+    int tiered_ = -1;                      // -1: TieredCompileDefault(), asked when a build starts (GL current)
     uint64_t pendingHash_ = 0;
     std::string error_;
     int compiles_ = 0;
 };
+
+// For reload benchmarks and tests, the edit a live coder makes: `sceneText` with its first float
+// literal inside a function body (after the JSON header, outside comments) written as
+// `1.5f` -> `(1.5f+0.000123f)`, so every save is a program no driver cache has seen (an unused
+// constant or a comment would be optimized away before the caches' keys are taken). Returns the
+// text unchanged and `found` false when the scene has no such literal.
+std::string NudgeFirstConstant(const std::string& sceneText, double delta, bool* found);
 
 }  // namespace sdfvj

@@ -2,6 +2,7 @@
 
 #include "render/render.h"
 #include "render/compile_worker.h"
+#include "render/program_cache.h"
 
 #include <chrono>
 #include <thread>
@@ -13,17 +14,30 @@ Program::~Program() {
     if (id_) glDeleteProgram(id_);
 }
 
+namespace {
+double NowMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+std::string QuickTierText(const std::string& text) {
+    const size_t eol = text.find('\n');
+    if (text.rfind("#version", 0) != 0 || eol == std::string::npos) return text;
+    return text.substr(0, eol + 1) + "#pragma optionNV(inline none)\n" + text.substr(eol + 1);
+}
+
 bool Program::Build(const ShaderSource& src, RenderPath path, std::string* log) {
     PendingProgram pending;
-    pending.Begin(src, path);
+    if (!pending.BeginFromCache(src, path)) pending.Begin(src, path);
     return pending.Finish(this, log);
 }
 
-void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src) {
+void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin) {
     if (id_) glDeleteProgram(id_);
     id_ = id;
     path_ = path;
     source_ = src;
+    origin_ = origin;
     uniforms_.clear();
     GLint count = 0;
     glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
@@ -67,38 +81,68 @@ bool PendingProgram::ParallelCompileAvailable() {
     return available;
 }
 
-void PendingProgram::Begin(const ShaderSource& src, RenderPath path) {
+bool PendingProgram::BeginFromCache(const ShaderSource& src, RenderPath path) {
     Cancel();
+    const double t0 = NowMs();
+    const unsigned id = LoadCachedProgram(src.text, path);
+    if (!id) return false;
+    source_ = src;
+    path_ = path;
+    id_ = id;
+    origin_ = ProgramOrigin{};
+    origin_.fromCache = true;
+    origin_.buildMs = NowMs() - t0;
+    return true;
+}
+
+void PendingProgram::Begin(const ShaderSource& src, RenderPath path, BuildTier tier) {
+    Cancel();
+    source_ = src;
+    path_ = path;
+    origin_ = ProgramOrigin{};
+    origin_.quickTier = tier == BuildTier::Quick;
+    beganAt_ = NowMs();
+    // Only optimized programs go to the disk cache: a quick tier from there would run slower forever.
+    const bool store = tier == BuildTier::Optimized && ProgramCacheEnabled();
+    const std::string quickText = tier == BuildTier::Quick ? QuickTierText(src.text) : std::string();
+    const std::string& text = tier == BuildTier::Quick ? quickText : source_.text;
     if (g_worker) {
-        source_ = src;
-        path_ = path;
-        ticket_ = g_worker->Submit(source_.text, path);
+        ticket_ = g_worker->Submit(text, path, store);
         return;
     }
     if (ParallelCompileAvailable()) glMaxShaderCompilerThreadsKHR(0xFFFFFFFFu);   // driver's choice
-    source_ = src;
-    path_ = path;
     id_ = glCreateProgram();
-    auto stage = [&](GLenum kind, const char* text) {
+    if (store) glProgramParameteri(id_, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+    auto stage = [&](GLenum kind, const char* stageText) {
         GLuint s = glCreateShader(kind);
-        glShaderSource(s, 1, &text, nullptr);
+        glShaderSource(s, 1, &stageText, nullptr);
         glCompileShader(s);   // returns at once where the driver compiles in parallel
         glAttachShader(id_, s);
         stages_.push_back(s);
     };
     if (path == RenderPath::Compute) {
-        stage(GL_COMPUTE_SHADER, source_.text.c_str());
+        stage(GL_COMPUTE_SHADER, text.c_str());
     } else {
         stage(GL_VERTEX_SHADER, FullscreenVertexShader());
-        stage(GL_FRAGMENT_SHADER, source_.text.c_str());
+        stage(GL_FRAGMENT_SHADER, text.c_str());
     }
     glLinkProgram(id_);
 }
 
 bool PendingProgram::Ready() const {
     if (ticket_) {
-        if (!workerDone_ && g_worker)
-            workerDone_ = g_worker->Poll(ticket_, &workerProgram_, &workerLog_, &workerBinary_, &workerFormat_);
+        if (!workerDone_ && g_worker) {
+            CompileWorker::Result r;
+            workerDone_ = g_worker->Poll(ticket_, &r);
+            if (workerDone_) {
+                workerProgram_ = r.program;
+                workerLog_ = std::move(r.log);
+                workerBinary_ = std::move(r.binary);
+                workerFormat_ = r.format;
+                workerMs_ = r.buildMs;
+                workerNoBinary_ = r.noBinary;
+            }
+        }
         return workerDone_;
     }
     if (!id_) return false;
@@ -113,6 +157,18 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
         while (!Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
         ticket_ = 0;
         workerDone_ = false;
+        origin_.buildMs = workerMs_;
+        if (workerNoBinary_) {
+            // Binary hand-over, but the driver gave no binary: compile here instead (this frame
+            // waits for it, a reload still happens).
+            workerNoBinary_ = false;
+            CompileWorker* worker = g_worker;
+            g_worker = nullptr;
+            const ProgramOrigin origin = origin_;
+            Begin(source_, path_, origin.quickTier ? BuildTier::Quick : BuildTier::Optimized);
+            g_worker = worker;
+            return Finish(into, log);
+        }
         if (!workerProgram_ && !workerBinary_.empty()) {
             // Binary hand-over: load what the worker's own context compiled and linked.
             GLuint prog = glCreateProgram();
@@ -125,7 +181,7 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
                 *log = "the driver rejected the compile thread's program binary";
                 return false;
             }
-            into->Adopt(prog, path_, source_);
+            into->Adopt(prog, path_, source_, origin_);
             return true;
         }
         if (!workerProgram_) {
@@ -133,7 +189,7 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
             return false;
         }
         // The worker's glFinish happened before it reported, so the program is complete.
-        into->Adopt(workerProgram_, path_, source_);
+        into->Adopt(workerProgram_, path_, source_, origin_);
         workerProgram_ = 0;
         return true;
     }
@@ -161,6 +217,7 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
         glGetProgramInfoLog(id_, (GLsizei)buf.size(), nullptr, buf.data());
         raw = buf.c_str();
     }
+    const bool compiled = !stages_.empty();   // not from the cache
     for (unsigned s : stages_) glDeleteShader(s);
     stages_.clear();
     if (!linked || !raw.empty()) {
@@ -170,7 +227,11 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
         if (log->empty()) *log = "shader failed to compile with no message from the driver";
         return false;   // `into` keeps the program it had
     }
-    into->Adopt(id_, path_, source_);
+    if (compiled) {
+        origin_.buildMs = NowMs() - beganAt_;
+        if (!origin_.quickTier) StoreCachedProgram(id_, source_.text, path_);
+    }
+    into->Adopt(id_, path_, source_, origin_);
     id_ = 0;
     return true;
 }

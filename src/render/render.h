@@ -69,6 +69,21 @@ struct FrameInputs {
 // `pitch` up or down (kept short of the poles); the distance to the target is kept.
 Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch);
 
+// How a program came to be: a test or the bench reads it, the frame ignores it.
+struct ProgramOrigin {
+    bool fromCache = false;   // loaded from the on-disk program cache (program_cache.h): nothing compiled
+    bool quickTier = false;   // the quickly built first tier of a tiered compile (an optimized one follows)
+    double buildMs = 0.0;     // wall time of its compile + link (+ the worker's priming draw), on whichever thread built it
+};
+
+// Which build of a source: the optimized program, or a quick first tier that goes on screen
+// while the optimized one compiles (NVIDIA: `#pragma optionNV(inline none)` after #version).
+enum class BuildTier { Optimized, Quick };
+
+// The source of the quick tier: `#pragma optionNV(inline none)` right after #version (a line
+// before any #line directive, so error lines stay right). Drivers other than NVIDIA ignore it.
+std::string QuickTierText(const std::string& text);
+
 // A linked program and the uniforms it actually declares.
 class Program {
 public:
@@ -83,7 +98,10 @@ public:
     RenderPath Path() const { return path_; }
     const ShaderSource& Source() const { return source_; }
     // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
-    void Adopt(unsigned id, RenderPath path, const ShaderSource& src);
+    void Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin = {});
+    const ProgramOrigin& Origin() const { return origin_; }
+    bool FromCache() const { return origin_.fromCache; }
+    bool QuickTier() const { return origin_.quickTier; }
     // Active uniform names (after the compiler dropped unused ones).
     std::vector<std::string> ActiveUniforms() const;
     // Sets a uniform only if the program declares it; converts to its declared type.
@@ -95,12 +113,15 @@ private:
     unsigned id_ = 0;
     RenderPath path_ = RenderPath::Fragment;
     ShaderSource source_;
+    ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;
 };
 
 // A program being compiled and linked. Where GL_KHR_parallel_shader_compile exists the driver
-// compiles on its own threads and Ready() polls without blocking, so a reload never stalls a
-// frame; elsewhere Ready() is true at once and Finish() waits.
+// compiles on its own threads and Ready() polls without blocking (the driver may still stall a
+// call: `sdfvj bench reload` shows which); elsewhere Ready() is true at once and Finish() waits.
+// An optimized build that links is stored in the on-disk program cache (program_cache.h);
+// BeginFromCache() starts from there when it can.
 class CompileWorker;
 class PendingProgram {
 public:
@@ -110,8 +131,14 @@ public:
     ~PendingProgram();
     PendingProgram(const PendingProgram&) = delete;
     PendingProgram& operator=(const PendingProgram&) = delete;
-    void Begin(const ShaderSource& src, RenderPath path);
+    // Compiles `src` (the quick tier: QuickTierText of it, never cached). Program::Source() of the
+    // result is `src` either way.
+    void Begin(const ShaderSource& src, RenderPath path, BuildTier tier = BuildTier::Optimized);
+    // Takes the program from the on-disk cache when it holds this source for this driver: then
+    // true, Ready() at once and the program FromCache(). False (nothing started) otherwise.
+    bool BeginFromCache(const ShaderSource& src, RenderPath path);
     bool Active() const { return id_ != 0 || ticket_ != 0; }
+    bool FromCache() const { return origin_.fromCache; }
     bool Ready() const;
     // On success moves the program into `into`; on failure `into` is untouched and `log` holds
     // file:line messages. Either way the pending program is done.
@@ -128,8 +155,12 @@ private:
     mutable std::string workerLog_;
     mutable std::vector<uint8_t> workerBinary_;   // binary hand-over mode
     mutable unsigned workerFormat_ = 0;
+    mutable double workerMs_ = 0.0;
+    mutable bool workerNoBinary_ = false;         // binary hand-over refused: Finish() compiles here
     ShaderSource source_;
     RenderPath path_ = RenderPath::Fragment;
+    ProgramOrigin origin_;
+    double beganAt_ = 0.0;                        // steady clock, ms
 };
 
 // Draws programs into an RGBA8 texture of a given size and reads it back. With a float target

@@ -19,6 +19,9 @@ HeadlessContext* TestContext() { return ctx.get(); }
 
 void RequireGl() {
     if (!ctx && error.empty()) {
+        // Tests compile what they test: the on-disk program cache is off unless a test turns it
+        // on (test_program_cache.cpp, with a cache folder of its own).
+        setenv("SDFVJ_PROGRAM_CACHE", "0", 1);
         auto c = std::make_unique<HeadlessContext>();
         if (c->Create(&error)) ctx = std::move(c);
     }
