@@ -42,6 +42,7 @@ bool LiveSession::Start(std::string* error) {
     }
     overlay_ = !o_.hideOverlay;   // --hide-overlay: start as after Tab (clean screenshots)
     renderScale_ = (float)std::clamp(o_.renderScale, 0.25, 1.0);
+    softwareGl_ = IsSoftwareRenderer();
     in_.quality = state_.show.quality;
     if (o_.show.path == "auto") {
         std::string log;
@@ -89,6 +90,7 @@ bool LiveSession::Frame() {
     StepSmoothing(state_.params, dt);
     Guard("log", [&] { LogParams(now); });
     Guard("draw", [&] { Draw(now); });
+    Guard("costs", [&] { MeasureEffectCosts(); });
     Guard("overlay", [&] { DrawOverlay(); });
     Present();
     return true;
@@ -112,7 +114,10 @@ void LiveSession::Reload() {
     state_.foldersToWatch.clear();
     const std::vector<std::string> changed = watcher_.Poll();
     ApplyFileChanges(state_, changed, Now());
-    if (!(state_.wanted == live_.Key())) live_.Request(state_.wanted);
+    if (!(state_.wanted == live_.Key())) {
+        PrepareFieldMorph();
+        live_.Request(state_.wanted);
+    }
     live_.Update(changed);
     StartFadeIfSceneChanged(Now());
 }
@@ -124,6 +129,8 @@ void LiveSession::StartFadeIfSceneChanged(double now) {
     if (shown_ && live_.Scene().path != shownScene_.path && how.seconds > 0 && how.easing != Easing::Cut &&
         crossfade_.Init(&error)) {
         fade_ = Fade{shown_, shownScene_, in_.params, now, how.seconds, how.easing};
+        fade_.field = FadeMorphsFields();
+        fade_.waiting = fade_.field && fieldMorph_.Poll() != FieldMorph::State::Ready;
     } else if (!error.empty()) {
         state_.report.Say("sdfvj live: " + error + " — scene changes cut instead of fading");
     }
@@ -153,7 +160,37 @@ void LiveSession::LogParams(double now) {
     std::fputc('\n', paramLog_.get());
 }
 
+// The scene's GPU time: the whole draw (scene, crossfade, upscale) inside one timer query of the
+// ring; its result reaches the graph a few frames later (Poll never waits).
 void LiveSession::Draw(double now) {
+    const bool timed = !softwareGl_ && frameTimer_.Begin();
+    DrawScene(now);
+    if (timed) frameTimer_.End();
+    if (!softwareGl_)
+        for (const GpuTimerRing::Sample& s : frameTimer_.Poll()) ui_.gpu.Add((float)s.ms);
+}
+
+// Each frame while "measure costs" runs: the program on screen once more, offscreen, with every
+// effect on or one switched off (effect_costs.h). A new program makes the costs stale.
+void LiveSession::MeasureEffectCosts() {
+    if (!costs_.Started() || costs_.Done() || !live_.Current()) return;
+    if (!(costs_.effects == live_.Key().effects)) {
+        costs_ = EffectCosts{};
+        state_.report.Say("sdfvj live: effect costs: the program changed while measuring; press \"measure costs\" again");
+        return;
+    }
+    std::string error;
+    if (!costRenderer_.Resize(renderer_.Width(), renderer_.Height(), &error)) return;
+    StepEffectCosts(costs_, costRenderer_, *live_.Current(), live_.Scene(), in_);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (costs_.Done()) {
+        std::string line = "effect costs at " + std::to_string(renderer_.Width()) + "x" + std::to_string(renderer_.Height()) + ":";
+        for (const EffectCostRow& r : costs_.rows) line += " " + r.name + " " + EffectCostText(r, costs_);
+        state_.report.Say(line + " (" + EffectCostNote(costs_) + ")");
+    }
+}
+
+void LiveSession::DrawScene(double now) {
     glfwGetFramebufferSize(window_, &fbw_, &fbh_);
     std::string error;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -167,6 +204,7 @@ void LiveSession::Draw(double now) {
     in_.frame = frame_++;
     in_.beat = BeatPhase(state_, now);
     in_.bpm = (float)state_.automation.tempo.bpm;
+    if (DrawFieldFade(now, rw, rh)) return;
     renderer_.Draw(*live_.Current(), live_.Scene(), in_);
     const double t = fade_.program ? (now - fade_.start) / fade_.seconds : 1.0;
     if (t < 1.0 && fadeRenderer_.Resize(rw, rh, &error)) {

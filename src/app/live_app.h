@@ -14,9 +14,11 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/effect_costs.h"
 #include "app/live_overlay.h"
 #include "app/live_session.h"
 #include "render/compile_worker.h"
+#include "render/field_morph.h"
 #include "render/live_program.h"
 #include "shader/watch.h"
 #include "take/take.h"
@@ -118,6 +120,8 @@ private:
     void UpdateProgram();
     void LogParams(double now);
     void Draw(double now);
+    void DrawScene(double now);
+    void MeasureEffectCosts();
     void DrawOverlay();
     // The overlay's helpers (live_overlay.h): what it shows, and acting on what the performer did.
     OverlayModel OverlayModelNow();
@@ -161,11 +165,24 @@ private:
         std::vector<std::pair<std::string, float>> params;
         double start = 0.0, seconds = 0.0;
         Easing easing = Easing::Smooth;
+        bool field = false;     // the fields morph in one program (live_morph.cpp), not the frames
+        bool waiting = false;   // the morph program still compiles: the old scene holds, t stays 0
     } fade_;
+    FieldMorph fieldMorph_;
+    void PrepareFieldMorph();
+    bool FadeMorphsFields();
+    bool DrawFieldFade(double now, int rw, int rh);
     std::shared_ptr<const Program> shown_;   // the program the last frame showed, and its scene
     SceneInfo shownScene_;
     FrameRenderer fadeRenderer_;
     Crossfade crossfade_;
+    // GPU ms of the scene draw for the overlay's graph: timer queries read when they are ready,
+    // never waited for; off on a software renderer, whose timer queries mean nothing.
+    GpuTimerRing frameTimer_;
+    bool softwareGl_ = false;
+    // "measure costs": one extra offscreen draw a frame until each effect's cost is known.
+    EffectCosts costs_;
+    FrameRenderer costRenderer_;
     void StartFadeIfSceneChanged(double now);
     FrameInputs in_;
     TakeRecorder recorder_;

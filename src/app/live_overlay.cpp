@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include <imgui.h>
+#include <imgui_internal.h>   // GImGui->LogBuffer for OverlayUi::logText
 #include <nlohmann/json.hpp>
 
 namespace sdfvj {
@@ -191,15 +192,24 @@ void DrawPresets(const OverlayModel& m, OverlayUi& ui, OverlayActions& a) {
     if ((ImGui::Button("save as") || enter) && ui.saveAsName[0] != '\0') a.savePreset = ui.saveAsName;
 }
 
+// Effect checkboxes, three to a row, each with its measured cost once "measure costs" ran.
 void DrawEffects(const OverlayModel& m, OverlayActions& a) {
     const EffectSet& e = m.effects;
     const std::pair<const char*, bool> boxes[] = {{"shadows", e.shadows != 0}, {"ao", e.ao},   {"specular", e.specular},
                                                   {"fog", e.fog},               {"pbr", e.pbr}, {"reflections", e.reflections != 0}};
     for (size_t i = 0; i < std::size(boxes); ++i) {
         bool on = boxes[i].second;
-        if (i > 0) ImGui::SameLine();
+        if (i % 3 != 0) ImGui::SameLine(140.0f * (float)(i % 3) + ImGui::GetStyle().WindowPadding.x);
         if (ImGui::Checkbox(boxes[i].first, &on)) a.effectToggles.emplace_back(boxes[i].first, on);
+        for (const auto& [name, cost] : m.effectCosts)
+            if (name == boxes[i].first) {
+                ImGui::SameLine();
+                ImGui::TextColored(kAmber, "%s", cost.c_str());
+            }
     }
+    if (ImGui::SmallButton("measure costs")) a.measureCosts = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("%s", m.effectCostNote.empty() ? "what each effect on screen costs" : m.effectCostNote.c_str());
 }
 
 void DrawMonitor(const OverlayUi& ui) {
@@ -208,13 +218,20 @@ void DrawMonitor(const OverlayUi& ui) {
     for (const ControlEvent& e : ui.monitor.recent) ImGui::TextUnformatted(DescribeEvent(e).c_str());
 }
 
-void DrawTimes(const OverlayModel& m, const OverlayUi& ui, OverlayActions& a) {
-    const FrameTimeGraph& g = ui.frames;
+void PlotTimes(const char* id, const FrameTimeGraph& g, const char* label) {
     char caption[64];
     std::snprintf(caption, sizeof caption, "avg %.1f ms  max %.1f ms", g.Average(), g.Max());
-    ImGui::PlotLines("##frames", g.ms.data(), (int)g.ms.size(), 0, caption, 0.0f, std::max(33.4f, g.Max()), ImVec2(360, 48));
+    ImGui::PlotLines(id, g.ms.data(), (int)g.ms.size(), 0, caption, 0.0f, std::max(33.4f, g.Max()), ImVec2(360, 48));
     ImGui::SameLine();
-    ImGui::TextDisabled("frame ms\n(CPU)");
+    ImGui::TextDisabled("%s", label);
+}
+
+void DrawTimes(const OverlayModel& m, const OverlayUi& ui, OverlayActions& a) {
+    PlotTimes("##frames", ui.frames, "frame ms\n(CPU)");
+    // GPU: timer queries read a few frames late, never waited for; none on a software renderer.
+    if (!m.gpuTimesUnavailable.empty()) ImGui::TextDisabled("GPU ms: n/a (%s)", m.gpuTimesUnavailable.c_str());
+    else if (ui.gpu.ms.empty()) ImGui::TextDisabled("GPU ms: waiting for the first timer query");
+    else PlotTimes("##gpu", ui.gpu, "scene ms\n(GPU timer)");
     ImGui::TextDisabled("%s path, %dx%d, scene at %dx%d", m.pathName.c_str(), m.width, m.height,
                         (int)std::lround(m.width * m.renderScale), (int)std::lround(m.height * m.renderScale));
     // A slow machine keeps its frame rate by rendering fewer pixels (upscaled with filtering).
@@ -232,6 +249,7 @@ OverlayActions DrawOverlay(const OverlayModel& m, OverlayUi& ui) {
     // Never taller than the screen: past that it scrolls.
     ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(FLT_MAX, std::max(100.0f, ImGui::GetIO().DisplaySize.y - 20)));
     ImGui::Begin("sdfvj", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    if (ui.logText) ImGui::LogToBuffer();   // End() stops the log and clears it: read it before
     ImGui::Text("%s  [%s, %s]  %.1f fps", m.scene.c_str(), m.effectsText.c_str(), m.pathName.c_str(), m.fps);
     DrawParams(m, ui, a);
     DrawEffects(m, a);
@@ -247,6 +265,7 @@ OverlayActions DrawOverlay(const OverlayModel& m, OverlayUi& ui) {
     for (size_t i = m.reportLines.size() - shown; i < m.reportLines.size(); ++i)
         ImGui::TextDisabled("%s", m.reportLines[i].c_str());
     ImGui::TextDisabled("Tab: hide   F11: fullscreen   1-9: preset   Esc: quit");
+    if (ui.logText) ui.text = GImGui->LogBuffer.c_str();
     ImGui::End();
     return a;
 }
@@ -328,6 +347,15 @@ std::string SavePresetAs(const std::string& folder, const std::string& name, con
 std::string AppendLearnedMapping(const std::string& mappingPath, const std::string& param, const std::string& source,
                                  const std::vector<ParamDecl>& decls) {
     return AddLearnedEntry(mappingPath, param, source, decls, "learned in `sdfvj live`");
+}
+
+std::string FinishLearn(LearnArm& learn, const std::string& mappingPath, const std::vector<ParamDecl>& decls) {
+    if (!learn.Armed() || learn.source.empty()) return "";
+    const std::string error = AppendLearnedMapping(mappingPath, learn.param, learn.source, decls);
+    const std::string control = learn.source.substr(0, learn.source.find('\n'));
+    const std::string line = error.empty() ? "learned: " + control + " -> " + learn.param + ", written to " + mappingPath : error;
+    ArmLearn(learn, "");
+    return line;
 }
 
 }  // namespace sdfvj

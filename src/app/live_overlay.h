@@ -37,7 +37,8 @@ struct EventMonitor {
 // One line for the monitor: "  1.234  MIDI  B0 02 7F  CC 2 ch1" or "  1.234  OSC   /x 0.5".
 std::string DescribeEvent(const ControlEvent& e);
 
-// The last frame times in ms (CPU side: wall time from one frame to the next), oldest first.
+// The last frame times in ms, oldest first: the CPU's (wall time from one frame to the next) and
+// the GPU's (GL timer queries of the scene draw, read a few frames late, never waited for).
 struct FrameTimeGraph {
     std::vector<float> ms;
     size_t capacity = 120;
@@ -63,9 +64,14 @@ std::string LearnFromEvent(LearnArm& learn, const ControlEvent& e);
 // Widget state ImGui needs across frames, and the monitor, graph and learn above.
 struct OverlayUi {
     EventMonitor monitor;
-    FrameTimeGraph frames;
+    FrameTimeGraph frames;                  // CPU ms per frame
+    FrameTimeGraph gpu;                     // GPU ms per frame (GpuTimerRing), empty on llvmpipe
     LearnArm learn;
     char saveAsName[64] = {};
+    // Tests read what the overlay shows: with logText, `text` holds every label, value and caption
+    // the last DrawOverlay wrote (ImGui's log, one line per row of widgets).
+    bool logText = false;
+    std::string text;
 };
 // The frame's drained events: into the monitor, and into learn when it is armed.
 void ObserveEvents(OverlayUi& ui, const std::vector<ControlEvent>& events);
@@ -106,6 +112,10 @@ struct OverlayModel {
     bool recording = false;
     size_t recorded = 0;
     std::string mappingFile;                    // where learn writes, "" = learn unavailable
+    std::string gpuTimesUnavailable;            // why there is no GPU graph ("software renderer"), "" = shown
+    // Effect costs (effect_costs.h): checkbox name -> "+3.21 ms", "n/a", "..."; only measured ones.
+    std::vector<std::pair<std::string, std::string>> effectCosts;
+    std::string effectCostNote;                 // what the costs are ("median of 9 frame pairs, ...")
 };
 
 struct OverlayActions {
@@ -114,8 +124,10 @@ struct OverlayActions {
     std::string savePreset;                                   // a name to save under (save or save-as)
     std::vector<std::pair<std::string, bool>> effectToggles;  // as /sdfvj/effect/<name> i
     float renderScale = 0.0f;                                 // > 0: render the scene at this fraction
+    bool measureCosts = false;                                // "measure costs": time each effect of the program
     bool Empty() const {
-        return setTargets.empty() && loadPreset.empty() && savePreset.empty() && effectToggles.empty() && renderScale <= 0.0f;
+        return setTargets.empty() && loadPreset.empty() && savePreset.empty() && effectToggles.empty() &&
+               renderScale <= 0.0f && !measureCosts;
     }
 };
 
@@ -154,5 +166,9 @@ std::string SavePresetAs(const std::string& folder, const std::string& name, con
 // (ValidateMapping); then it replaces the file atomically. Returns "" or one error line.
 std::string AppendLearnedMapping(const std::string& mappingPath, const std::string& param, const std::string& source,
                                  const std::vector<ParamDecl>& decls);
+// The learn stage of a frame: once the armed learn found its control, appends it to the mapping
+// file (AppendLearnedMapping; the watcher then reloads it) and disarms. Returns the line for the
+// performer ("learned: cc = 2 -> twist, written to m.toml" or the error), "" while still waiting.
+std::string FinishLearn(LearnArm& learn, const std::string& mappingPath, const std::vector<ParamDecl>& decls);
 
 }  // namespace sdfvj

@@ -119,6 +119,12 @@ OverlayModel LiveSession::OverlayModelNow() {
     m.recording = recorder_.IsOpen();
     m.recorded = m.recording ? recorder_.Recorded() : 0;
     m.mappingFile = state_.mappingFile;
+    if (softwareGl_) m.gpuTimesUnavailable = "software renderer";
+    // Costs belong to the program they were measured on: shown only while it is on screen.
+    if (costs_.Started() && costs_.effects == live_.Key().effects) {
+        for (const EffectCostRow& r : costs_.rows) m.effectCosts.emplace_back(r.name, EffectCostText(r, costs_));
+        m.effectCostNote = EffectCostNote(costs_);
+    }
     return m;
 }
 
@@ -126,6 +132,7 @@ OverlayModel LiveSession::OverlayModelNow() {
 // /sdfvj/effect/<name> would; this frame's own actions were applied already and are put back.
 void LiveSession::ApplyOverlayActions(const OverlayActions& a, double now) {
     if (a.renderScale > 0.0f) renderScale_ = std::clamp(a.renderScale, 0.25f, 1.0f);
+    if (a.measureCosts) StartEffectCosts(costs_, live_.Key().effects, 9, softwareGl_);
     for (const auto& [index, value] : a.setTargets)
         if (index >= 0 && (size_t)index < state_.params.decls.size()) SetParamTarget(state_.params, index, value);
     if (!a.loadPreset.empty() || !a.effectToggles.empty()) {
@@ -162,12 +169,8 @@ void LiveSession::SavePreset(const std::string& name) {
 
 // Learn found a control: the mapping file gets its [[map]] entry and the watcher reloads it.
 void LiveSession::FinishLearn() {
-    if (!ui_.learn.Armed() || ui_.learn.source.empty()) return;
-    const std::string error = AppendLearnedMapping(state_.mappingFile, ui_.learn.param, ui_.learn.source, state_.params.decls);
-    const std::string control = ui_.learn.source.substr(0, ui_.learn.source.find('\n'));
-    state_.report.Say(error.empty() ? "learned: " + control + " -> " + ui_.learn.param + ", written to " + state_.mappingFile
-                                    : error);
-    ArmLearn(ui_.learn, "");
+    const std::string line = sdfvj::FinishLearn(ui_.learn, state_.mappingFile, state_.params.decls);
+    if (!line.empty()) state_.report.Say(line);
 }
 
 }  // namespace sdfvj

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <string>
 
+#include "render/gpu_timer.h"
 #include "render/render.h"
 
 namespace sdfvj {
@@ -124,6 +125,51 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
         lastGpuMs_ = (double)ns * 1e-6;
     }
+}
+
+GpuTimerRing::~GpuTimerRing() {
+    if (!ids_.empty()) glDeleteQueries((GLsizei)ids_.size(), ids_.data());
+}
+
+bool GpuTimerRing::Begin(int tag) {
+    if (open_ || count_ == slots_) {
+        ++refused_;
+        return false;
+    }
+    if (ids_.empty()) {
+        ids_.resize((size_t)slots_);
+        tags_.resize((size_t)slots_);
+        glGenQueries(slots_, ids_.data());
+    }
+    const int slot = (head_ + count_) % slots_;
+    tags_[(size_t)slot] = tag;
+    glBeginQuery(GL_TIME_ELAPSED, ids_[(size_t)slot]);
+    ++count_;
+    open_ = true;
+    return true;
+}
+
+void GpuTimerRing::End() {
+    if (!open_) return;
+    glEndQuery(GL_TIME_ELAPSED);
+    open_ = false;
+}
+
+std::vector<GpuTimerRing::Sample> GpuTimerRing::Poll() {
+    std::vector<Sample> done;
+    // Results arrive in order: stop at the first that is not there yet (the open one never is).
+    while (count_ > (open_ ? 1 : 0)) {
+        const GLuint id = ids_[(size_t)head_];
+        GLint available = 0;
+        glGetQueryObjectiv(id, GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available) break;
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(id, GL_QUERY_RESULT, &ns);   // available: this does not wait
+        done.push_back({tags_[(size_t)head_], (double)ns * 1e-6});
+        head_ = (head_ + 1) % slots_;
+        --count_;
+    }
+    return done;
 }
 
 std::vector<uint8_t> FrameRenderer::ReadPixels() const {

@@ -278,48 +278,9 @@ TEST_CASE("live_overlay learn: the next moving control is taken from the drained
 // DrawOverlay itself, in an ImGui context with no window or GL: the mouse is set by hand.
 // ---------------------------------------------------------------------------------------------
 
-#include <imgui.h>
-#include <imgui_internal.h>
+#include "headless_imgui.h"
 
 namespace {
-
-struct HeadlessImGui {
-    HeadlessImGui() {
-        ImGui::CreateContext();
-        ImGuiIO& io = ImGui::GetIO();
-        io.IniFilename = nullptr;
-        io.DisplaySize = ImVec2(640, 480);
-        io.DeltaTime = 1.0f / 60.0f;
-        unsigned char* pixels = nullptr;
-        int w = 0, h = 0;
-        io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);   // a built atlas is all NewFrame needs
-    }
-    ~HeadlessImGui() { ImGui::DestroyContext(); }
-    // One frame with the mouse at `pos`, button down or up; returns the overlay's actions.
-    OverlayActions Frame(const OverlayModel& m, OverlayUi& ui, ImVec2 pos, bool down, ImGuiID* hovered = nullptr) {
-        ImGuiIO& io = ImGui::GetIO();
-        io.MousePos = pos;
-        io.MouseDown[0] = down;
-        ImGui::NewFrame();
-        OverlayActions a = DrawOverlay(m, ui);
-        if (hovered) *hovered = GImGui->HoveredId;
-        ImGui::Render();
-        return a;
-    }
-    // Where the item with `id` is: scans the mouse over the screen until ImGui says it is hovered.
-    bool Find(const OverlayModel& m, OverlayUi& ui, ImGuiID id, ImVec2* at) {
-        for (float y = 12; y < 400; y += 4)
-            for (float x = 12; x < 620; x += 8) {
-                ImGuiID h = 0;
-                Frame(m, ui, ImVec2(x, y), false, &h);
-                if (h == id) {
-                    *at = ImVec2(x, y);
-                    return true;
-                }
-            }
-        return false;
-    }
-};
 
 OverlayModel TwoParamModel() {
     OverlayModel m;
@@ -332,13 +293,6 @@ OverlayModel TwoParamModel() {
     return m;
 }
 
-// The id ImGui gives a widget labelled `label` under PushID(index) in the overlay window.
-ImGuiID ParamWidgetId(int index, const char* label) {
-    ImGuiWindow* w = ImGui::FindWindowByName("sdfvj");
-    REQUIRE(w != nullptr);
-    const ImGuiID seed = ImHashData(&index, sizeof index, w->ID);
-    return ImHashStr(label, 0, seed);
-}
 
 }  // namespace
 
@@ -371,4 +325,65 @@ TEST_CASE("live_overlay draw: a click on a checkbox returns the effect toggle, a
     imgui.Frame(m, ui, learn, true);
     imgui.Frame(m, ui, learn, false);
     CHECK(ui.learn.param == "scale");
+}
+
+namespace {
+
+// Everything the overlay wrote in one frame with the mouse away (OverlayUi::logText).
+std::string OverlayText(HeadlessImGui& imgui, const OverlayModel& m, OverlayUi& ui) {
+    ui.logText = true;
+    imgui.Frame(m, ui, ImVec2(-1, -1), false);
+    ui.logText = false;
+    return ui.text;
+}
+
+}  // namespace
+
+TEST_CASE("live_overlay times: the CPU graph and the GPU graph, or the GPU graph's n/a on a software renderer") {
+    HeadlessImGui imgui;
+    OverlayModel m = TwoParamModel();
+    OverlayUi ui;
+    for (int i = 0; i < 30; ++i) {
+        ui.frames.Add(16.0f + (float)(i % 3));
+        ui.gpu.Add(4.0f + (float)(i % 2));
+    }
+    imgui.Frame(m, ui, ImVec2(-1, -1), false);
+    ImGuiWindow* w = ImGui::FindWindowByName("sdfvj");
+    REQUIRE(w != nullptr);
+    ImVec2 at;
+    CHECK(imgui.Find(m, ui, w->GetID("##frames"), &at));
+    CHECK(imgui.Find(m, ui, w->GetID("##gpu"), &at));
+    std::string text = OverlayText(imgui, m, ui);
+    INFO(text);
+    CHECK(text.find("frame ms") != std::string::npos);
+    CHECK(text.find("(GPU timer)") != std::string::npos);
+    CHECK(text.find("avg 4.5 ms  max 5.0 ms") != std::string::npos);   // the GPU graph's caption
+
+    // llvmpipe: no numbers that mean nothing, a line that says why.
+    m.gpuTimesUnavailable = "software renderer";
+    text = OverlayText(imgui, m, ui);
+    CHECK(text.find("GPU ms: n/a (software renderer)") != std::string::npos);
+    CHECK(text.find("(GPU timer)") == std::string::npos);
+    CHECK_FALSE(imgui.Find(m, ui, w->GetID("##gpu"), &at));
+    CHECK(imgui.Find(m, ui, w->GetID("##frames"), &at));
+}
+
+TEST_CASE("live_overlay effect costs: each measured effect shows its cost by its checkbox, and the button asks for a measurement") {
+    HeadlessImGui imgui;
+    OverlayModel m = TwoParamModel();
+    m.effects.shadows = 2;
+    m.effects.ao = true;
+    m.effectCosts = {{"shadows", "+3.21 ms"}, {"ao", "+1.05 ms"}};
+    m.effectCostNote = "cost = median of 9 frame pairs (all on - one off), GPU timer queries";
+    OverlayUi ui;
+    const std::string text = OverlayText(imgui, m, ui);
+    INFO(text);
+    // ImGui's log puts a checkbox and the text after it (SameLine) on one line.
+    CHECK(text.find("shadows +3.21 ms") != std::string::npos);
+    CHECK(text.find("ao +1.05 ms") != std::string::npos);
+    CHECK(text.find("median of 9 frame pairs") != std::string::npos);
+    ImVec2 button;
+    REQUIRE(imgui.Find(m, ui, ImGui::FindWindowByName("sdfvj")->GetID("measure costs"), &button));
+    imgui.Frame(m, ui, button, true);
+    CHECK(imgui.Frame(m, ui, button, false).measureCosts);
 }
