@@ -1,8 +1,15 @@
-// `sdfvj bench reload`: how long a saved shader takes to reach the screen, and what the
-// reload does to frame times. Works on a copy of shaders/ in a temp folder: each round appends a
-// comment to the scene file (a real change of content, so a real recompile), then renders frames
-// until the new program is on screen. Reports, per round: save -> first frame drawn with the
-// new program, and the longest frame while the compile was pending.
+// `sdfvj bench reload`: how long a saved shader takes to reach the screen, and what the reload
+// does to frame times. Works on a copy of shaders/ in a temp folder. Each round saves the scene
+// the way an editor does (temp file renamed over it) with its first constant nudged by a
+// per-run nonce: a program no cache has seen, so the round measures a compile, not a cache hit
+// (a comment would not do: the same text every run, and compilers drop comments before their
+// caches' keys are taken). The drivers' disk caches are off unless asked for (`--driver-cache`).
+// Frames are paced like a display (`--fps`, 0: flat out). Per round: save -> first tier on
+// screen, save -> optimized program on screen, the longest frame meanwhile, and which part of a
+// frame was long (the reload step, i.e. LiveProgram::Update, or the first draw of the new program).
+//
+// `--first-frame`: instead of reloads, one launch: context, program (from the on-disk program
+// cache when an earlier launch stored it), first frame drawn. Run it twice for the second launch.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -11,109 +18,275 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 #include <unistd.h>
 
 #include "app/commands.h"
 #include "render/compile_worker.h"
 #include "render/live_program.h"
+#include "render/program_cache.h"
 #include "shader/watch.h"
 
 namespace fs = std::filesystem;
 
 namespace sdfvj {
 
-int RunReloadBench(const ReloadBenchOptions& o) {
-    using Clock = std::chrono::steady_clock;
-    std::string error;
-    int w = 0, h = 0;
-    if (!ParseSize(o.size, &w, &h, &error)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); return 2; }
-    SceneInfo scene;
-    if (!FindScene(o.scene, &scene, &error)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); return 2; }
-    HeadlessContext gl;
-    if (!gl.Create(&error)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); return 2; }
+namespace {
 
-    const fs::path root = fs::temp_directory_path() / ("sdfvj-bench-reload-" + std::to_string(::getpid()));
-    fs::remove_all(root);
-    fs::create_directories(root);
-    fs::copy(fs::path(DataRoot()) / "shaders", root / "shaders", fs::copy_options::recursive);
-    const std::string oldRoot = DataRoot();
-    setenv("SDFVJ_ROOT", root.c_str(), 1);
-    const fs::path sceneFile = root / "shaders" / "scenes" / fs::path(scene.path).filename();
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-    // Three rounds of the same measurement: compiling through the driver on the render thread
-    // (with GL_KHR_parallel_shader_compile where it exists), on a CompileWorker with a shared
-    // context, and on a CompileWorker with its own context that hands over a program binary.
-    for (int mode = 0; mode < 3; ++mode) {
-    HeadlessContext shared;
-    std::unique_ptr<CompileWorker> worker;
-    if (mode >= 1) {
-        if (!shared.CreateShared(gl, &error, mode == 1)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); break; }
-        worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2,
-                                                 [&shared] { shared.ReleaseCurrent(); });
-        if (!worker->Ok()) { std::fprintf(stderr, "sdfvj bench reload: the worker's context failed\n"); break; }
-        PendingProgram::SetWorker(worker.get());
+int Fail(const std::string& what, int code = 2) {
+    std::fprintf(stderr, "sdfvj bench reload: %s\n", what.c_str());
+    return code;
+}
+
+// Sets the drivers' disk-cache variables; must run before the first context exists (drivers read
+// them when they load). off: both off. fresh: on, in empty folders under `scratch` (cold, but
+// Mesa can hand a worker's JIT to the render context through it). warm: left as the user has them.
+std::string SetDriverCaches(const std::string& mode, const fs::path& scratch) {
+    if (mode == "off") {
+        setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
+        setenv("__GL_SHADER_DISK_CACHE", "0", 1);
+        return "off (MESA_SHADER_CACHE_DISABLE=true, __GL_SHADER_DISK_CACHE=0)";
     }
-    FolderWatcher watcher;
-    for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"}) watcher.Watch((root / d).string(), &error);
+    if (mode == "fresh") {
+        unsetenv("MESA_SHADER_CACHE_DISABLE");
+        setenv("MESA_SHADER_CACHE_DIR", (scratch / "mesa").c_str(), 1);
+        setenv("__GL_SHADER_DISK_CACHE", "1", 1);
+        setenv("__GL_SHADER_DISK_CACHE_PATH", (scratch / "nv").c_str(), 1);
+        fs::create_directories(scratch / "nv");
+        return "on, in empty folders of this run (MESA_SHADER_CACHE_DIR, __GL_SHADER_DISK_CACHE_PATH): cold";
+    }
+    const char* mesa = std::getenv("MESA_SHADER_CACHE_DISABLE");
+    const char* nv = std::getenv("__GL_SHADER_DISK_CACHE");
+    return std::string("as the environment has them (MESA_SHADER_CACHE_DISABLE=") + (mesa ? mesa : "unset") +
+           ", __GL_SHADER_DISK_CACHE=" + (nv ? nv : "unset") + "), warmed by an untimed pass of the same saves";
+}
+
+// Writes like an editor: a temp file renamed over the original.
+void SaveLikeAnEditor(const fs::path& file, const std::string& text) {
+    const fs::path tmp = file.string() + ".sdfvj-save~";
+    std::ofstream(tmp, std::ios::binary) << text;
+    fs::rename(tmp, file);
+}
+
+struct Round {
+    double firstMs = 0, optimizedMs = 0, longestFrame = 0, longestUpdate = 0, firstDraw = 0, compileMs = 0;
+    int frames = 0;
+    bool quickSeen = false, fromCache = false, ok = false;
+};
+
+int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h) {
+    const auto start = Clock::now();
+    HeadlessContext gl;
+    std::string error;
+    if (!gl.Create(&error)) return Fail(error);
+    const double contextMs = MsSince(start);
+    const auto opened = Clock::now();
     RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
                                                                                       : ProbeRenderPath(scene, nullptr);
     LiveProgram live;
-    live.Request(VariantKey{sceneFile.string(), scene.effects, path});
-    live.Wait();
-    if (!live.Current()) { std::fprintf(stderr, "%s\n", live.Error().c_str()); return 1; }
+    if (o.tiered != "auto") live.SetTiered(o.tiered == "on");
+    live.Request(VariantKey{scene.path, scene.effects, path});
+    while (!live.Current() && live.Pending()) {
+        live.Update({});
+        if (!live.Current()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    if (!live.Current()) return Fail(live.Error(), 1);
     FrameRenderer fr;
-    if (!fr.Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj bench reload: %s\n", error.c_str()); return 2; }
+    if (!fr.Resize(w, h, &error)) return Fail(error);
     FrameInputs in;
     for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+    fr.Draw(*live.Current(), live.Scene(), in);
+    glFinish();
+    const double firstMs = MsSince(opened);
+    const Program& p = *live.Current();
+    std::printf("# sdfvj bench reload --first-frame: %s at %dx%d, %s path, on %s\n", scene.name.c_str(), w, h,
+                RenderPathName(path), gl.Description().c_str());
+    std::printf("program cache: %s\n", ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off");
+    std::printf("first frame %.1f ms after the context was made (context %.1f ms); program %s (%.1f ms)\n", firstMs,
+                contextMs, p.FromCache() ? "from the program cache" : p.QuickTier() ? "compiled, quick tier" : "compiled",
+                p.Origin().buildMs);
+    live.Wait();
+    return 0;
+}
 
-    auto frameOnce = [&](bool* swapped) {
-        auto t0 = Clock::now();
-        *swapped = live.Update(watcher.Poll());
-        fr.Draw(*live.Current(), live.Scene(), in);
-        glFinish();
-        return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    };
-    // Steady frames first: the frame time a reload should not disturb.
-    std::vector<double> steady;
-    bool swapped = false;
-    for (int i = 0; i < 20; ++i) steady.push_back(frameOnce(&swapped));
-    std::sort(steady.begin(), steady.end());
+}  // namespace
 
-    std::printf("# sdfvj bench reload: %s at %dx%d, %s path, on %s; compile %s\n", scene.name.c_str(), w, h,
-                RenderPathName(path), gl.Description().c_str(),
-                mode == 2 ? "on a worker thread with its own context, handing over a program binary"
-                : worker ? "on a worker thread with a shared context"
-                       : (PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
-                                                                     : "on the render thread"));
-    std::printf("| round | save -> new program on screen ms | frames meanwhile | longest frame ms |\n|---:|---:|---:|---:|\n");
-    std::vector<double> latencies, longest;
-    for (int round = 1; round <= o.rounds; ++round) {
-        {
-            std::ofstream f(sceneFile, std::ios::app);
-            f << "// reload round " << round << "\n";
-        }
-        const auto saved = Clock::now();
-        double worst = 0;
-        int frames = 0;
-        swapped = false;
-        while (!swapped && std::chrono::duration<double>(Clock::now() - saved).count() < 60) {
-            worst = std::max(worst, frameOnce(&swapped));
-            ++frames;
-        }
-        const double latency = std::chrono::duration<double, std::milli>(Clock::now() - saved).count();
-        latencies.push_back(latency);
-        longest.push_back(worst);
-        std::printf("| %d | %.1f | %d | %.1f |\n", round, latency, frames, worst);
-    }
-    std::sort(latencies.begin(), latencies.end());
-    std::sort(longest.begin(), longest.end());
-    std::printf("median: save -> screen %.1f ms, longest frame during a reload %.1f ms (steady frame median %.2f ms)\n",
-                latencies[latencies.size() / 2], longest[longest.size() / 2], steady[steady.size() / 2]);
-    PendingProgram::SetWorker(nullptr);
-    }
-    setenv("SDFVJ_ROOT", oldRoot.c_str(), 1);
+int RunReloadBench(const ReloadBenchOptions& o) {
+    std::string error;
+    int w = 0, h = 0;
+    if (!ParseSize(o.size, &w, &h, &error)) return Fail(error);
+    SceneInfo scene;
+    if (!FindScene(o.scene, &scene, &error)) return Fail(error);
+    if (o.driverCache != "off" && o.driverCache != "fresh" && o.driverCache != "warm")
+        return Fail("--driver-cache '" + o.driverCache + "', expected off, fresh or warm");
+    if (o.tiered != "auto" && o.tiered != "on" && o.tiered != "off")
+        return Fail("--tiered '" + o.tiered + "', expected auto, on or off");
+    if (o.rounds < 1) return Fail("--rounds must be at least 1");
+    const fs::path root = fs::temp_directory_path() / ("sdfvj-bench-reload-" + std::to_string(::getpid()));
     fs::remove_all(root);
+    fs::create_directories(root);
+    struct Cleanup { fs::path p; ~Cleanup() { std::error_code ec; fs::remove_all(p, ec); } } cleanup{root};
+    const std::string cacheLine = SetDriverCaches(o.driverCache, root / "driver-cache");
+    if (o.firstFrame) return FirstFrame(o, scene, w, h);
+
+    HeadlessContext gl;
+    if (!gl.Create(&error)) return Fail(error);
+    fs::copy(fs::path(DataRoot()) / "shaders", root / "shaders", fs::copy_options::recursive);
+    const std::string oldRoot = DataRoot();
+    setenv("SDFVJ_ROOT", root.c_str(), 1);
+    struct RestoreRoot { std::string p; ~RestoreRoot() { setenv("SDFVJ_ROOT", p.c_str(), 1); } } restoreRoot{oldRoot};
+    const fs::path sceneFile = root / "shaders" / "scenes" / fs::path(scene.path).filename();
+    std::string original;
+    {
+        std::ifstream in(sceneFile, std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        original = ss.str();
+    }
+    // warm: the same saves every run, so the caches hold them; otherwise new ones every run.
+    const uint64_t nonce = o.driverCache == "warm" ? 0 : (uint64_t)Clock::now().time_since_epoch().count() / 1000;
+    bool nudged = false;
+    auto saveText = [&](int round) {
+        return NudgeFirstConstant(original, 1e-6 * (double)(1 + (nonce + (uint64_t)round * 7919) % 100000), &nudged);
+    };
+    saveText(0);
+    GLint binaryFormats = 0;
+    glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &binaryFormats);
+    std::printf("# sdfvj bench reload: %s at %dx%d on %s\n", scene.name.c_str(), w, h, gl.Description().c_str());
+    std::printf("driver disk caches: %s; program binary formats: %d; program cache: %s\n", cacheLine.c_str(),
+                binaryFormats, ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off");
+    std::printf("each save: %s; frames paced at %s\n",
+                nudged ? "the scene's first constant nudged (a new program every run)"
+                       : "NO constant to nudge in this scene: a comment is appended (caches may serve it)",
+                o.fps > 0 ? (std::to_string((int)o.fps) + " Hz").c_str() : "flat out");
+
+    std::stringstream modeList(o.modes);
+    std::string modeName;
+    bool workerMeasured = false;
+    while (std::getline(modeList, modeName, ',')) {
+        int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : -1;
+        if (mode < 0) return Fail("--modes: '" + modeName + "', expected driver, worker or binary");
+        if (mode == 2 && binaryFormats == 0) {
+            // A mode the driver cannot serve falls back instead of failing the bench.
+            std::printf("\nbinary hand-over: the driver gives no program binaries (GL_NUM_PROGRAM_BINARY_FORMATS 0; "
+                        "Mesa gives them only with its disk cache on): %s\n",
+                        workerMeasured ? "same as the shared-context worker above, not repeated"
+                                       : "measured as the shared-context worker instead");
+            if (workerMeasured) continue;
+            mode = 1;
+        }
+        HeadlessContext shared;
+        std::unique_ptr<CompileWorker> worker;
+        if (mode >= 1) {
+            if (!shared.CreateShared(gl, &error, mode == 1)) return Fail(error);
+            worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2,
+                                                     [&shared] { shared.ReleaseCurrent(); });
+            if (!worker->Ok()) return Fail("the worker's context failed");
+            PendingProgram::SetWorker(worker.get());
+        }
+        struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
+        workerMeasured = workerMeasured || mode == 1;
+        FolderWatcher watcher;
+        for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"}) watcher.Watch((root / d).string(), &error);
+        const RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
+                                                                                                : ProbeRenderPath(scene, nullptr);
+        SaveLikeAnEditor(sceneFile, saveText(100 * mode));   // this mode's starting program: new as well
+        watcher.Poll();
+        LiveProgram live;
+        if (o.tiered != "auto") live.SetTiered(o.tiered == "on");
+        live.Request(VariantKey{sceneFile.string(), scene.effects, path});
+        live.Wait();
+        if (!live.Current()) return Fail(live.Error(), 1);
+        FrameRenderer fr;
+        if (!fr.Resize(w, h, &error)) return Fail(error);
+        FrameInputs in;
+        for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+
+        // One frame as `live` runs it: the reload step, the draw, the pixels done; then paced.
+        double updateMs = 0;
+        auto frameOnce = [&](bool* swapped) {
+            const auto t0 = Clock::now();
+            *swapped = live.Update(watcher.Poll());
+            updateMs = MsSince(t0);
+            fr.Draw(*live.Current(), live.Scene(), in);
+            glFinish();
+            const double ms = MsSince(t0);
+            if (o.fps > 0 && ms < 1000.0 / o.fps)
+                std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / o.fps - ms) * 1000)));
+            return ms;
+        };
+        std::vector<double> steady;
+        bool swapped = false;
+        for (int i = 0; i < 30; ++i) steady.push_back(frameOnce(&swapped));
+        const double steadyMedian = MedianMs(steady);
+
+        auto runRound = [&](int round) {
+            Round r;
+            SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * mode + round) : original + "// round " + std::to_string(round) + "\n");
+            const auto saved = Clock::now();
+            while (MsSince(saved) < 120000) {
+                const double ms = frameOnce(&swapped);
+                ++r.frames;
+                r.longestFrame = std::max(r.longestFrame, ms);
+                r.longestUpdate = std::max(r.longestUpdate, updateMs);
+                if (!swapped) {
+                    if (!live.Error().empty() && !live.Pending()) break;
+                    continue;
+                }
+                if (r.firstMs == 0) {
+                    r.firstMs = MsSince(saved);
+                    r.firstDraw = ms - updateMs;
+                }
+                r.quickSeen = r.quickSeen || live.Current()->QuickTier();
+                if (!live.Current()->QuickTier()) {
+                    r.optimizedMs = MsSince(saved);
+                    r.compileMs = live.Current()->Origin().buildMs;
+                    r.fromCache = live.Current()->FromCache();
+                    r.ok = true;
+                    break;
+                }
+            }
+            return r;
+        };
+        if (o.driverCache == "warm")
+            for (int round = 1; round <= o.rounds; ++round) runRound(round);   // untimed: fills the caches
+
+        const char* how = mode == 2 ? "on a worker thread with its own context, handing over a program binary"
+                          : mode == 1 ? "on a worker thread with a shared context"
+                          : PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
+                                                                       : "on the render thread";
+        std::printf("\n## %s, %s path, compile %s; tiered: %s\n", scene.name.c_str(), RenderPathName(path), how,
+                    live.Tiered() ? "yes (quick tier first)" : "no");
+        std::printf("| round | first tier on screen ms | optimized on screen ms | frames | longest frame ms | "
+                    "longest reload step ms | first draw of new program ms | compile ms (its own) | from program cache |\n"
+                    "|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+        std::vector<double> first, optimized, longest, compile;
+        for (int round = 1; round <= o.rounds; ++round) {
+            const Round r = runRound(round);
+            if (!r.ok) {
+                std::printf("| %d | no new program on screen: %s |\n", round,
+                            live.Error().empty() ? "timed out after 120 s" : live.Error().c_str());
+                continue;
+            }
+            first.push_back(r.firstMs);
+            optimized.push_back(r.optimizedMs);
+            longest.push_back(r.longestFrame);
+            compile.push_back(r.compileMs);
+            std::printf("| %d | %.1f%s | %.1f | %d | %.1f | %.1f | %.1f | %.1f | %s |\n", round, r.firstMs,
+                        r.quickSeen ? " (quick)" : "", r.optimizedMs, r.frames, r.longestFrame, r.longestUpdate,
+                        r.firstDraw, r.compileMs, r.fromCache ? "yes" : "no");
+        }
+        if (first.empty()) return Fail("no round put a new program on screen", 1);
+        const double worst = MedianMs(longest);
+        std::printf("median: save -> first tier %.1f ms, -> optimized %.1f ms; longest frame during a reload %.1f ms "
+                    "= %.1fx the steady median %.2f ms (target <= 2x); compile %.1f ms\n",
+                    MedianMs(first), MedianMs(optimized), worst, steadyMedian > 0 ? worst / steadyMedian : 0.0,
+                    steadyMedian, MedianMs(compile));
+    }
     return 0;
 }
 

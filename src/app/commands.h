@@ -70,6 +70,11 @@ struct ReloadBenchOptions {
     std::string size = "640x360";
     std::string path = "auto";
     int rounds = 5;
+    std::string driverCache = "off";              // off | fresh (empty folders) | warm (--warm-cache)
+    std::string modes = "driver,worker,binary";   // compile modes to measure, in order
+    std::string tiered = "auto";                  // auto (NVIDIA) | on | off
+    double fps = 60;                              // frames paced like a display; 0: flat out
+    bool firstFrame = false;                      // one launch's first frame instead of reloads
 };
 int RunReloadBench(const ReloadBenchOptions& o);
 

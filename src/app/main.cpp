@@ -15,7 +15,11 @@ using namespace sdfvj;
 namespace {
 
 // Options shared by render, live: scene, preset, effects, quality.
+bool noProgramCache = false;   // --no-program-cache on render, live and bench reload
+
 void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
+    cmd->add_flag("--no-program-cache", noProgramCache,
+                  "compile every program; neither read nor write the on-disk program cache (also SDFVJ_PROGRAM_CACHE=0)");
     cmd->add_option("--scene", s->scene, "scene name (see `sdfvj list`) or a .glsl file");
     cmd->add_option("--preset", s->preset, "preset JSON (presets/NAME.json): scene, parameter values, effects, mapping");
     cmd->add_option("--effects", s->effects,
@@ -94,6 +98,18 @@ int main(int argc, char** argv) {
     cmdReload->add_option("--size", reloadBench.size, "frame size")->capture_default_str();
     cmdReload->add_option("--path", reloadBench.path, "auto, compute or fragment")->capture_default_str();
     cmdReload->add_option("--rounds", reloadBench.rounds, "saves to time")->capture_default_str();
+    cmdReload->add_option("--driver-cache", reloadBench.driverCache,
+                          "drivers' disk caches: off (MESA_SHADER_CACHE_DISABLE, __GL_SHADER_DISK_CACHE=0), fresh "
+                          "(on, empty folders of this run) or warm (as set, warmed by an untimed pass)")
+        ->capture_default_str();
+    cmdReload->add_flag_callback("--warm-cache", [&] { reloadBench.driverCache = "warm"; }, "same as --driver-cache warm");
+    cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary (comma-separated)")
+        ->capture_default_str();
+    cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();
+    cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();
+    cmdReload->add_flag("--first-frame", reloadBench.firstFrame,
+                        "time one launch instead: context -> first frame, with the program cache (run twice)");
+    cmdReload->add_flag("--no-program-cache", noProgramCache, "compile every program; neither read nor write the program cache");
 #ifdef SDFVJ_HAS_LIVE
     double inputSeconds = 60;
     auto* cmdInput = cmdBench->add_subcommand("input", "event-to-frame latency and a 10,000 msg/s flood (OSC + MIDI)");
@@ -152,6 +168,7 @@ int main(int argc, char** argv) {
         return code == 0 ? 0 : 2;
     }
     render.framesGiven = framesOpt->count() > 0;
+    if (noProgramCache) setenv("SDFVJ_PROGRAM_CACHE", "0", 1);
 
     if (cmdRender->parsed()) return RunRender(render);
     if (cmdAccuracy->parsed()) {

@@ -194,6 +194,9 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
         auto elapsedMs = [t0] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); };
         unsigned prog = CompileLink(job.text, job.path, &log, handOverBinary_ || job.store);
         if (prog && handOverBinary_) {
+            // Primed here too: Mesa keys its disk cache on the shader, not the context, so the
+            // render context's first draw of the handed-over binary finds this JIT there.
+            Prime(prog, job.path, job.text.find("rgba32f") != std::string::npos);
             GLint length = 0;
             glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &length);
             done.binary.resize(length > 0 ? (size_t)length : 0);
