@@ -9,53 +9,53 @@
 
 namespace sdfvj::accuracy {
 
-CpuScene<float> MakeCpuScene32_primitives();
-CpuScene<double> MakeCpuScene64_primitives();
-CpuScene<float> MakeCpuScene32_midi();
-CpuScene<double> MakeCpuScene64_midi();
-CpuScene<float> MakeCpuScene32_midi_global();
-CpuScene<double> MakeCpuScene64_midi_global();
-CpuScene<float> MakeCpuScene32_character();
-CpuScene<double> MakeCpuScene64_character();
-CpuScene<float> MakeCpuScene32_mandelbulb();
-CpuScene<double> MakeCpuScene64_mandelbulb();
-
 std::string Format(const char* format, double v) {
     char b[64];
     std::snprintf(b, sizeof b, format, v);
     return b;
 }
 
-std::vector<std::string> CpuSceneNames() { return {"primitives", "midi", "character", "mandelbulb"}; }
+std::vector<std::string> CpuSceneNames() {
+    std::vector<std::string> names;
+    for (const CpuSceneBuild& b : CpuSceneBuilds()) names.push_back(b.name);
+    return names;
+}
 
-bool HasCpuScene(const std::string& name) {
-    auto n = CpuSceneNames();
-    return std::find(n.begin(), n.end(), name) != n.end();
+static const CpuSceneBuild* FindCpuScene(const std::string& name) {
+    for (const CpuSceneBuild& b : CpuSceneBuilds())
+        if (b.name == name) return &b;
+    return nullptr;
+}
+
+bool HasCpuScene(const std::string& name) { return FindCpuScene(name) != nullptr; }
+
+bool HasGlobalLipschitzBuild(const std::string& name) {
+    const CpuSceneBuild* b = FindCpuScene(name);
+    return b && b->makeGlobal32;
 }
 
 // A programmer bug, not bad input: every caller asks HasCpuScene() first (the bench reports an
 // unknown scene to the user as a value). Says which name and stops.
 [[noreturn]] static void UnknownCpuScene(const std::string& name) {
-    std::fprintf(stderr, "sdfvj: bug: MakeCpuScene('%s') without HasCpuScene() first; CPU builds exist for "
-                 "primitives, midi, character and mandelbulb\n", name.c_str());
+    std::string known;
+    for (const auto& n : CpuSceneNames()) known += (known.empty() ? "" : ", ") + n;
+    std::fprintf(stderr, "sdfvj: bug: MakeCpuScene('%s') without HasCpuScene() first; CPU builds exist for %s "
+                 "(a scene added since the last cmake configure needs one)\n", name.c_str(), known.c_str());
     std::abort();
 }
 
 CpuScene<float> MakeCpuScene32(const std::string& name) {
-    if (name == "primitives") return MakeCpuScene32_primitives();
-    if (name == "midi") return MakeCpuScene32_midi();
-    if (name == "midi_global") return MakeCpuScene32_midi_global();
-    if (name == "character") return MakeCpuScene32_character();
-    if (name == "mandelbulb") return MakeCpuScene32_mandelbulb();
+    if (const CpuSceneBuild* b = FindCpuScene(name)) return b->make32();
     UnknownCpuScene(name);
 }
 CpuScene<double> MakeCpuScene64(const std::string& name) {
-    if (name == "primitives") return MakeCpuScene64_primitives();
-    if (name == "midi") return MakeCpuScene64_midi();
-    if (name == "midi_global") return MakeCpuScene64_midi_global();
-    if (name == "character") return MakeCpuScene64_character();
-    if (name == "mandelbulb") return MakeCpuScene64_mandelbulb();
+    if (const CpuSceneBuild* b = FindCpuScene(name)) return b->make64();
     UnknownCpuScene(name);
+}
+CpuScene<float> MakeCpuSceneGlobal32(const std::string& name) {
+    const CpuSceneBuild* b = FindCpuScene(name);
+    if (!b) UnknownCpuScene(name);
+    return b->makeGlobal32 ? b->makeGlobal32() : b->make32();
 }
 
 void ParallelRows(int height, int threads, const std::function<void(int)>& f) {

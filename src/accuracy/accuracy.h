@@ -30,10 +30,15 @@ std::string Format(const char* format, double v);
 
 
 // ---- CPU build of the scenes ------------------------------------------------------------
-std::vector<std::string> CpuSceneNames();   // primitives, midi, character, mandelbulb
+// Generated from shaders/scenes/*.glsl at configure time: equals ListScenes() of the source tree.
+std::vector<std::string> CpuSceneNames();
 bool HasCpuScene(const std::string& name);
 CpuScene<float> MakeCpuScene32(const std::string& name);    // name must pass HasCpuScene (a bug otherwise)
 CpuScene<double> MakeCpuScene64(const std::string& name);
+// The scene reads SCENE_GLOBAL_LIPSCHITZ: it has a raw-field build with a global bound
+// (MakeCpuSceneGlobal32), which the sweep's "plain" row marches as a plain raymarcher would.
+bool HasGlobalLipschitzBuild(const std::string& name);
+CpuScene<float> MakeCpuSceneGlobal32(const std::string& name);   // falls back to MakeCpuScene32
 
 // Sets every uniform the way FrameRenderer::Draw does for (scene, in) at width x height
 // (parameters clamped to their declared range).

@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace sdfvj::accuracy {
 
@@ -44,5 +45,19 @@ struct CpuScene {
     S* fixedStep; int* shadowSteps; S* shadowK; int* aoSamples; S* normalEps; S* roughness;
     S* metalness; int* effectsOff;
 };
+
+// One scene's CPU builds, generated from shaders/scenes/NAME.glsl at configure time
+// (src/accuracy/CMakeLists.txt): nothing in src/accuracy names a scene by hand.
+struct CpuSceneBuild {
+    std::string name;                               // the scene file's stem, as ListScenes() gives it
+    std::function<CpuScene<float>()> make32;
+    std::function<CpuScene<double>()> make64;
+    // The raw field with a global Lipschitz bound, for scenes that read SCENE_GLOBAL_LIPSCHITZ
+    // (they divide a non-Lipschitz part by its own bound by default); empty otherwise.
+    std::function<CpuScene<float>()> makeGlobal32;
+    std::function<CpuScene<double>()> makeGlobal64;
+};
+// Every scene in shaders/scenes at configure time, sorted by name (cpu_scene_table.cpp).
+const std::vector<CpuSceneBuild>& CpuSceneBuilds();
 
 }  // namespace sdfvj::accuracy

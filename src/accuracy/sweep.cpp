@@ -149,7 +149,10 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
         SceneInfo scene;
         if (!FindScene(name, &scene, error)) return false;
         if (!HasCpuScene(scene.name)) {
-            *error = "no CPU reference build of scene '" + scene.name + "', expected primitives, midi, character or mandelbulb";
+            std::string known;
+            for (const auto& n : CpuSceneNames()) known += (known.empty() ? "" : ", ") + n;
+            *error = "no CPU reference build of scene '" + scene.name + "', expected one of " + known +
+                     " (a scene file added since the last cmake configure needs a rebuild)";
             return false;
         }
         RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
@@ -172,10 +175,10 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             Fmt("%.1f", refS) + " s");
         // The plain raymarcher marches the raw field: scenes that divide a non-Lipschitz part by
         // its own bound (midi) have a SCENE_GLOBAL_LIPSCHITZ build that leaves it raw.
-        const bool hasRaw = scene.name == "midi";
+        const bool hasRaw = HasGlobalLipschitzBuild(scene.name);
         double lipschitz = 1.0;
         {
-            CpuScene<float> s32 = MakeCpuScene32(hasRaw ? scene.name + "_global" : scene.name);
+            CpuScene<float> s32 = MakeCpuSceneGlobal32(scene.name);
             ApplyFrame(s32, scene, base, rw, rh);
             lipschitz = std::max(1.0, (double)s32.lipschitz());
         }

@@ -26,7 +26,10 @@ int RunAccuracyBench(const AccuracyBenchOptions& o) {
         SceneInfo info;
         if (!FindScene(s, &info, &error)) { std::fprintf(stderr, "sdfvj bench accuracy: %s\n", error.c_str()); return 2; }
         if (!accuracy::HasCpuScene(info.name)) {
-            std::fprintf(stderr, "sdfvj bench accuracy: no CPU reference build of scene '%s', expected primitives, midi, character or mandelbulb\n", s.c_str());
+            std::string known;
+            for (const auto& n : accuracy::CpuSceneNames()) known += (known.empty() ? "" : ", ") + n;
+            std::fprintf(stderr, "sdfvj bench accuracy: no CPU reference build of scene '%s', expected one of %s "
+                         "(a scene file added since the last cmake configure needs a rebuild)\n", s.c_str(), known.c_str());
             return 2;
         }
         so.scenes.push_back(info.name);

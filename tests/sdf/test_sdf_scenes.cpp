@@ -28,6 +28,29 @@ std::vector<std::map<std::string, double>> knobSettings(const nlohmann::json& h,
 }
 }  // namespace
 
+TEST_CASE("sdf scenes: the CPU builds are exactly the scenes in shaders/scenes", "[sdf][scene]") {
+  // Generated at configure time from the folder: a scene file added without a CPU build (or a
+  // build left behind by a removed file) would leave the accuracy report silently incomplete.
+  CHECK(sdfvj::accuracy::CpuSceneNames() == sdfvj::ListScenes());
+  REQUIRE(!sdfvj::accuracy::CpuSceneNames().empty());
+  for (const auto& name : sdfvj::ListScenes()) {
+    INFO(name);
+    CHECK(sdfvj::accuracy::HasCpuScene(name));
+    CHECK(sdfvj::accuracy::MakeCpuScene64(name).name == name);
+    // every header input reaches a uniform of the CPU build
+    sdfvj::SceneInfo info;
+    std::string error;
+    REQUIRE(sdfvj::FindScene(name, &info, &error));
+    auto s = sdfvj::accuracy::MakeCpuScene32(name);
+    CHECK(s.inputs.size() == info.params.size());
+    for (const auto& p : info.params) CHECK(s.inputs.count(p.name) == 1);
+  }
+  // midi reads SCENE_GLOBAL_LIPSCHITZ (its raw field for the plain row), character does not
+  CHECK(sdfvj::accuracy::HasGlobalLipschitzBuild("midi"));
+  CHECK_FALSE(sdfvj::accuracy::HasGlobalLipschitzBuild("character"));
+  CHECK(sdfvj::accuracy::MakeCpuSceneGlobal32("midi").name == "midi");
+}
+
 TEST_CASE("sdf scenes: JSON headers have the agreed shape", "[sdf][scene]") {
   for (auto& name : sceneNames()) {
     INFO(name);
