@@ -55,6 +55,7 @@ void LiveSession::ToggleFullscreen() {
             if (!ParseSize(o_.size, &w, &h, &err)) w = 1280, h = 720;
         }
         glfwSetWindowMonitor(window_, nullptr, windowed_[0], windowed_[1], w, h, GLFW_DONT_CARE);
+        state_.report.Say("F11: windowed " + std::to_string(w) + "x" + std::to_string(h));
         return;
     }
     GLFWmonitor* monitor = glfwGetPrimaryMonitor();
@@ -66,6 +67,9 @@ void LiveSession::ToggleFullscreen() {
     glfwGetWindowPos(window_, &windowed_[0], &windowed_[1]);
     glfwGetWindowSize(window_, &windowed_[2], &windowed_[3]);
     glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+    const char* name = glfwGetMonitorName(monitor);
+    state_.report.Say("F11: fullscreen " + std::to_string(mode->width) + "x" + std::to_string(mode->height) + " on " +
+                      (name ? name : "the primary monitor"));
 }
 
 // The overlay: what the performer needs, nothing the audience should see (Tab hides it). It is
