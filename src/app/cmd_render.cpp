@@ -15,6 +15,7 @@
 
 #include "app/commands.h"
 #include "app/replay_driver.h"
+#include "isf/isf.h"
 
 extern char** environ;
 
@@ -116,8 +117,28 @@ int RunRender(const RenderOptions& o) {
     int w = 0, h = 0;
     if (!ParseSize(o.size, &w, &h, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
     if (o.fps <= 0 || o.fps > 1000) { std::fprintf(stderr, "sdfvj render: --fps must be in (0, 1000]\n"); return 2; }
+    // ISF (src/isf): --scene x.fs is a generator instead of a raymarched scene; --post filters the
+    // frame. --param NAME=VALUE goes to the ISF input of that name, else to the scene.
+    const bool isfScene = IsIsfPath(o.show.scene);
+    const std::vector<std::string> postPaths = SplitIsfList(o.post);
+    std::vector<std::string> isfPaths = postPaths;
+    if (isfScene) isfPaths.insert(isfPaths.begin(), ResolveIsfPath(o.show.scene));
+    std::vector<ParamDecl> isfDecls;
+    ShowOptions showOptions = o.show;
+    std::vector<std::pair<std::string, float>> isfValues;
+    if (!isfPaths.empty()) {
+        if (!IsfListParams(isfPaths, &isfDecls, &error)) { std::fprintf(stderr, "%s\n", error.c_str()); return 2; }
+        std::vector<std::string> isfOverrides;
+        SplitIsfOverrides(isfDecls, &showOptions.params, &isfOverrides);
+        if (!ApplyIsfParamOverrides(isfDecls, isfOverrides, &isfValues, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
+        if (isfScene && (!showOptions.params.empty() || !o.show.preset.empty() || !o.replay.empty())) {
+            std::fprintf(stderr, "sdfvj render: --scene %s is an ISF generator: --param takes its inputs only, and "
+                                 "--preset/--replay are for raymarched scenes (docs/isf.md)\n", o.show.scene.c_str());
+            return 2;
+        }
+    }
     Show show;
-    if (!PrepareShow(o.show, &show, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
+    if (!isfScene && !PrepareShow(showOptions, &show, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
 
     // Replay: a take drives the parameters through the mapping, exactly as live input does.
     std::unique_ptr<ReplayDriver> replay;
@@ -132,9 +153,13 @@ int RunRender(const RenderOptions& o) {
 
     if (!gl.Create(&error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
     if (!o.quiet) std::fprintf(stderr, "GL: %s\n", gl.Description().c_str());
-    if (!BuildShow(&show, o.show.path, &error, !o.quiet)) { std::fprintf(stderr, "%s\n", error.c_str()); return 1; }
+    if (!isfScene && !BuildShow(&show, o.show.path, &error, !o.quiet)) { std::fprintf(stderr, "%s\n", error.c_str()); return 1; }
     FrameRenderer fr;
-    if (!fr.Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
+    if (!isfScene && !fr.Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
+    IsfChain isf;   // the generator (if any), then the post effects
+    if (!isfPaths.empty() && !isf.Load(isfPaths, &error)) { std::fprintf(stderr, "%s\n", error.c_str()); return 1; }
+    for (const std::string& line : isf.Notices()) std::fprintf(stderr, "%s\n", line.c_str());
+    if (isfScene) show.scene.name = isf.Stage(0).File().path;
 
     std::unique_ptr<FfmpegEncoder> video;
     if (!o.video.empty()) {
@@ -158,7 +183,7 @@ int RunRender(const RenderOptions& o) {
     }
     if (!o.quiet)
         std::fprintf(stderr, "rendering %s [%s, %s path] %dx%d, %d frames at %g fps -> %s\n", show.scene.name.c_str(),
-                     DescribeEffects(show.effects).c_str(), RenderPathName(show.path), w, h, frames, o.fps,
+                     isfScene ? "ISF" : DescribeEffects(show.effects).c_str(), isfScene ? "fragment" : RenderPathName(show.path), w, h, frames, o.fps,
                      o.video.empty() ? o.out.c_str() : o.video.c_str());
 
     FrameInputs in;
@@ -174,8 +199,19 @@ int RunRender(const RenderOptions& o) {
             in.beat = replay->BeatPhase(in.time);
             in.bpm = replay->Bpm();
         }
-        fr.Draw(*show.program, show.scene, in);
-        std::vector<uint8_t> rgba = fr.ReadPixels();
+        std::vector<uint8_t> rgba;
+        if (isf.Empty()) {
+            fr.Draw(*show.program, show.scene, in);
+            rgba = fr.ReadPixels();
+        } else {
+            IsfFrameInputs isfIn;
+            isfIn.time = in.time;
+            isfIn.timeDelta = i > 0 ? dt : 0.0;   // DATE stays fixed: replays render the same bytes
+            isfIn.frame = i;
+            isfIn.params = isfValues;
+            if (!isfScene) fr.Draw(*show.program, show.scene, in);
+            rgba = ReadTextureRgba(isf.Render(isfScene ? 0u : fr.Texture(), w, h, isfIn), w, h);
+        }
         if (video) {
             if (!video->Write(rgba)) {
                 std::string how = video->Finish();

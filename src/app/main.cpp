@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
         "  sdfvj list                                      scenes, presets and MIDI ports\n"
         "  sdfvj render --scene midi --size 640x360 --frames 60 --out out/\n"
         "  sdfvj render --preset demo --replay presets/demo_take.mid --video demo.mp4\n"
+        "  sdfvj render --scene midi --post bloom,rgb_split --param amount=6   ISF post effects\n"
         "  sdfvj live --preset demo --midi LPD8            a window; knobs drive the scene\n"
         "  sdfvj bench --sizes 1920x1080                   GPU ms per frame, both render paths\n"};
     app.require_subcommand(1);
@@ -58,6 +59,11 @@ int main(int argc, char** argv) {
     cmdRender->add_option("--replay", render.replay, "a Standard MIDI File whose events drive the parameters");
     cmdRender->add_option("--mapping", render.mapping, "mapping for --replay (default: the preset's, else generic_8knob)");
     cmdRender->add_option("--video", render.video, "pipe frames to ffmpeg (H.264) and write this .mp4 instead of PNGs; odd sizes are padded to even (libx264 needs them)");
+    cmdRender->add_option("--post", render.post,
+                          "ISF post effects over the frame, in order: names in shaders/isf (bloom, feedback_trails, "
+                          "kaleidoscope, rgb_split, film_grain, edge_glow, color_grade, mirror) or .fs files, "
+                          "comma-separated; --param sets their inputs too. --scene also takes an ISF or Shadertoy .fs "
+                          "generator (docs/isf.md)");
     cmdRender->add_flag("--quiet", render.quiet, "no progress bar");
 
     BenchOptions bench;

@@ -159,6 +159,11 @@ private:
     std::vector<std::unique_ptr<IsfEffect>> effects_;
 };
 
+// The parameters of several files, parsed only (no GL): for sorting --param before GL exists.
+bool IsfListParams(const std::vector<std::string>& paths, std::vector<ParamDecl>* out, std::string* error);
+// Moves the NAME=VALUE entries of `params` whose NAME is one of `decls` into `isf`.
+void SplitIsfOverrides(const std::vector<ParamDecl>& decls, std::vector<std::string>* params, std::vector<std::string>* isf);
+
 // "a.fs,b.fs" -> {"a.fs", "b.fs"}; a bare name ("bloom") means shaders/isf/bloom.fs.
 std::vector<std::string> SplitIsfList(const std::string& list);
 // Resolves a post-effect or scene name to a file: a path as given, else shaders/isf/NAME(.fs).

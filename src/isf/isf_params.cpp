@@ -69,6 +69,38 @@ bool ApplyIsfParamOverrides(const std::vector<ParamDecl>& decls, const std::vect
     return true;
 }
 
+bool IsfListParams(const std::vector<std::string>& paths, std::vector<ParamDecl>* out, std::string* error) {
+    for (const std::string& p : paths) {
+        IsfFile f;
+        std::error_code ec;
+        if (!fs::is_regular_file(p, ec)) {
+            std::string known;
+            for (const auto& e : fs::directory_iterator(fs::path(DataRoot()) / "shaders" / "isf", ec))
+                if (IsIsfPath(e.path().string())) known += (known.empty() ? "" : ", ") + e.path().stem().string();
+            *error = "unknown ISF file '" + p + "', expected a .fs file or one of shaders/isf: " + (known.empty() ? "(none)" : known);
+            return false;
+        }
+        if (!LoadIsfFile(p, &f, error)) return false;
+        for (const ParamDecl& d : IsfParams(f)) {
+            bool seen = false;
+            for (const ParamDecl& o : *out) seen = seen || o.name == d.name;
+            if (!seen) out->push_back(d);
+        }
+    }
+    return true;
+}
+
+void SplitIsfOverrides(const std::vector<ParamDecl>& decls, std::vector<std::string>* params, std::vector<std::string>* isf) {
+    std::vector<std::string> rest;
+    for (const std::string& kv : *params) {
+        const std::string name = kv.substr(0, kv.find('='));
+        bool ours = false;
+        for (const ParamDecl& d : decls) ours = ours || d.name == name;
+        (ours ? *isf : rest).push_back(kv);
+    }
+    *params = std::move(rest);
+}
+
 std::vector<std::string> SplitIsfList(const std::string& list) {
     std::vector<std::string> out;
     size_t b = 0;

@@ -174,7 +174,7 @@ TEST_CASE("isf effect feedback_trails: a pixel that goes dark fades as decay^fra
 
 TEST_CASE("isf effect bloom: highlights glow into their surroundings; an image without highlights is unchanged", "[isf][effects]") {
     RequireGl();
-    auto dim = [](int x, int y) { return Px{uint8_t(x * 2), uint8_t(100), uint8_t(y * 2), 255}; };   // luma < 0.7 everywhere
+    auto dim = [](int x, int y) { return Px{uint8_t(x * 2), uint8_t(100), uint8_t(y * 2), 255}; };   // luma < 0.85 (the threshold) everywhere
     CHECK(MaxDiff(Run("bloom", 64, 64, dim), ToImg(64, 64, dim)) <= 1);
     auto spot = [](int x, int y) { return x >= 28 && x < 36 && y >= 28 && y < 36 ? Px{255, 255, 255, 255} : Px{0, 0, 0, 255}; };
     const Img out = Run("bloom", 64, 64, spot);
