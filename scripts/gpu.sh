@@ -41,6 +41,20 @@ case "${1:-}" in
     for s in midi character; do
       run bench reload --scene $s --size 1920x1080 --path compute > "$out/reload_$s.txt" 2>&1 || true
     done
+    # Reload (issue 12): the rows above have the drivers' disk caches off and a new program every
+    # save, tiered on NVIDIA; below: without the quick tier, the warm-cache row, and a second
+    # launch served by the program cache (first launch compiles into an empty cache folder).
+    for s in midi character; do
+      timeout 200 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes driver --rounds 3 \
+        --tiered off > "$out/reload_${s}_untiered.txt" 2>&1 || true
+      timeout 200 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes driver --rounds 3 \
+        --warm-cache > "$out/reload_${s}_warm.txt" 2>&1 || true
+      rm -rf /tmp/sdfvj-launch-cache
+      for launch in first second; do
+        XDG_CACHE_HOME=/tmp/sdfvj-launch-cache timeout 120 bash "$0" remote bench reload --scene $s --size 1920x1080 \
+          --path compute --first-frame > "$out/launch_${s}_$launch.txt" 2>&1 || true
+      done
+    done
     run bench effects --scene midi --size 1920x1080 --path compute > "$out/effects_midi.txt" 2>&1 || true
     timeout 240 bash "$0" remote bench --frames 10 --warmup 3 --markdown "$out/bench.md" > "$out/bench.txt" 2>&1 || true
     ;;
