@@ -114,7 +114,7 @@ TEST_CASE("automation bad expressions: file:line with what was expected, nothing
     CHECK(Eval(a, p, At(1.5), "twist") == Approx(1.5f));
 }
 
-TEST_CASE("automation NaN, Inf and division by zero are clamped and reported once; no NaN reaches a parameter", "[automation]") {
+TEST_CASE("automation NaN, Inf and division by zero are clamped and reported once, no NaN reaches a parameter", "[automation]") {
     Automation a;
     std::string err;
     REQUIRE(a.Load(WithExpression("twist", "1 / (beat - 2)", 9), Decls(), &err));

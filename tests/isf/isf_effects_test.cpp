@@ -82,7 +82,7 @@ TEST_CASE("isf effect rgb_split: red and blue are shifted by amount pixels, gree
     CHECK(MaxDiff(Run("rgb_split", 48, 16, Pattern, {{"amount", 0}}), ToImg(48, 16, Pattern)) <= 1);   // 0 = no change
 }
 
-TEST_CASE("isf effect color_grade: defaults are the identity; saturation 0 is grey; +1 stop doubles", "[isf][effects]") {
+TEST_CASE("isf effect color_grade: defaults are the identity, saturation 0 is grey, +1 stop doubles", "[isf][effects]") {
     RequireGl();
     CHECK(MaxDiff(Run("color_grade", 32, 32, Pattern), ToImg(32, 32, Pattern)) <= 1);
     const Img grey = Run("color_grade", 32, 32, Pattern, {{"saturation", 0}});
@@ -172,7 +172,7 @@ TEST_CASE("isf effect feedback_trails: a pixel that goes dark fades as decay^fra
     CHECK(two.At(20, 20, 0) == 0);                 // never lit: stays black
 }
 
-TEST_CASE("isf effect bloom: highlights glow into their surroundings; an image without highlights is unchanged", "[isf][effects]") {
+TEST_CASE("isf effect bloom: highlights glow into their surroundings, an image without highlights is unchanged", "[isf][effects]") {
     RequireGl();
     auto dim = [](int x, int y) { return Px{uint8_t(x * 2), uint8_t(100), uint8_t(y * 2), 255}; };   // luma < 0.85 (the threshold) everywhere
     CHECK(MaxDiff(Run("bloom", 64, 64, dim), ToImg(64, 64, dim)) <= 1);

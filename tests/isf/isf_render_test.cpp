@@ -42,7 +42,7 @@ TEST_CASE("isf render: built-ins TIME, TIMEDELTA, FRAMEINDEX, RENDERSIZE, DATE, 
     CHECK(Near(img.At(40, 31, 0), int(255 * 0.5 / 32 + 0.5), 1));
 }
 
-TEST_CASE("isf render: every input type reaches its uniform; audio reads silence", "[isf][gl]") {
+TEST_CASE("isf render: every input type reaches its uniform, audio reads silence", "[isf][gl]") {
     RequireGl();
     IsfEffect e;
     LoadOrFail(e, TestFile("all_inputs.fs"));
@@ -83,7 +83,7 @@ TEST_CASE("isf render: a GLSL 1.x file with its .vs runs on the 4.5 core profile
     }
 }
 
-TEST_CASE("isf render: a compile error names the .fs file and its line; the last good program stays", "[isf][gl]") {
+TEST_CASE("isf render: a compile error names the .fs file and its line, the last good program stays", "[isf][gl]") {
     RequireGl();
     IsfEffect e;
     std::string error;
@@ -127,7 +127,7 @@ TEST_CASE("isf render: PASSES targets get their WIDTH/HEIGHT expression sizes", 
     CHECK((img.At(10, 10, 0) == 16 && img.At(10, 10, 1) == 10));
 }
 
-TEST_CASE("isf render: a PERSISTENT FLOAT buffer accumulates across frames; without FLOAT small steps are lost", "[isf][gl]") {
+TEST_CASE("isf render: a PERSISTENT FLOAT buffer accumulates across frames, without FLOAT small steps are lost", "[isf][gl]") {
     RequireGl();
     IsfEffect e;
     LoadOrFail(e, TestFile("persistent.fs"));
@@ -211,7 +211,7 @@ TEST_CASE("isf render: unsupported features are one notice per feature and the f
     CHECK((img.At(4, 4, 0) == 90 && img.At(4, 4, 1) == 90));   // not blank
 }
 
-TEST_CASE("isf chain: stages run in order; a chain that fails to load keeps the one it had", "[isf][gl]") {
+TEST_CASE("isf chain: stages run in order, a chain that fails to load keeps the one it had", "[isf][gl]") {
     RequireGl();
     IsfChain chain;
     std::string error;

@@ -150,7 +150,7 @@ TEST_CASE("live_gpu effect costs: one row per effect of the variant, and soft sh
     CHECK(costs.submitted == 35);
 }
 
-TEST_CASE("live_gpu effect costs: PBR has no run-time switch and says n/a; a variant without effects has no rows") {
+TEST_CASE("live_gpu effect costs: PBR has no run-time switch and says n/a, a variant without effects has no rows") {
     EffectSet e;
     e.pbr = true;
     e.specular = true;   // Blinn-Phong is not drawn under PBR: no row

@@ -381,3 +381,42 @@ TEST_CASE("live_reload effect toggle and library save at once: the show keeps re
     REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 5, 30));
     CHECK(show.Running());
 }
+
+TEST_CASE("live_reload scene morph: a preset switch to another scene morphs the fields in one program, or crossfades "
+          "when the preset says so, and the frames keep coming") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "scene-morph");
+    const std::string root = CopyDataRoot(dir);
+    {
+        std::ofstream(root + "/presets/to_field.json")
+            << R"({"scene": "primitives", "params": {"spin": 0.8}, "morph": {"seconds": 1.0, "easing": "linear"}})";
+        std::ofstream(root + "/presets/to_frames.json")
+            << R"({"scene": "midi", "params": {"twist": 1.0}, "morph": {"seconds": 1.0, "scenes": "crossfade"}})";
+    }
+    LiveShow show(dir, {"--scene", "midi"}, root);
+    REQUIRE_LIVE(show, show.WaitForLog("OSC: listening on UDP port " + std::to_string(show.oscPort), 1, 20));
+    REQUIRE_LIVE(show, PollFor(20, [&] { return !show.Frames().empty(); }));
+    auto preset = [&](const std::string& name) {
+        REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", name},
+                    dir + "/oscsend.log", 10) == 0);
+    };
+
+    // midi -> primitives: one program marches both fields.
+    preset("to_field");
+    REQUIRE_LIVE(show, show.WaitForLog("scene morph: midi -> primitives as one field over 1.00 s", 1, 30));
+    // The morph ends on the new scene alone (its inputs in the log), and the loop goes on.
+    REQUIRE_LIVE(show, show.WaitForValues({{"spin", 0.8f}}, 30));
+    size_t at = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 10, kDeadline));
+
+    // primitives -> midi with "scenes": "crossfade": no field morph.
+    preset("to_frames");
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 1.0f}}, 30));
+    at = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 10, kDeadline));
+    const std::string log = show.Log();
+    INFO(log);
+    CHECK(CountInFile(show.log, "as one field") == 1);
+    CHECK(log.find("internal error") == std::string::npos);
+    CHECK(log.find("crossfading the frames instead") == std::string::npos);
+    CHECK(show.Running());
+}

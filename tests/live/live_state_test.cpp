@@ -83,7 +83,7 @@ TEST_CASE("live_state preset request: /sdfvj/preset with a huge number over OSC 
     CHECK(s.wanted.effects.shadows == 3);
 }
 
-TEST_CASE("live_state rebase: an added input keeps every knob; a renamed one starts at its default", "[live_state]") {
+TEST_CASE("live_state rebase: an added input keeps every knob, a renamed one starts at its default", "[live_state]") {
     ParamState old = MakeParamState({Decl("twist", -2, 2, 0), Decl("scale", 0.5f, 2, 1)});
     SetParamTarget(old, 0, 1.5f);
     old.value[0] = 1.2f;
@@ -122,7 +122,7 @@ TEST_CASE("live_state follow: a scene header that gains an input rebuilds the pa
     CHECK(s.params.target[(size_t)FindParam(s.params, "glow")] == Approx(0.3f));
 }
 
-TEST_CASE("live_state effects: /sdfvj/effect/ao i 0 asks for the variant without AO; unknown effects are reported", "[live_state]") {
+TEST_CASE("live_state effects: /sdfvj/effect/ao i 0 asks for the variant without AO, unknown effects are reported", "[live_state]") {
     LiveState s = OpenMidi();
     REQUIRE(s.wanted.effects.ao);
     ApplyControl(s, {Osc("/sdfvj/effect/ao", Int(0))}, 1.0);

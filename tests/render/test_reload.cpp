@@ -108,7 +108,7 @@ TEST_CASE("reload: an edited scene file shows within a few frames", "[reload]") 
     CHECK(centre[2] > centre[0]);
 }
 
-TEST_CASE("reload: a broken save keeps the last good program and names file and line; a fix recovers", "[reload]") {
+TEST_CASE("reload: a broken save keeps the last good program and names file and line, a fix recovers", "[reload]") {
     ReloadRig rig("broken");
     Image good = rig.Frame();
     const int compiles = rig.live.CompilesStarted();
@@ -146,7 +146,7 @@ TEST_CASE("reload: a broken save keeps the last good program and names file and 
     CHECK(CompareImages(fixed, rig.Frame(), 0).maxAbs == 0);
 }
 
-TEST_CASE("reload: a no-op save compiles nothing; an included file rebuilds its owners", "[reload]") {
+TEST_CASE("reload: a no-op save compiles nothing, an included file rebuilds its owners", "[reload]") {
     ReloadRig rig("noop");
     Image before = rig.Frame();
     const int compiles = rig.live.CompilesStarted();
