@@ -73,6 +73,7 @@ void SaveLikeAnEditor(const fs::path& file, const std::string& text) {
 }
 
 struct Round {
+    double beginCall = 0, finishCall = 0;   // the optimized program's Begin and Finish on the render thread
     double firstMs = 0, optimizedMs = 0, longestFrame = 0, longestUpdate = 0, firstDraw = 0, compileMs = 0;
     int frames = 0;
     std::vector<double> quickFrames;   // frame times while the quick tier was on screen
@@ -250,6 +251,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     r.optimizedMs = MsSince(saved);
                     r.compileMs = live.Current()->Origin().buildMs;
                     r.fromCache = live.Current()->FromCache();
+                    r.beginCall = live.Current()->Origin().beginCallMs;
+                    r.finishCall = live.Current()->Origin().finishCallMs;
                     r.ok = true;
                     break;
                 }
@@ -266,8 +269,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::printf("\n## %s, %s path, compile %s; tiered: %s\n", scene.name.c_str(), RenderPathName(path), how,
                     live.Tiered() ? "yes (quick tier first)" : "no");
         std::printf("| round | first tier on screen ms | optimized on screen ms | frames | longest frame ms | "
-                    "longest reload step ms | first draw of new program ms | frame ms on the quick tier | compile ms (its own) | "
-                    "from program cache |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+                    "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
+                    "compile ms (its own) | from program cache |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
         std::vector<double> first, optimized, longest, compile;
         for (int round = 1; round <= o.rounds; ++round) {
             const Round r = runRound(round);
@@ -282,9 +285,9 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             compile.push_back(r.compileMs);
             char quick[32] = "-";
             if (!r.quickFrames.empty()) std::snprintf(quick, sizeof quick, "%.2f", MedianMs(r.quickFrames));
-            std::printf("| %d | %.1f%s | %.1f | %d | %.1f | %.1f | %.1f | %s | %.1f | %s |\n", round, r.firstMs,
-                        r.quickSeen ? " (quick)" : "", r.optimizedMs, r.frames, r.longestFrame, r.longestUpdate,
-                        r.firstDraw, quick, r.compileMs, r.fromCache ? "yes" : "no");
+            std::printf("| %d | %.1f%s | %.1f | %d | %.1f | %.1f (%.1f / %.1f) | %.1f | %s | %.1f | %s |\n", round,
+                        r.firstMs, r.quickSeen ? " (quick)" : "", r.optimizedMs, r.frames, r.longestFrame,
+                        r.longestUpdate, r.beginCall, r.finishCall, r.firstDraw, quick, r.compileMs, r.fromCache ? "yes" : "no");
         }
         if (first.empty()) return Fail("no round put a new program on screen", 1);
         const double worst = MedianMs(longest);

@@ -108,6 +108,7 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path, BuildTier t
     const std::string& text = tier == BuildTier::Quick ? quickText : source_.text;
     if (g_worker) {
         ticket_ = g_worker->Submit(text, path, store);
+        origin_.beginCallMs = NowMs() - beganAt_;
         return;
     }
     if (ParallelCompileAvailable()) glMaxShaderCompilerThreadsKHR(0xFFFFFFFFu);   // driver's choice
@@ -127,6 +128,7 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path, BuildTier t
         stage(GL_FRAGMENT_SHADER, text.c_str());
     }
     glLinkProgram(id_);
+    origin_.beginCallMs = NowMs() - beganAt_;
 }
 
 bool PendingProgram::Ready() const {
@@ -153,6 +155,7 @@ bool PendingProgram::Ready() const {
 }
 
 bool PendingProgram::Finish(Program* into, std::string* log) {
+    const double finishAt = NowMs();
     if (ticket_) {
         while (!Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
         ticket_ = 0;
@@ -181,6 +184,7 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
                 *log = "the driver rejected the compile thread's program binary";
                 return false;
             }
+            origin_.finishCallMs = NowMs() - finishAt;
             into->Adopt(prog, path_, source_, origin_);
             return true;
         }
@@ -189,6 +193,7 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
             return false;
         }
         // The worker's glFinish happened before it reported, so the program is complete.
+        origin_.finishCallMs = NowMs() - finishAt;
         into->Adopt(workerProgram_, path_, source_, origin_);
         workerProgram_ = 0;
         return true;
@@ -231,6 +236,7 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
         origin_.buildMs = NowMs() - beganAt_;
         if (!origin_.quickTier) StoreCachedProgram(id_, source_.text, path_);
     }
+    origin_.finishCallMs = NowMs() - finishAt;
     into->Adopt(id_, path_, source_, origin_);
     id_ = 0;
     return true;

@@ -74,6 +74,8 @@ struct ProgramOrigin {
     bool fromCache = false;   // loaded from the on-disk program cache (program_cache.h): nothing compiled
     bool quickTier = false;   // the quickly built first tier of a tiered compile (an optimized one follows)
     double buildMs = 0.0;     // wall time of its compile + link (+ the worker's priming draw), on whichever thread built it
+    double beginCallMs = 0.0;   // time the render thread spent in PendingProgram::Begin (driver calls that block show here)
+    double finishCallMs = 0.0;  // ... and in Finish, once Ready() (status queries, uniform lookup, cache store)
 };
 
 // Which build of a source: the optimized program, or a quick first tier that goes on screen
