@@ -109,6 +109,53 @@ std::vector<std::string> FfmpegArgs(int w, int h, double fps, const std::string&
     return a;
 }
 
+// Cues that switch presets (ReplayDriver::TakeShowSwitch): the new show's program is built at
+// the cue's frame, on this thread (never in the background: the same bytes every run), and a
+// scene change with a morph time crossfades from the old scene's frame, its values frozen, as
+// `live` does.
+class CueSwitcher {
+public:
+    // Puts `next` on stage in `show`; false with *error when its program does not build.
+    bool Apply(ReplayDriver::ShowSwitch next, Show& show, const std::vector<std::pair<std::string, float>>& oldParams,
+               double time, std::string* error) {
+        next.show->path = show.path;
+        if (!BuildShow(next.show.get(), RenderPathName(show.path), error, false)) return false;
+        fade_.reset();
+        std::string why;
+        if (next.fadeSeconds > 0 && !crossfade_.Init(&why))
+            std::fprintf(stderr, "sdfvj render: %s — the scene change cuts\n", why.c_str());
+        else if (next.fadeSeconds > 0)
+            fade_ = std::make_unique<Fade>(Fade{std::move(show), oldParams, time, next.fadeSeconds, next.weight});
+        show = std::move(*next.show);
+        return true;
+    }
+    // The frame to show: `scene` itself, or while a fade runs the mix of the old scene's frame
+    // (drawn here with `in` and the frozen values) and `scene`.
+    const FrameRenderer& Frame(const FrameRenderer& scene, const FrameInputs& in, int w, int h) {
+        std::string error;
+        if (!fade_ || in.time - fade_->start >= fade_->seconds || !old_.Resize(w, h, &error) || !mixed_.Resize(w, h, &error)) {
+            fade_.reset();   // done: the old program may go
+            return scene;
+        }
+        FrameInputs old = in;
+        old.params = fade_->params;
+        old_.Draw(*fade_->show.program, fade_->show.scene, old);
+        crossfade_.Draw(old_.Texture(), scene.Texture(), fade_->weight(in.time - fade_->start), mixed_.Framebuffer(), w, h);
+        return mixed_;
+    }
+
+private:
+    struct Fade {
+        Show show;
+        std::vector<std::pair<std::string, float>> params;
+        double start = 0.0, seconds = 0.0;
+        std::function<float(double)> weight;
+    };
+    std::unique_ptr<Fade> fade_;
+    FrameRenderer old_, mixed_;
+    Crossfade crossfade_;
+};
+
 }  // namespace
 
 int RunRender(const RenderOptions& o) {
@@ -145,7 +192,7 @@ int RunRender(const RenderOptions& o) {
     std::string takePath = !o.replay.empty() ? o.replay : "";
     int frames = o.frames;
     if (!takePath.empty() || !show.preset.automation.Empty()) {   // a take, or a scripted preset
-        replay = MakeReplayDriver(show, takePath, o.mapping, &error);
+        replay = MakeReplayDriver(show, takePath, o.mapping, &error, &o.show);
         if (!replay) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
         if (!o.framesGiven && !takePath.empty()) frames = (int)std::ceil(replay->Duration() * o.fps) + 1;
     }
@@ -190,19 +237,27 @@ int RunRender(const RenderOptions& o) {
     in.quality = show.quality;
     in.params = show.params;
     const double dt = 1.0 / o.fps;
+    CueSwitcher cues;
     auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < frames; ++i) {
         in.frame = i;
         in.time = i * dt;
         if (replay) {
+            const std::vector<std::pair<std::string, float>> before = in.params;
             replay->Advance(in.time, dt, &in.params);
             in.beat = replay->BeatPhase(in.time);
             in.bpm = replay->Bpm();
+            ReplayDriver::ShowSwitch next = replay->TakeShowSwitch();
+            if (next.show && !cues.Apply(std::move(next), show, before, in.time, &error)) {
+                std::fprintf(stderr, "\nsdfvj render: %s — at frame %d a cue switches to a preset whose program does not build\n",
+                             error.c_str(), i);
+                return 1;
+            }
         }
         std::vector<uint8_t> rgba;
         if (isf.Empty()) {
             fr.Draw(*show.program, show.scene, in);
-            rgba = fr.ReadPixels();
+            rgba = cues.Frame(fr, in, w, h).ReadPixels();
         } else {
             IsfFrameInputs isfIn;
             isfIn.time = in.time;
@@ -210,7 +265,8 @@ int RunRender(const RenderOptions& o) {
             isfIn.frame = i;
             isfIn.params = isfValues;
             if (!isfScene) fr.Draw(*show.program, show.scene, in);
-            rgba = ReadTextureRgba(isf.Render(isfScene ? 0u : fr.Texture(), w, h, isfIn), w, h);
+            const unsigned sceneTexture = isfScene ? 0u : cues.Frame(fr, in, w, h).Texture();
+            rgba = ReadTextureRgba(isf.Render(sceneTexture, w, h, isfIn), w, h);
         }
         if (video) {
             if (!video->Write(rgba)) {

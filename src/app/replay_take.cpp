@@ -62,6 +62,9 @@ public:
     std::unique_ptr<ReplayCursor> cursor;
     ShowAutomation automation;
     std::string presetFile;
+    ShowOptions options;            // the command line's: presets a cue switches to start from them
+    std::string scenePath;          // the scene on screen
+    ShowSwitch pending;
     int frame = 0;
 
     double Duration() const override { return take.duration; }
@@ -81,8 +84,7 @@ public:
         }
         std::vector<std::string> reports;
         for (const CueDesc& cue : StepAutomation(automation, params, KnobPositions(mapping, state), time, frame++, &reports))
-            reports.push_back(presetFile + ":" + std::to_string(cue.line) + ": cue switches to preset '" + cue.preset +
-                              "', which `render` does not follow yet (it renders one program), expected `live`");
+            SwitchPreset(cue, time, &reports);
         for (const std::string& r : reports) std::fprintf(stderr, "%s\n", r.c_str());
         StepSmoothing(params, dt);
         CopyParams(params, out);
@@ -92,13 +94,79 @@ public:
         return (float)(b - std::floor(b));
     }
     float Bpm() const override { return (float)automation.tempo.bpm; }
+    ShowSwitch TakeShowSwitch() override { return std::move(pending); }
+
+    // A cue that switches presets, as `live` applies it (ApplyPresetFile): the preset starts from
+    // the command line's options, its scripts and cue list start over at this beat, the values
+    // morph over the cue's `over` beats on the same scene (else glide), and jump on a new scene.
+    // A preset that does not load is reported with its line and the show stays as it is.
+    void SwitchPreset(const CueDesc& cue, double time, std::vector<std::string>* reports) {
+        const std::string cueAt = presetFile + ":" + std::to_string(cue.line) + ": cue preset '" + cue.preset + "'";
+        const std::string file = PresetFileFor(cue.preset);
+        if (file.empty()) {
+            reports->push_back(cueAt + " does not exist, expected a preset name (see `sdfvj list`)");
+            return;
+        }
+        ShowOptions so = options;
+        so.scene.clear();
+        so.params.clear();
+        so.preset = file;
+        auto next = std::make_unique<Show>();
+        std::string error;
+        Automation scripts;
+        const AutomationDesc& desc = next->preset.automation;
+        if (!PrepareShow(so, next.get(), &error) || (!desc.Empty() && !scripts.Load(desc, next->scene.params, &error))) {
+            reports->push_back(error + " — " + cueAt + " is not followed, the show stays as it is");
+            return;
+        }
+        const bool sceneChange = next->scene.path != scenePath;
+        automation.automation = std::move(scripts);
+        if (desc.bpm > 0) automation.tempo.SetBpm(time, desc.bpm);
+        automation.automation.Start(automation.tempo.Beats(time));
+        automation.morph = ParamMorph{};
+        MorphDesc how = desc.morph;
+        if (cue.overBeats >= 0) how.seconds = cue.overBeats * 60.0 / automation.tempo.bpm;
+        if (sceneChange) {
+            params = ShowParamState(*next);   // a new scene is a cut: its values jump
+        } else if (how.seconds > 0) {
+            StartMorph(automation.morph, params, next->params, time, how);
+        } else {
+            for (const auto& [name, value] : next->params) {
+                const int i = FindParam(params, name);
+                if (i >= 0) SetParamTarget(params, i, value);
+            }
+        }
+        reports->push_back("cue at " + FormatSeconds(time) + ": preset " + fs::path(file).filename().string() + " (" +
+                           next->scene.name + ")");
+        presetFile = next->preset.path;
+        scenePath = next->scene.path;
+        const MorphDesc fade = desc.morph;
+        pending.fadeSeconds = sceneChange && fade.easing != Easing::Cut ? fade.seconds : 0.0;
+        pending.weight = [fade](double since) { return Ease(fade.easing, fade.seconds > 0 ? since / fade.seconds : 1.0); };
+        pending.show = std::move(next);
+    }
+
+    // presets/NAME.json for a cue's "NAME" (or "NAME.json"), "" when there is none.
+    static std::string PresetFileFor(const std::string& name) {
+        for (const std::string& p : ListPresets())
+            if (p == name || p == name + ".json") return (fs::path(DataRoot()) / "presets" / p).string();
+        return "";
+    }
+    static std::string FormatSeconds(double t) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3f s", t);
+        return text;
+    }
 };
 
 }  // namespace
 
 std::unique_ptr<ReplayDriver> MakeReplayDriver(const Show& show, const std::string& takePath,
-                                               const std::string& mappingPath, std::string* error) {
+                                               const std::string& mappingPath, std::string* error,
+                                               const ShowOptions* options) {
     auto d = std::make_unique<TakeReplayDriver>();
+    if (options) d->options = *options;
+    d->scenePath = show.scene.path;
     if (!takePath.empty()) {
         std::string path = takePath;
         if (!fs::exists(path) && fs::exists(fs::path(DataRoot()) / path)) path = (fs::path(DataRoot()) / path).string();
