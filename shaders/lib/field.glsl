@@ -1,0 +1,174 @@
+// field.glsl - a field of blended shapes on a grid whose cost does not grow with the number
+// of shapes: each evaluation looks at the 2x2 cells around the point, never at the others.
+//
+// Usage (a scene): vec4 m = fieldMap(p, 15.0f, 10.0f, u_size, u_blend, u_wave, phase, spin);
+//   nx x nz cells of size 1 centred on the origin in XZ, one shape per cell (sphere, rounded
+//   box, upright torus or tilted capsule, chosen per cell), standing on y = 0 and lifted by a
+//   wave travelling across the field (0 .. wave); neighbours blend with radius `blend`.
+//   FIELD_MAX_BLEND and FIELD_MAX_SIZE are the largest knob values the exactness argument
+//   below allows; scenes declare their ranges inside them (tests/sdf checks it).
+//
+// What is evaluated, and why it is exact near the surfaces:
+//   The field is F = sminPoly(d1, d2, blend) where d1 <= d2 are the two smallest distances to
+//   ALL shapes (fieldMapAll, the reference the tests compare with). sminPoly of two order
+//   statistics of 1-Lipschitz distances is 1-Lipschitz (both partial derivatives lie in [0, 1]
+//   and sum to 1), so F is a distance bound of its own zero set, whatever the shapes' order.
+//   fieldMap evaluates T, the same over the shapes of the 2x2 cells whose centres surround p,
+//   and e, a lower bound of the distance to every other shape (the other cells' centres are
+//   at least 1 away along x or z, or farther: fieldExcluded). Each shape lies within
+//   FIELD_RADIUS * size of its cell's vertical axis and below fieldTop(). It returns
+//   f = min(T, e - 1.25 * blend). Then:
+//   - where F < e - 1.25 blend: the nearest shape is within F + blend/4 < e - blend, so it is
+//     one of the four, and any shape left out is >= blend farther than it, so it changes no
+//     smooth minimum: T = F and f = F (exact, the surface and everything within
+//     1 - FIELD_RADIUS * size - 1.25 blend >= 0.1 of it);
+//   - elsewhere f <= e - 1.25 blend <= F: still a bound, and never <= 0 (e >= 1 - radius);
+//   - e is continuous (along x the cut moves from one cell to the next where both candidate
+//     columns are 1 away), so f is continuous and 1-Lipschitz: sceneLipschitz() stays 1, and
+//     normals, AO probes (h <= 0.16) and penumbrae near surfaces see F itself.
+#ifndef SDF_LIB_FIELD_GLSL
+#define SDF_LIB_FIELD_GLSL
+#include "lib/common.glsl"
+#include "lib/primitives.glsl"
+#include "lib/domain.glsl"
+#include "lib/combinators.glsl"
+
+const float FIELD_RADIUS = 0.385f;   // every shape within this * size of its cell's axis (XZ)
+const float FIELD_MAX_SIZE = 1.0f;
+const float FIELD_MAX_BLEND = 0.35f; // 1 - 0.385 - 1.25 * 0.35 = 0.18 > 0 at the largest size
+
+// Albedo of a cell: a six-colour palette walked along the diagonal.
+vec3 fieldColor(float i, float j) {
+    float c = mod(i + 2.0f * j, 6.0f);
+    if (c < 0.5f) return vec3(0.92f, 0.26f, 0.21f);
+    if (c < 1.5f) return vec3(0.98f, 0.66f, 0.14f);
+    if (c < 2.5f) return vec3(0.20f, 0.70f, 0.45f);
+    if (c < 3.5f) return vec3(0.18f, 0.45f, 0.92f);
+    if (c < 4.5f) return vec3(0.62f, 0.30f, 0.85f);
+    return vec3(0.90f, 0.90f, 0.86f);
+}
+
+// Height of the wave under cell (i, j): 0 .. wave, travelling along the diagonal.
+float fieldLift(float i, float j, float wave, float phase) {
+    return wave * (0.5f + 0.5f * sin(phase - 0.55f * (i + j)));
+}
+
+// Highest point of any shape: the capsule's top at lift = wave.
+float fieldTop(float size, float wave) { return 0.95f * size + max(wave, 0.0f); }
+
+// The shape of cell (i, j), q relative to the cell's centre on the floor: its distance, exact;
+// every shape lies within FIELD_RADIUS * size of the cell's vertical axis, at y >= lift >= 0.
+float fieldShape(vec3 q, float i, float j, float size, float wave, float phase, float spin) {
+    float s = max(size, 0.05f);
+    float lift = fieldLift(i, j, wave, phase);
+    float turn = spin * (mod(i + j, 2.0f) < 0.5f ? 1.0f : -1.0f) + 0.9f * i + 0.4f * j;
+    float kind = mod(i + 3.0f * j + floor(0.5f * i), 4.0f);
+    float d;
+    if (kind < 0.5f) {
+        d = fSphere(pTranslate(q, vec3(0.0f, 0.36f * s + lift, 0.0f)), 0.36f * s);   // r 0.36
+    } else if (kind < 1.5f) {
+        vec3 b = pRotateY(pTranslate(q, vec3(0.0f, 0.30f * s + lift, 0.0f)), turn);
+        d = fRoundBox(b, vec3(0.26f, 0.30f, 0.26f) * s, 0.06f * s);                 // corner 0.368
+    } else if (kind < 2.5f) {
+        vec3 t = pRotateY(pTranslate(q, vec3(0.0f, 0.38f * s + lift, 0.0f)), turn);
+        d = fTorus(pRotateX(t, 0.5f * PI), 0.11f * s, 0.27f * s);                   // outer 0.38
+    } else {
+        vec3 a = vec3(0.0f, 0.2f * s + lift, 0.0f);
+        vec3 tip = vec3(0.165f * cos(turn), 0.525f, 0.165f * sin(turn)) * s;        // 0.55 long, tilted
+        d = fCapsule(q, a, a + tip, 0.2f * s);                                      // 0.165 + 0.2
+    }
+    return d;
+}
+
+// The two nearest of a set of shapes: (i, j, 0, distance) each; colours are looked up last.
+struct FieldPair {
+    vec4 near;
+    vec4 next;
+};
+
+FieldPair fieldInsert(FieldPair n, vec4 m) {
+    if (m.w < n.near.w) return FieldPair(m, n.near);
+    if (m.w < n.next.w) return FieldPair(n.near, m);
+    return n;
+}
+
+// Inserts cell (i, j)'s shape at p into the pair. Skips the shape (exactly) when the cylinder
+// around it is no nearer than the pair's second, and cells outside the nx x nz grid.
+FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, float size, float wave, float phase,
+                    float spin) {
+    if (i < -0.5f || j < -0.5f || i > nx - 0.5f || j > nz - 0.5f) return n;
+    vec3 q = p - vec3(i - 0.5f * (nx - 1.0f), 0.0f, j - 0.5f * (nz - 1.0f));
+    if (length(vec2(q.x, q.z)) - FIELD_RADIUS * max(size, 0.05f) >= n.next.w) return n;
+    return fieldInsert(n, vec4(i, j, 0.0f, fieldShape(q, i, j, size, wave, phase, spin)));
+}
+
+// The pair's blend with its colours.
+vec4 fieldBlend(FieldPair n, float blend) {
+    vec3 a = fieldColor(n.near.x, n.near.y);
+    vec3 b = n.next.w < 1e8f ? fieldColor(n.next.x, n.next.y) : a;
+    return fOpUnionSmoothColor(vec4(a.x, a.y, a.z, n.near.w), vec4(b.x, b.y, b.z, n.next.w), blend);
+}
+
+// Distance along one axis (u = cell coordinate, centre of cell k at u = k) from p to the
+// centres not in the pair (i0, i0 + 1), or 1e9 if there are none on either side.
+float fieldAxisGap(float u, float i0, float n) {
+    float below = i0 > 0.5f ? u - (i0 - 1.0f) : 1e9f;
+    float above = i0 + 2.0f < n - 0.5f ? (i0 + 2.0f) - u : 1e9f;
+    return min(below, above);
+}
+
+// Distance from (u, v) to the rectangle [0, nx-1] x [0, nz-1] of all centres.
+float fieldGridDistance(float u, float v, float nx, float nz) {
+    vec2 d = max(vec2(-u, -v), vec2(u - (nx - 1.0f), v - (nz - 1.0f)));
+    return length(max(d, vec2(0.0f)));
+}
+
+// A lower bound of the distance from p to every shape outside the 2x2 cells (i0, j0) ..
+// (i0 + 1, j0 + 1): the nearer of the gaps along x and z, or the distance to the whole grid,
+// or the height above the tallest shape, less the shapes' radius. Continuous in p.
+float fieldExcluded(vec3 p, float u, float v, float i0, float j0, float nx, float nz, float size, float wave) {
+    float gap = min(fieldAxisGap(u, i0, nx), fieldAxisGap(v, j0, nz));
+    float horizontal = max(gap, fieldGridDistance(u, v, nx, nz)) - FIELD_RADIUS * max(size, 0.05f);
+    return max(horizontal, p.y - fieldTop(size, wave));
+}
+
+// The field of nx x nz shapes at p: four shapes evaluated, exact within the blend radius.
+vec4 fieldMap(vec3 p, float nx, float nz, float size, float blend, float wave, float phase, float spin) {
+    float u = p.x + 0.5f * (nx - 1.0f);   // cell coordinates: cell (i, j)'s centre at (u, v) = (i, j)
+    float v = p.z + 0.5f * (nz - 1.0f);
+    float i0 = clamp(floor(u), 0.0f, nx - 2.0f);
+    float j0 = clamp(floor(v), 0.0f, nz - 2.0f);
+    // nearest centre first, so the cylinder test skips more of the others
+    float di = u - i0 < 0.5f ? 0.0f : 1.0f;
+    float dj = v - j0 < 0.5f ? 0.0f : 1.0f;
+    FieldPair n = FieldPair(vec4(0.0f, 0.0f, 0.0f, 1e9f), vec4(0.0f, 0.0f, 0.0f, 1e9f));
+    n = fieldCell(n, p, i0 + di, j0 + dj, nx, nz, size, wave, phase, spin);
+    n = fieldCell(n, p, i0 + 1.0f - di, j0 + dj, nx, nz, size, wave, phase, spin);
+    n = fieldCell(n, p, i0 + di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
+    n = fieldCell(n, p, i0 + 1.0f - di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
+    vec4 m = fieldBlend(n, blend);
+    m.w = min(m.w, fieldExcluded(p, u, v, i0, j0, nx, nz, size, wave) - 1.25f * max(blend, 0.0f));
+    return m;
+}
+
+// The reference: the same field over every shape (nx * nz evaluations). Tests only.
+vec4 fieldMapAll(vec3 p, float nx, float nz, float size, float blend, float wave, float phase, float spin) {
+    FieldPair n = FieldPair(vec4(0.0f, 0.0f, 0.0f, 1e9f), vec4(0.0f, 0.0f, 0.0f, 1e9f));
+    for (int j = 0; j < int(nz); j++)
+        for (int i = 0; i < int(nx); i++) {
+            vec3 q = p - vec3(float(i) - 0.5f * (nx - 1.0f), 0.0f, float(j) - 0.5f * (nz - 1.0f));
+            n = fieldInsert(n, vec4(float(i), float(j), 0.0f, fieldShape(q, float(i), float(j), size, wave, phase, spin)));
+        }
+    return fieldBlend(n, blend);
+}
+
+// A sphere around every shape of the field (for SCENE_BOUND), widened by `extra`.
+vec4 fieldBound(float nx, float nz, float size, float wave, float extra) {
+    float top = fieldTop(size, wave);
+    float r = FIELD_RADIUS * max(size, 0.05f);
+    float hx = 0.5f * (nx - 1.0f) + r;
+    float hz = 0.5f * (nz - 1.0f) + r;
+    return vec4(0.0f, 0.5f * top, 0.0f, sqrt(hx * hx + hz * hz + 0.25f * top * top) + extra);
+}
+
+#endif
