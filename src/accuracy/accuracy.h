@@ -180,6 +180,9 @@ struct SweepInfo {
     // without (the bound's own effect on the image; rows are compared with the reference of
     // their own BOUNDS setting).
     std::map<std::string, ImageError> boundEffect;
+    // Drift check per scene: the first setting timed alone (median of `frames`) before the
+    // interleaved rounds and again after them, ms. Over 3 % apart, the scene's times are suspect.
+    std::map<std::string, std::pair<double, double>> drift;
 };
 // Needs a current GL context (HeadlessContext). False with a reason on failure.
 bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, std::string* error);

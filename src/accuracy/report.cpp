@@ -188,6 +188,12 @@ std::string MarkdownReport(const std::vector<Row>& rows, const SweepOptions& o, 
       << ", geometry compared at " << rw << "x" << rh << ", scene time " << o.time << " s, scene parameters at their defaults"
       << (o.params.empty() ? "" : " except the ones given") << ". CPU reference: " << F("%.1f", info.refSeconds) << " s.\n\n";
     m << "Re-generate: `" << commandLine << "` (CSV, plots and this file go to `--out`).\n\n";
+    for (const auto& [scene, d] : info.drift) {
+        double pct = d.first > 0 ? 100.0 * (d.second - d.first) / d.first : 0.0;
+        m << "Drift check, " << scene << ": the first row timed alone " << F("%.3f", d.first) << " ms before the rounds and "
+          << F("%.3f", d.second) << " ms after them (" << F("%+.1f", pct) << " %)"
+          << (std::fabs(pct) > 3.0 ? ": **DRIFT over 3 %, this scene's times are not comparable**" : ", within 3 %") << ".\n\n";
+    }
     m << "## How to read it\n\n"
          "Each row is one quality setting, everything else at sdfvj's defaults (`Quality` in `src/render/render.h`: "
          "128 steps, hit epsilon 1e-3 * max(1, t), step factor 1 divided by the scene's Lipschitz bound, central "

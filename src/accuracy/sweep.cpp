@@ -234,20 +234,6 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             info->boundEffect[scene.name] = CompareRgba8(*with, *without);
         }
 
-        // The GPU idled while the CPU reference ran, so its clocks are down: keep it busy for a
-        // second before the first timed setting, or the first rows read up to 3x too slow.
-        {
-            Program* warm = nullptr;
-            if (!program(scene.effects, 0, &warm)) return false;
-            if (!colour.Resize(o.width, o.height, error)) return false;
-            FrameInputs in = base;
-            const auto w0 = std::chrono::steady_clock::now();
-            while (std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count() < 1.0) {
-                colour.Draw(*warm, scene, in, false);
-                glFinish();
-            }
-        }
-
         // Accuracy first (deterministic), one setting after another.
         struct Timed { Program* program; FrameInputs in; size_t row; std::vector<double> ms; };
         std::vector<Timed> timed;
@@ -286,11 +272,31 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
         // Then time every setting interleaved: each round draws every setting once, so a GPU
         // clock change lands on all of them alike instead of on whichever rows ran during it.
         if (!colour.Resize(o.width, o.height, error)) return false;
+        // The GPU idled while the CPU reference ran and waited on every compile above, so its
+        // clocks are down: keep it busy for a second, drawing every setting, before timing, or
+        // the first rows read up to 3x too slow.
+        {
+            const auto w0 = std::chrono::steady_clock::now();
+            do {
+                for (Timed& t : timed) colour.Draw(*t.program, scene, t.in, false);
+                glFinish();
+            } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count() < 1.0);
+        }
+        auto timeFirst = [&] {
+            std::vector<double> ms;
+            for (int i = 0; i < std::max(o.frames, 1); ++i) {
+                colour.Draw(*timed[0].program, scene, timed[0].in, true);
+                ms.push_back(colour.LastGpuMs());
+            }
+            return MedianMs(ms);
+        };
+        const double driftStart = timeFirst();
         for (int i = 0; i < o.warmup + o.frames; ++i)
             for (Timed& t : timed) {
                 colour.Draw(*t.program, scene, t.in, true);
                 if (i >= o.warmup) t.ms.push_back(colour.LastGpuMs());
             }
+        info->drift[scene.name] = {driftStart, timeFirst()};
         for (Timed& t : timed) {
             Row& r = (*rows)[t.row];
             r.gpuMs = MedianMs(t.ms);

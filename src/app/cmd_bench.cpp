@@ -1,6 +1,7 @@
 // `sdfvj bench`: GPU milliseconds per frame, every scene x the seed's four lighting tests x sizes
 // x both render paths. Median of N frames after warm-up; GL timer queries on a real GPU, glFinish
-// and a wall clock on llvmpipe (whose timer queries are meaningless).
+// and a wall clock on llvmpipe (whose timer queries are meaningless). Trusted as bench_support.h
+// says: 1 s warm-up after each compile, sizes and paths interleaved, a drift check, --csv.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -8,7 +9,9 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <memory>
 
+#include "app/bench_support.h"
 #include "app/commands.h"
 
 namespace sdfvj {
@@ -19,8 +22,11 @@ int RunBench(const BenchOptions& o) {
     HeadlessContext gl;
     if (!gl.Create(&error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
     const bool wallClock = IsSoftwareRenderer();
-    std::printf("# sdfvj bench on %s\n# timing: %s, median of %d frames after %d warm-up\n", gl.Description().c_str(),
-                wallClock ? "glFinish + wall clock (software renderer)" : "GL_TIME_ELAPSED", o.frames, o.warmup);
+    const std::string gpu = GlRendererName();
+    std::printf("# sdfvj bench on %s\n# timing: %s, median of %d frames after %d warm-up; every program warmed %.1f s "
+                "after its compile; sizes and paths of a scene and test interleaved frame by frame\n",
+                gl.Description().c_str(), wallClock ? "glFinish + wall clock (software renderer)" : "GL_TIME_ELAPSED",
+                o.frames, o.warmup, 1.0);
 
     std::vector<std::string> scenes = o.scenes.empty() ? ListScenes() : o.scenes;
     std::vector<LightingTest> tests;
@@ -49,7 +55,16 @@ int RunBench(const BenchOptions& o) {
     std::printf("%s", table.c_str());
     std::fflush(stdout);
 
-    FrameRenderer fr;
+    BenchCsv csv;
+    // One target per size, so the sizes of a (scene, test) interleave without reallocating.
+    std::vector<std::unique_ptr<FrameRenderer>> targets;
+    for (auto [w, h] : sizes) {
+        targets.push_back(std::make_unique<FrameRenderer>());
+        if (!targets.back()->Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
+    }
+    // The first cell, kept to be timed again at the end (the drift check).
+    struct First { std::unique_ptr<Program> program; SceneInfo scene; FrameInputs in; Drift drift; };
+    std::unique_ptr<First> first;
     for (const std::string& name : scenes) {
         SceneInfo scene;
         if (!FindScene(name, &scene, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
@@ -69,20 +84,41 @@ int RunBench(const BenchOptions& o) {
                 }
                 programs[p] = std::move(prog);
             }
-            for (auto [w, h] : sizes) {
-                if (!fr.Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
+            // every (size, path) of this scene and test is one setting; each round draws each once
+            struct Cell { size_t size; RenderPath path; std::vector<double> ms; };
+            std::vector<Cell> cells;
+            for (size_t s = 0; s < sizes.size(); ++s)
+                for (RenderPath p : paths) cells.push_back({s, p, {}});
+            auto draw = [&](Cell& c, int frame) {
+                in.frame = frame;
+                targets[c.size]->Draw(*programs[c.path], scene, in, true);
+                return targets[c.size]->LastGpuMs();
+            };
+            WarmGpu([&] { for (Cell& c : cells) draw(c, 0); });
+            if (!first) {
+                first = std::make_unique<First>();
+                first->scene = scene;
+                first->in = in;
+                first->drift.label = scene.name + " " + t.name + " " + SizeName(sizes[0].first, sizes[0].second) + " " +
+                                     RenderPathName(cells[0].path);
+                first->drift.startMs = TimeMedian([&] { return draw(cells[0], 0); }, o.frames);
+            }
+            for (int i = 0; i < o.warmup + o.frames; ++i)
+                for (Cell& c : cells) {
+                    double ms = draw(c, i);
+                    if (i >= o.warmup) c.ms.push_back(ms);
+                }
+            if (!first->program) first->program = std::move(programs[cells[0].path]);
+            for (size_t s = 0; s < sizes.size(); ++s) {
+                auto [w, h] = sizes[s];
                 char row[256];
                 std::snprintf(row, sizeof row, "| %s | %s | %dx%d |", scene.name.c_str(), t.name, w, h);
                 std::string line = row;
                 std::vector<double> medians;
-                for (RenderPath p : paths) {
-                    std::vector<double> ms;
-                    for (int i = 0; i < o.warmup + o.frames; ++i) {
-                        in.frame = i;
-                        fr.Draw(*programs[p], scene, in, true);
-                        if (i >= o.warmup) ms.push_back(fr.LastGpuMs());
-                    }
-                    medians.push_back(MedianMs(ms));
+                for (Cell& c : cells) {
+                    if (c.size != s) continue;
+                    medians.push_back(MedianMs(c.ms));
+                    csv.Add(scene.name, t.name, SizeName(w, h), RenderPathName(c.path), medians.back(), gpu);
                     std::snprintf(row, sizeof row, " %.3f |", medians.back());
                     line += row;
                 }
@@ -96,12 +132,23 @@ int RunBench(const BenchOptions& o) {
             }
         }
     }
+    if (first) {
+        FrameRenderer& fr = *targets[0];
+        first->drift.endMs = TimeMedian([&] {
+            fr.Draw(*first->program, first->scene, first->in, true);
+            return fr.LastGpuMs();
+        }, o.frames);
+        std::printf("%s\n", first->drift.Line().c_str());
+        table += "\n" + first->drift.Line() + "\n";
+    }
     if (!o.markdown.empty()) {
         std::ofstream md(o.markdown);
         md << "Measured on " << gl.Description() << " (" << (wallClock ? "wall clock" : "GL_TIME_ELAPSED")
-           << ", median of " << o.frames << " frames after " << o.warmup << " warm-up)\n\n" << table;
+           << ", median of " << o.frames << " frames after " << o.warmup << " warm-up, 1 s warm-up after each compile)\n\n"
+           << table;
     }
-    return 0;
+    if (!o.csv.empty() && !csv.Write(o.csv, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 1; }
+    return 0;   // a drift is reported in the table, not an error
 }
 
 int RunList() {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "accuracy/accuracy.h"
+#include "app/bench_support.h"
 #include "app/commands.h"
 
 namespace fs = std::filesystem;
@@ -76,6 +77,28 @@ int RunAccuracyBench(const AccuracyBenchOptions& o) {
             return 1;
         }
         std::ofstream((fs::path(o.out) / ("accuracy_" + sc + ".svg"))) << accuracy::PlotSvg(rows, sc);
+    }
+    for (const auto& [scene, d] : info.drift) {
+        Drift drift;
+        drift.label = scene + " " + rows.front().s.label;
+        drift.startMs = d.first;
+        drift.endMs = d.second;
+        std::printf("%s\n", drift.Line().c_str());
+    }
+    if (!o.csv.empty()) {
+        // the shared bench columns first, then the sweep's own (accuracy.csv's, less its scene)
+        std::string text = "scene,lighting,size,path,ms,gpu," + accuracy::CsvHeader().substr(accuracy::CsvHeader().find(',') + 1) + "\n";
+        const std::string size = SizeName(so.width, so.height), gpu = CsvField(GlRendererName());
+        for (const auto& r : rows) {
+            SceneInfo scene;
+            std::string lighting = FindScene(r.scene, &scene, &error) ? DescribeEffects(scene.effects) : "";
+            std::string line = accuracy::CsvLine(r);
+            text += CsvField(r.scene) + "," + CsvField(lighting) + "," + size + "," + info.path + "," +
+                    accuracy::Format("%.4f", r.gpuMs) + "," + gpu + "," + line.substr(line.find(',') + 1) + "\n";
+        }
+        std::ofstream f(o.csv);
+        f << text;
+        if (!f) { std::fprintf(stderr, "sdfvj bench accuracy: cannot write %s, expected a writable path for --csv\n", o.csv.c_str()); return 1; }
     }
     std::string md = accuracy::MarkdownReport(rows, so, info, o.commandLine);
     std::ofstream(fs::path(o.out) / "accuracy.md") << md;

@@ -31,6 +31,7 @@ struct BenchOptions {
     int frames = 10;
     int warmup = 3;
     std::string markdown;              // also write the table here
+    std::string csv;                   // and as CSV (scene,lighting,size,path,ms,gpu)
 };
 int RunBench(const BenchOptions& o);
 
@@ -43,6 +44,7 @@ struct EffectsBenchOptions {
     int frames = 20;
     int warmup = 3;
     std::string markdown;
+    std::string csv;                   // scene,lighting,size,path,ms,gpu,effect,variant
 };
 int RunEffectsBench(const EffectsBenchOptions& o);
 
@@ -61,6 +63,7 @@ struct AccuracyBenchOptions {
     int threads = 0;
     std::string out = "out/accuracy";             // accuracy.csv, accuracy_<scene>.png/.svg, accuracy.md
     std::string markdown;                         // also write the report here (e.g. docs/accuracy.md)
+    std::string csv;                              // rows as scene,lighting,size,path,ms,gpu + the sweep's columns
     std::string commandLine;                      // recorded in the report
 };
 int RunAccuracyBench(const AccuracyBenchOptions& o);

@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
     cmdBench->add_option("--frames", bench.frames, "timed frames per cell (median)")->capture_default_str();
     cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->capture_default_str();
     cmdBench->add_option("--markdown", bench.markdown, "also write the table to this file");
+    cmdBench->add_option("--csv", bench.csv, "also write the table as CSV: scene,lighting,size,path,ms,gpu");
 
     EffectsBenchOptions effectsBench;
     auto* cmdEffects = cmdBench->add_subcommand("effects", "each effect compiled out / compiled in but off / on");
@@ -84,6 +85,7 @@ int main(int argc, char** argv) {
     cmdEffects->add_option("--frames", effectsBench.frames, "timed rotations (median)")->capture_default_str();
     cmdEffects->add_option("--warmup", effectsBench.warmup, "untimed rotations first")->capture_default_str();
     cmdEffects->add_option("--markdown", effectsBench.markdown, "also write the table to this file");
+    cmdEffects->add_option("--csv", effectsBench.csv, "also write the table as CSV: scene,lighting,size,path,ms,gpu,effect,variant");
     AccuracyBenchOptions accuracyBench;
     auto* cmdAccuracy = cmdBench->add_subcommand("accuracy", "quality knobs: GPU time against error vs a CPU double reference");
     cmdAccuracy->add_option("--scene", accuracyBench.scenes, "scenes, comma-separated, or all")->capture_default_str()->delimiter(',');
@@ -98,6 +100,7 @@ int main(int argc, char** argv) {
     cmdAccuracy->add_option("--threads", accuracyBench.threads, "CPU reference threads (0: all cores)")->capture_default_str();
     cmdAccuracy->add_option("--out", accuracyBench.out, "folder for accuracy.csv, plots and accuracy.md")->capture_default_str();
     cmdAccuracy->add_option("--markdown", accuracyBench.markdown, "also write the report here (docs/accuracy.md)");
+    cmdAccuracy->add_option("--csv", accuracyBench.csv, "also write the rows as CSV: scene,lighting,size,path,ms,gpu + the sweep's columns");
     ReloadBenchOptions reloadBench;
     auto* cmdReload = cmdBench->add_subcommand("reload", "hot reload: save -> new program on screen, longest frame meanwhile");
     cmdReload->add_option("--scene", reloadBench.scene, "scene")->capture_default_str();

@@ -1,0 +1,49 @@
+// bench_support.h - what every `sdfvj bench` table shares so its figures can be trusted:
+//
+//   WarmGpu(draw)        after every compile, keep the GPU busy >= 1 s before timing (its clocks
+//                        drop while it waits on a compile: one run read 2.9 ms, the next 1.7 ms)
+//   Drift                the first setting timed at the start and again at the end; a table whose
+//                        figures moved more than 3 % in between says so
+//   BenchCsv             the table as CSV: scene,lighting,size,path,ms,gpu plus the bench's own
+//                        columns, so plots and checks read every bench the same way
+//
+// Benches also interleave the settings they compare (each round draws every setting once), so a
+// clock change lands on all of them alike.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace sdfvj {
+
+// Draws (drawOnce must finish its frame, e.g. glFinish) until `seconds` have passed, at least once.
+void WarmGpu(const std::function<void()>& drawOnce, double seconds = 1.0);
+
+// The first setting's median at the start and the end of a run.
+struct Drift {
+    std::string label;     // what was timed twice ("character full 1920x1080 compute")
+    double startMs = 0, endMs = 0;
+    double Pct() const { return startMs > 0 ? 100.0 * (endMs - startMs) / startMs : 0.0; }
+    bool Exceeds(double limitPct = 3.0) const;
+    // "drift check: <label> 1.234 ms at the start, 1.250 ms at the end (+1.3 %): ok" or
+    // "... (+7.5 %): DRIFT over 3 %, figures of this table are not comparable"
+    std::string Line() const;
+};
+// Median of `frames` timed draws (timeOnce returns one frame's ms).
+double TimeMedian(const std::function<double()>& timeOnce, int frames);
+
+// A bench table as CSV. The first six columns are the same in every bench; `extra` names the
+// bench's own (values per row in the same order). Fields with commas or quotes are quoted.
+struct BenchCsv {
+    std::vector<std::string> extra;
+    std::vector<std::string> rows;
+    void Add(const std::string& scene, const std::string& lighting, const std::string& size, const std::string& path,
+             double ms, const std::string& gpu, const std::vector<std::string>& extraValues = {});
+    std::string Text() const;
+    // False with "cannot write FILE" when the file cannot be written.
+    bool Write(const std::string& file, std::string* error) const;
+};
+std::string CsvField(const std::string& s);
+std::string SizeName(int w, int h);   // "1920x1080"
+
+}  // namespace sdfvj
