@@ -185,8 +185,10 @@ void LiveSession::MeasureEffectCosts() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (costs_.Done()) {
         std::string line = "effect costs at " + std::to_string(renderer_.Width()) + "x" + std::to_string(renderer_.Height()) + ":";
-        for (const EffectCostRow& r : costs_.rows) line += " " + r.name + " " + EffectCostText(r, costs_);
-        state_.report.Say(line + " (" + EffectCostNote(costs_) + ")");
+        for (size_t i = 0; i < costs_.rows.size(); ++i)
+            line += (i ? ", " : " ") + costs_.rows[i].name + " " + EffectCostText(costs_.rows[i], costs_);
+        state_.report.Say(line);
+        std::fprintf(stderr, "  (%s)\n", EffectCostNote(costs_).c_str());
     }
 }
 

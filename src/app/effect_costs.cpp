@@ -88,8 +88,8 @@ std::string EffectCostNote(const EffectCosts& c) {
     char text[160];
     if (!c.Done()) std::snprintf(text, sizeof text, "measuring costs: %d/%d draws", c.Known(), c.Draws());
     else
-        std::snprintf(text, sizeof text, "cost = median of %d frame pairs (all on - one off), %s", c.rounds,
-                      c.wallClock ? "glFinish + wall clock (software renderer)" : "GPU timer queries");
+        std::snprintf(text, sizeof text, "median of %d frame pairs (all on - one off), %s", c.rounds,
+                      c.wallClock ? "glFinish + wall clock (software GL)" : "GPU timer queries");
     return text;
 }
 

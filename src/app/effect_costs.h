@@ -55,7 +55,7 @@ void StepEffectCosts(EffectCosts& c, FrameRenderer& scratch, const Program& prog
 double EffectCostMs(const EffectCostRow& row, const EffectCosts& c);
 // "+3.21 ms", "-0.02 ms" (noise), "n/a" (no run-time switch), "..." while measuring.
 std::string EffectCostText(const EffectCostRow& row, const EffectCosts& c);
-// What the numbers are: "median of 9 frame pairs, glFinish + wall clock (software renderer)",
+// What the numbers are: "median of 9 frame pairs (all on - one off), glFinish + wall clock (software GL)",
 // or "measuring 12/54 draws".
 std::string EffectCostNote(const EffectCosts& c);
 

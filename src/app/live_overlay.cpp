@@ -199,7 +199,7 @@ void DrawEffects(const OverlayModel& m, OverlayActions& a) {
                                                   {"fog", e.fog},               {"pbr", e.pbr}, {"reflections", e.reflections != 0}};
     for (size_t i = 0; i < std::size(boxes); ++i) {
         bool on = boxes[i].second;
-        if (i % 3 != 0) ImGui::SameLine(140.0f * (float)(i % 3) + ImGui::GetStyle().WindowPadding.x);
+        if (i % 3 != 0) ImGui::SameLine(190.0f * (float)(i % 3) + ImGui::GetStyle().WindowPadding.x);
         if (ImGui::Checkbox(boxes[i].first, &on)) a.effectToggles.emplace_back(boxes[i].first, on);
         for (const auto& [name, cost] : m.effectCosts)
             if (name == boxes[i].first) {

@@ -374,7 +374,7 @@ TEST_CASE("live_overlay effect costs: each measured effect shows its cost by its
     m.effects.shadows = 2;
     m.effects.ao = true;
     m.effectCosts = {{"shadows", "+3.21 ms"}, {"ao", "+1.05 ms"}};
-    m.effectCostNote = "cost = median of 9 frame pairs (all on - one off), GPU timer queries";
+    m.effectCostNote = "median of 9 frame pairs (all on - one off), GPU timer queries";
     OverlayUi ui;
     const std::string text = OverlayText(imgui, m, ui);
     INFO(text);
