@@ -1,0 +1,132 @@
+// AudioInput: a JACK client with one input port, and the ring that carries its samples to Poll().
+//
+// Threads:
+//   JACK process thread  Process(): copies the port's buffer into the ring and bumps `written`;
+//                        when the ring is full the rest is dropped and counted (never waits,
+//                        never allocates, takes no lock).
+//   JACK notify thread   OnShutdown(): sets `gone`. Nothing else.
+//   caller of Poll()     reads the ring up to `written`, bumps `read`, runs the analysis.
+// The ring is single-producer single-consumer: `written` is stored with release after the
+// samples, `read` with release after they were copied out, so neither side sees a torn sample.
+#include <jack/jack.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+
+#include "audio/audio.h"
+
+namespace sdfvj {
+
+struct AudioInput::Impl {
+    jack_client_t* client = nullptr;
+    jack_port_t* port = nullptr;
+    std::vector<float> ring;         // power-of-two size
+    size_t mask = 0;
+    std::atomic<uint64_t> written{0};
+    std::atomic<uint64_t> read{0};
+    std::atomic<uint64_t> overruns{0};
+    std::atomic<bool> gone{false};
+
+    static int Process(jack_nframes_t n, void* arg) {
+        Impl& s = *static_cast<Impl*>(arg);
+        const float* in = static_cast<const float*>(jack_port_get_buffer(s.port, n));
+        const uint64_t w = s.written.load(std::memory_order_relaxed);
+        const uint64_t r = s.read.load(std::memory_order_acquire);
+        const size_t room = s.ring.size() - size_t(w - r);
+        const size_t take = std::min<size_t>(n, room);
+        for (size_t i = 0; i < take; ++i) s.ring[(w + i) & s.mask] = in[i];
+        if (take < n) s.overruns.fetch_add(n - take, std::memory_order_relaxed);
+        s.written.store(w + take, std::memory_order_release);
+        return 0;
+    }
+    static void OnShutdown(void* arg) { static_cast<Impl*>(arg)->gone.store(true); }
+
+    ~Impl() {
+        if (client) {
+            jack_deactivate(client);
+            jack_client_close(client);
+        }
+    }
+};
+
+namespace {
+// libjack prints "Cannot connect to server socket" and the like on stderr while it looks for a
+// server; the one line Open() returns says the same for a performer, so those are held back
+// during Open() only (the previous handler comes back: RtMidi's JACK messages stay as they were).
+void QuietJack(const char*) {}
+struct QuietJackScope {
+    void (*previous)(const char*) = jack_error_callback;
+    QuietJackScope() { jack_set_error_function(QuietJack); }
+    ~QuietJackScope() { jack_set_error_function(previous); }
+};
+}  // namespace
+
+std::unique_ptr<AudioInput> AudioInput::Open(const AudioInputDesc& desc, std::string* status) {
+    const std::string clientName = desc.clientName.empty() ? "sdfvj-audio" : desc.clientName;
+    const std::string portName = desc.portName.empty() ? "in" : desc.portName;
+    auto impl = std::make_unique<Impl>();
+    {
+        QuietJackScope quiet;
+        jack_status_t js{};
+        impl->client = jack_client_open(clientName.c_str(), JackNoStartServer, &js);
+        if (!impl->client) {
+            const char* server = std::getenv("JACK_DEFAULT_SERVER");
+            *status = std::string("audio: no JACK server") + (server ? std::string(" '") + server + "'" : "") +
+                      " to listen to (start jackd, or qjackctl) — the show goes on without audio";
+            return nullptr;
+        }
+    }
+    size_t size = 1;
+    while (size < (desc.ringSamples ? desc.ringSamples : 65536)) size <<= 1;
+    impl->ring.assign(size, 0.0f);
+    impl->mask = size - 1;
+    impl->port = jack_port_register(impl->client, portName.c_str(), JACK_DEFAULT_AUDIO_TYPE, JackPortIsInput, 0);
+    if (!impl->port) {
+        *status = "audio: JACK refused the input port '" + clientName + ":" + portName +
+                  "' (a port of that name exists?) — the show goes on without audio";
+        return nullptr;
+    }
+    jack_set_process_callback(impl->client, &Impl::Process, impl.get());
+    jack_on_shutdown(impl->client, &Impl::OnShutdown, impl.get());
+    if (jack_activate(impl->client) != 0) {
+        *status = "audio: JACK would not activate client '" + clientName + "' — the show goes on without audio";
+        return nullptr;
+    }
+    const int rate = int(jack_get_sample_rate(impl->client));
+    const std::string full = jack_port_name(impl->port);
+    *status = "audio: listening on JACK port " + full + " at " + std::to_string(rate) + " Hz";
+    if (!desc.connect.empty()) {
+        const int rc = jack_connect(impl->client, desc.connect.c_str(), full.c_str());
+        if (rc == 0 || rc == EEXIST) *status += ", connected from " + desc.connect;
+        else *status += "; cannot connect from '" + desc.connect + "' (see `jack_lsp`), connect it by hand";
+    }
+    return std::unique_ptr<AudioInput>(new AudioInput(std::move(impl), rate, desc));
+}
+
+AudioInput::AudioInput(std::unique_ptr<Impl> impl, int sampleRate, const AudioInputDesc& desc)
+    : impl_(std::move(impl)), analyzer_(AudioAnalyzerDesc{sampleRate, desc.onsetThreshold, 0}) {
+    scratch_.resize(4096);
+}
+
+AudioInput::~AudioInput() = default;   // Impl deactivates the client before the ring goes
+
+AudioFeatures AudioInput::Poll(double /*now*/) {
+    Impl& s = *impl_;
+    const uint64_t w = s.written.load(std::memory_order_acquire);
+    uint64_t r = s.read.load(std::memory_order_relaxed);
+    while (r < w) {
+        const size_t n = std::min<size_t>(size_t(w - r), scratch_.size());
+        for (size_t i = 0; i < n; ++i) scratch_[i] = s.ring[(r + i) & s.mask];
+        r += n;
+        s.read.store(r, std::memory_order_release);
+        analyzer_.Process(scratch_.data(), n);
+    }
+    return analyzer_.TakeFeatures();
+}
+
+std::string AudioInput::PortName() const { return jack_port_name(impl_->port); }
+uint64_t AudioInput::Overruns() const { return impl_->overruns.load(); }
+bool AudioInput::ServerGone() const { return impl_->gone.load(); }
+
+}  // namespace sdfvj
