@@ -78,8 +78,9 @@ public:
             ApplyEvent(mapping, state, e, params, &actions);
             if (actions.tapTempo) {
                 automation.tap.Tap(e.time);
-                automation.tempo.TapOnBeat(e.time, automation.tap.bpm);
+                automation.tempo.TapOnBeat(e.time, actions.detectedBpm > 0 ? actions.detectedBpm : automation.tap.bpm);
                 actions.tapTempo = false;
+                actions.detectedBpm = 0;
             }
         }
         std::vector<std::string> reports;

@@ -382,7 +382,7 @@ std::vector<float> KnobPositions(const Mapping& m, const MappingState& ms) {
     std::vector<float> knobs;
     for (size_t i = 0; i < m.entries.size(); ++i) {
         const MappingEntry& e = m.entries[i];
-        if (e.action != PadAction::None || e.kind == SourceKind::Osc) continue;
+        if (e.action != PadAction::None || e.kind == SourceKind::Osc || e.kind == SourceKind::Audio) continue;
         const float p = i < ms.entries.size() ? ms.entries[i].position : -1.0f;
         knobs.push_back(p < 0.0f ? 0.0f : p);
     }

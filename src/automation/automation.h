@@ -105,7 +105,8 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// The mapping's continuous controls in file order, as knob1..knobN (0..1; 0 until moved).
+// The mapping's continuous controls in file order, as knob1..knobN (0..1; 0 until moved). OSC and
+// audio-feature entries are not knobs.
 std::vector<float> KnobPositions(const Mapping& m, const MappingState& ms);
 
 // A morph of named parameters from where they are to new values.

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/audio_features.h"
 #include "core/control_event.h"
 #include "core/param_decl.h"
 
@@ -87,7 +88,7 @@ std::string ParamNameList(const std::vector<ParamDecl>& decls);
 // Mapping (data, parsed from TOML) and its pure application
 // ---------------------------------------------------------------------------------------------
 
-enum class SourceKind { Cc, Note, PitchBend, Program, Nrpn, Osc };
+enum class SourceKind { Cc, Note, PitchBend, Program, Nrpn, Osc, Audio };
 enum class Curve { Linear, Exponential, Logarithmic, S };
 enum class Takeover { None, Pickup, Scale };
 enum class EncoderMode { Absolute, SignedBit, SignedBit2, BinaryOffset, TwosComplement };
@@ -99,6 +100,10 @@ struct MappingEntry {
     int channel = 0;             // 1..16, 0 = any
     int number = 0;              // CC number, note, program (-1 = any), NRPN number (0..16383)
     std::string oscAddress;      // kind == Osc
+    AudioFeature audio = AudioFeature::Level;  // kind == Audio: the feature (`audio = "bass"`)
+    float gain = 1.0f;           // Audio: the feature is multiplied by this (then clamped to 0..1)
+    float attack = 0.0f;         // Audio: seconds for a rise to reach 63% (0 = at once)
+    float release = 0.0f;        // Audio: seconds for a fall to reach 63% (0 = at once)
     bool hiRes = false;          // CC: 14-bit pair, MSB on `number`, LSB on number+32; NRPN: 14-bit value
     std::string target;          // parameter name (continuous, trigger, toggle)
     int targetIndex = 0;         // target = N (1-based): the scene's Nth input, whatever its name
@@ -146,6 +151,9 @@ struct EntryState {
     bool engaged = false;        // takeover: control and parameter are in step
     int msb = -1;                // 14-bit CC: last MSB
     bool toggled = false;        // toggle pads
+    float envelope = 0.0f;       // audio: the feature after attack/release
+    double envelopeTime = -1.0;  // audio: time of the last feature event (-1 = none yet)
+    bool audioHigh = false;      // audio pads: the feature was >= 0.5 at the last event
 };
 struct NrpnChannelState {
     int paramMsb = -1, paramLsb = -1;   // selected NRPN number (CC 99/98); -1 = none / RPN
@@ -165,6 +173,8 @@ struct MappingActions {
     std::vector<std::string> presetSelect;        // preset names, or decimal indices
     std::vector<std::pair<std::string, bool>> effectToggles;  // effect, new state
     bool tapTempo = false;
+    float detectedBpm = 0.0f;                     // tap_tempo from an audio beat: the analysis's tempo
+                                                  // (0: none, use the taps' own tempo)
     std::vector<std::string> triggers;            // parameters a momentary pad pressed
     std::vector<std::string> messages;            // clamp/rejection reports, one line each
     void Clear() { *this = MappingActions{}; }
@@ -172,7 +182,10 @@ struct MappingActions {
 
 // The parameter an entry drives in `params`: by name, or the Nth input; -1 when there is none.
 int TargetIndex(const MappingEntry& en, const ParamState& params);
-// Pure: applies one event. Built-in OSC addresses (/sdfvj/param/<name> f 0..1,
+// Pure: applies one event. Audio feature events (/sdfvj/audio, core/audio_features.h) drive the
+// `audio = "feature"` entries: gain, then attack/release on the event times, then range and curve
+// as for a knob; onset/beat pulses press pads (trigger, toggle, tap_tempo, preset, effect).
+// Built-in OSC addresses (/sdfvj/param/<name> f 0..1,
 // /sdfvj/raw/<name> f, /sdfvj/preset s|i, /sdfvj/effect/<name> i) work without any mapping.
 // `actions` may be null.
 void ApplyEvent(const Mapping& m, MappingState& ms, const ControlEvent& e, ParamState& params,

@@ -214,6 +214,39 @@ void Dispatch(const Mapping& m, size_t ei, MappingState& ms, ParamState& p, cons
         ApplyAbsolute(en, ms.entries[ei], p, idx, r.x, a);
 }
 
+// One audio feature event (/sdfvj/audio) for every `audio = "feature"` entry. The envelope runs
+// on the events' own times, so a replayed take gives the same values as the show did.
+void ApplyAudio(const Mapping& m, MappingState& ms, const ControlEvent& e, ParamState& p, MappingActions* a) {
+    AudioFeatures f;
+    if (!ReadAudioFeatureEvent(e, &f)) {
+        Reject(ms, a, e.address + ": expected nine float arguments (level, levelDb, bass, mid, high, onset, beat, bpm, phase)");
+        return;
+    }
+    for (size_t i = 0; i < m.entries.size(); ++i) {
+        const MappingEntry& en = m.entries[i];
+        if (en.kind != SourceKind::Audio) continue;
+        EntryState& es = ms.entries[i];
+        const float raw = Clamp01(f.Value(en.audio) * en.gain);
+        const double dt = es.envelopeTime < 0 ? 0.0 : std::max(0.0, e.time - es.envelopeTime);
+        const float tau = raw > es.envelope ? en.attack : en.release;
+        if (es.envelopeTime < 0 || tau <= 0.0f) es.envelope = raw;
+        else es.envelope += (raw - es.envelope) * float(1.0 - std::exp(-dt / double(tau)));
+        es.envelopeTime = e.time;
+        Reading r;
+        r.x = es.envelope;
+        // A trigger follows the feature (high while >= 0.5); the other pads act on its rising edge,
+        // so a loud bass held for a second toggles once, not sixty times.
+        const bool high = raw >= 0.5f;
+        r.pressed = en.action == PadAction::Trigger ? high : high && !es.audioHigh;
+        es.audioHigh = high;
+        if (en.action != PadAction::None && en.action != PadAction::Trigger && !r.pressed) continue;
+        Dispatch(m, i, ms, p, r, a);
+        // u_beat locked to the music: a beat taps the tempo at the analysis's bpm (steadier than
+        // the gaps between frames that carried beats).
+        if (en.action == PadAction::TapTempo && a && f.bpm > 0.0f) a->detectedBpm = f.bpm;
+    }
+}
+
 bool ApplyBuiltinOsc(MappingState& ms, const ControlEvent& e, ParamState& p, MappingActions* a) {
     const std::string& ad = e.address;
     auto number = [&](float* out) {
@@ -312,6 +345,10 @@ void ApplyEvent(const Mapping& m, MappingState& ms, const ControlEvent& e, Param
     bool used = false;
 
     if (e.source == EventSource::Osc) {
+        if (e.address == kAudioFeatureAddress) {
+            ApplyAudio(m, ms, e, p, a);
+            return;
+        }
         if (e.address.rfind("/sdfvj/", 0) == 0 && ApplyBuiltinOsc(ms, e, p, a)) return;
         for (size_t i = 0; i < m.entries.size(); ++i) {
             const MappingEntry& en = m.entries[i];
@@ -363,7 +400,7 @@ void ApplyEvent(const Mapping& m, MappingState& ms, const ControlEvent& e, Param
 
     for (size_t i = 0; i < m.entries.size(); ++i) {
         const MappingEntry& en = m.entries[i];
-        if (en.kind == SourceKind::Osc || !ChannelMatches(en, ch)) continue;
+        if (en.kind == SourceKind::Osc || en.kind == SourceKind::Audio || !ChannelMatches(en, ch)) continue;
         Reading r;
         switch (en.kind) {
             case SourceKind::Cc:
@@ -415,6 +452,7 @@ void ApplyEvent(const Mapping& m, MappingState& ms, const ControlEvent& e, Param
                 r.number = nrpnNumber;
                 break;
             case SourceKind::Osc:
+            case SourceKind::Audio:
                 continue;
         }
         Dispatch(m, i, ms, p, r, a);

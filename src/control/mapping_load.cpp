@@ -73,7 +73,7 @@ MappingEntry ParseEntry(const std::string& path, const toml::table& t, bool pad,
     static const std::set<std::string> kKeys = {
         "cc", "cc14", "note", "pitchbend", "program", "nrpn", "osc", "channel", "hires", "target",
         "range", "curve", "curve_amount", "invert", "smoothing", "takeover", "encoder", "step",
-        "action", "preset", "effect"};
+        "action", "preset", "effect", "audio", "gain", "attack", "release"};
     MappingEntry en;
     en.line = int(t.source().begin.line);
     en.column = int(t.source().begin.column);
@@ -83,7 +83,7 @@ MappingEntry ParseEntry(const std::string& path, const toml::table& t, bool pad,
             Fail(path, v, "unknown key '" + std::string(k.str()) +
                               "', expected one of: cc, cc14, note, pitchbend, program, nrpn, osc, channel, "
                               "hires, target, range, curve, curve_amount, invert, smoothing, takeover, "
-                              "encoder, step, action, preset, effect");
+                              "encoder, step, action, preset, effect, audio, gain, attack, release");
 
     int sources = 0;
     bool hiResSet = false;
@@ -111,10 +111,31 @@ MappingEntry ParseEntry(const std::string& path, const toml::table& t, bool pad,
         if (en.oscAddress.empty() || en.oscAddress[0] != '/')
             Fail(path, *n, "bad value for 'osc', expected an address starting with '/'");
     }
+    if (auto n = t.get("audio")) {
+        // A feature of the audio input (src/audio): audio = "bass".
+        en.kind = SourceKind::Audio; ++sources;
+        if (!n->is_string() || !ParseAudioFeatureName(*n->value<std::string>(), &en.audio))
+            Fail(path, *n, "bad value for 'audio', expected one of: " + AudioFeatureNameList());
+    }
     if (sources != 1)
-        Fail(path, t, sources == 0 ? "entry has no source, expected one of cc, cc14, note, pitchbend, program, nrpn, osc"
+        Fail(path, t, sources == 0 ? "entry has no source, expected one of cc, cc14, note, pitchbend, program, nrpn, osc, audio"
                                    : "entry has more than one source, expected exactly one of cc, cc14, note, "
-                                     "pitchbend, program, nrpn, osc");
+                                     "pitchbend, program, nrpn, osc, audio");
+    // gain, attack and release shape an audio feature; on a knob they would be silently ignored.
+    for (const char* key : {"gain", "attack", "release"}) {
+        auto n = t.get(key);
+        if (!n) continue;
+        if (en.kind != SourceKind::Audio)
+            Fail(path, *n, std::string("'") + key + "' applies to audio sources only, expected it removed or audio = \"...\"");
+        const float v = GetNumber(path, *n, key);
+        if (std::string(key) == "gain") {
+            if (v <= 0.0f || v > 100.0f) Fail(path, *n, "bad value for 'gain', expected a number in (0, 100]");
+            en.gain = v;
+        } else {
+            if (v < 0.0f || v > 60.0f) Fail(path, *n, std::string("bad value for '") + key + "', expected seconds 0..60");
+            (std::string(key) == "attack" ? en.attack : en.release) = v;
+        }
+    }
 
     if (auto n = t.get("channel")) en.channel = GetChannel(path, *n);
     if (auto n = t.get("hires")) {
