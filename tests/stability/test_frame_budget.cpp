@@ -1,0 +1,184 @@
+// live --frame-budget: which setting of the front the budget picks for measured times, its
+// hysteresis, the candidates read from the committed accuracy sweep, and on llvmpipe a tight
+// budget that real frames converge under (ratio-based, generous: a shared 2-core machine).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "app/frame_budget.h"
+#include "gl_fixture.h"
+#include "render/render.h"
+
+using namespace sdfvj;
+
+namespace {
+
+// costs 1, 2, 4, 8 with errors 40, 20, 10, 0
+std::vector<BudgetSetting> FourFront() {
+    std::vector<BudgetSetting> f;
+    for (int i = 0; i < 4; ++i) {
+        BudgetSetting s;
+        s.label = "s" + std::to_string(i);
+        s.cost = std::pow(2.0, i);
+        s.error = i == 3 ? 0.0 : 40.0 / std::pow(2.0, i);
+        s.quality.maxSteps = 32 << i;
+        f.push_back(s);
+    }
+    return f;
+}
+
+}  // namespace
+
+TEST_CASE("frame budget: the pick is the best setting the front predicts to fit", "[budget]") {
+    const auto f = FourFront();
+    // at the best setting 16 ms against 8: 1 ms per unit of cost, setting 2 (cost 4 -> 8 ms) fits
+    CHECK(PickBudgetSetting(f, 3, 16.0, 8.0, 0.8, true) == 2);
+    CHECK(PickBudgetSetting(f, 3, 8.0, 8.0, 0.8, true) == 3);     // fits exactly: stays
+    CHECK(PickBudgetSetting(f, 3, 100.0, 8.0, 0.8, true) == 0);   // nothing fits: the cheapest
+    // at setting 1 2 ms: setting 3 predicts 8 > 0.8 x 8, setting 2 predicts 4 <= 6.4: up to 2
+    CHECK(PickBudgetSetting(f, 1, 2.0, 8.0, 0.8, true) == 2);
+    CHECK(PickBudgetSetting(f, 1, 2.0, 8.0, 0.8, false) == 1);    // up not allowed: stays
+    CHECK(PickBudgetSetting(f, 1, 1.5, 8.0, 0.8, true) == 3);     // 6 <= 6.4: all the way up
+}
+
+TEST_CASE("frame budget: the front is cheapest first with falling error, and the floor holds", "[budget]") {
+    auto c = FourFront();
+    BudgetSetting dominated = c[2];
+    dominated.cost = 5;
+    dominated.error = 15;   // costlier than s2 and worse: never on the front
+    c.push_back(dominated);
+    auto front = BudgetFront(c);
+    REQUIRE(front.size() == 4);
+    for (size_t i = 1; i < front.size(); ++i) {
+        CHECK(front[i].cost > front[i - 1].cost);
+        CHECK(front[i].error < front[i - 1].error);
+    }
+    FrameBudget b;
+    FrameBudgetDesc d;
+    d.budgetMs = 1.0;
+    std::string error;
+    REQUIRE(ParseBudgetFloor("steps=64", &d.floor, &error));
+    REQUIRE(BeginFrameBudget(&b, d, c, &error));
+    CHECK(b.front.front().quality.maxSteps == 64);   // s0 (32 steps) is under the floor
+    CHECK(b.current == b.front.size() - 1);          // starts at the best
+    // far over budget for ever: it goes down to the floor's cheapest and no further
+    for (int i = 0; i < 40; ++i) StepFrameBudget(b, 0.25 * i, 50.0);
+    CHECK(b.current == 0);
+    CHECK(b.front[b.current].quality.maxSteps == 64);
+
+    CHECK_FALSE(ParseBudgetFloor("steps=64,fog=1", &d.floor, &error));
+    CHECK(error.find("'fog=1' unknown") != std::string::npos);
+    CHECK_FALSE(ParseBudgetFloor("scale", &d.floor, &error));
+    CHECK(error.find("expected e.g. scale=0.5") != std::string::npos);
+    CHECK_FALSE(BeginFrameBudget(&b, FrameBudgetDesc{1.0, 1.0, 0.8, 3.0, BudgetFloor{1.0f, 100000, 0, 0}}, c, &error));
+}
+
+TEST_CASE("frame budget: hysteresis: no oscillation when a move up does not fit", "[budget]") {
+    // The front predicts setting 3 at 8 ms x 0.75 = 6 ms, but it really takes 9 ms (over 8):
+    // every move up to it is undone; the hold doubles, so it tries rarely.
+    auto f = FourFront();
+    FrameBudget b;
+    FrameBudgetDesc d;
+    d.budgetMs = 8.0;
+    d.periodS = 1.0;
+    d.holdAfterDownS = 3.0;
+    std::string error;
+    REQUIRE(BeginFrameBudget(&b, d, f, &error));
+    auto frameMs = [](size_t s) { return s == 3 ? 9.0 : 0.75 * std::pow(2.0, (double)s); };
+    int ups = 0;
+    size_t last = b.current;
+    for (int i = 0; i < 120 * 60; ++i) {   // two minutes at 60 fps
+        StepFrameBudget(b, i / 60.0, frameMs(b.current));
+        if (b.current > last) ++ups;
+        last = b.current;
+    }
+    INFO("moves " << b.moves << ", moves up " << ups);
+    CHECK(b.current == 2);   // settles on the best that really fits
+    CHECK(ups <= 5);          // holds of 3, 6, 12, 24, 48 s: a few tries in two minutes, not 40
+    // a setting that is inside the budget is kept: no moves at all
+    FrameBudget steady;
+    REQUIRE(BeginFrameBudget(&steady, d, f, &error));
+    for (int i = 0; i < 600; ++i) StepFrameBudget(steady, i / 60.0, 7.5 + 0.4 * std::sin(i * 0.7));
+    CHECK(steady.moves == 0);
+}
+
+TEST_CASE("frame budget: candidates come from the committed accuracy sweep", "[budget]") {
+    std::vector<BudgetSetting> c;
+    std::string error;
+    const std::string csv = std::string(SDFVJ_SOURCE_ROOT) + "/docs/accuracy/accuracy.csv";
+    REQUIRE(LoadBudgetCandidates(csv, "character", 1.0f, &c, &error));
+    auto front = BudgetFront(c);
+    REQUIRE(front.size() >= 4);
+    CHECK(front.back().scale == 1.0f);                  // the best renders every pixel
+    CHECK(front.front().cost < 0.2 * front.back().cost);  // and the cheapest is far cheaper
+    for (const auto& s : c) CHECK(s.scale <= 1.0f);     // no supersampling above maxScale
+    // a scene the sweep has not seen uses the mean over the others
+    REQUIRE(LoadBudgetCandidates(csv, "field150", 1.5f, &c, &error));
+    CHECK(std::any_of(c.begin(), c.end(), [](const BudgetSetting& s) { return s.scale > 1.0f; }));
+    CHECK_FALSE(LoadBudgetCandidates(csv + ".missing", "character", 1.0f, &c, &error));
+    CHECK(error.find("accuracy.csv.missing:1: cannot read") != std::string::npos);
+}
+
+TEST_CASE("frame budget: on llvmpipe a tight budget is met and the setting is the one the front predicts", "[budget][gpu]") {
+    test::RequireGl();
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("character", &scene, &error));
+    std::vector<BudgetSetting> c;
+    REQUIRE(LoadBudgetCandidates(std::string(SDFVJ_SOURCE_ROOT) + "/docs/accuracy/accuracy.csv", "character", 1.0f, &c, &error));
+    Program program;
+    ShaderSource src;
+    REQUIRE(AssembleProgram(scene, VariantKey{scene.path, scene.effects, RenderPath::Fragment}, &src, &error));
+    REQUIRE(program.Build(src, RenderPath::Fragment, &error));
+    const int W = 192, H = 108;
+    FrameRenderer fr;
+    FrameInputs in;
+    in.time = 1.0;
+    float scale = 1.0f;
+    auto frame = [&] {
+        REQUIRE(fr.Resize(std::max(8, (int)std::lround(W * scale)), std::max(8, (int)std::lround(H * scale)), &error));
+        fr.Draw(program, scene, in, true);   // glFinish + wall clock on llvmpipe
+        return fr.LastGpuMs();
+    };
+    // the best setting's time, then a budget of a third of it
+    FrameBudget b;
+    FrameBudgetDesc d;
+    REQUIRE(BeginFrameBudget(&b, d, c, &error));
+    ApplyBudgetSetting(b.front[b.current], &in.quality, &scale);
+    std::vector<double> ms;
+    for (int i = 0; i < 7; ++i) ms.push_back(frame());
+    const double best = MedianMs(ms);
+    d.budgetMs = best / 3.0;
+    d.periodS = 0.2;
+    d.holdAfterDownS = 0.6;
+    REQUIRE(BeginFrameBudget(&b, d, c, &error));
+    double now = 0;
+    std::vector<double> last;
+    for (int i = 0; i < 20000 && now < 3.5; ++i) {
+        double t = frame();
+        now += t / 1000.0;   // the show clock advances by the frame time
+        if (StepFrameBudget(b, now, t)) ApplyBudgetSetting(b.front[b.current], &in.quality, &scale);
+        if (now > 2.5) last.push_back(t);
+    }
+    REQUIRE(last.size() >= 5);
+    const double settled = MedianMs(last);
+    // what the front predicts for this budget from the best setting's time
+    size_t predicted = PickBudgetSetting(b.front, b.front.size() - 1, best, d.budgetMs, 1.0, false);
+    INFO("best " << best << " ms, budget " << d.budgetMs << " ms, settled " << settled << " ms on '"
+                 << b.front[b.current].label << "' (" << b.current << "), front predicts '" << b.front[predicted].label
+                 << "' (" << predicted << "), moves " << b.moves);
+    CHECK(settled <= 1.25 * d.budgetMs);                 // converged under the budget (noise allowed)
+    // and on the setting the front predicts from the best setting's time, or one of about its
+    // cost (the front's costs are a GPU's; llvmpipe's ratios differ, and the budget follows what
+    // it measures) ...
+    const double costRatio = b.front[b.current].cost / b.front[predicted].cost;
+    CHECK(costRatio >= 0.4);
+    CHECK(costRatio <= 2.5);
+    // ... and where it settled is what the front predicts from the settled time (a fixed point)
+    size_t again = PickBudgetSetting(b.front, b.current, settled, d.budgetMs, d.upMargin, true);
+    CHECK(b.front[again].cost / b.front[b.current].cost >= 0.5);
+    CHECK(b.front[again].cost / b.front[b.current].cost <= 2.0);
+    CHECK(b.current < b.front.size() - 1);              // it had to move
+}
