@@ -44,6 +44,10 @@ bool LiveSession::Start(std::string* error) {
     renderScale_ = (float)std::clamp(o_.renderScale, 0.25, 1.0);
     softwareGl_ = IsSoftwareRenderer();
     in_.quality = state_.show.quality;
+    std::string budgetError;
+    if (o_.frameBudgetMs > 0 && !StartLiveFrameBudget(&budget_, o_.frameBudgetMs, o_.budgetFloor, state_.show.scene.name,
+                                                      &in_.quality, &renderScale_, &budgetError))
+        state_.report.Say("sdfvj live: no frame budget: " + budgetError);
     if (o_.show.path == "auto") {
         std::string log;
         state_.show.path = ProbeRenderPath(state_.show.scene, &log);
@@ -164,10 +168,16 @@ void LiveSession::LogParams(double now) {
 // ring; its result reaches the graph a few frames later (Poll never waits).
 void LiveSession::Draw(double now) {
     const bool timed = !softwareGl_ && frameTimer_.Begin();
+    const double t0 = Now();
     DrawScene(now);
     if (timed) frameTimer_.End();
+    double budgetMs = 0;   // --frame-budget: GPU time, or on a software renderer the finished draw's wall time
     if (!softwareGl_)
-        for (const GpuTimerRing::Sample& s : frameTimer_.Poll()) ui_.gpu.Add((float)s.ms);
+        for (const GpuTimerRing::Sample& s : frameTimer_.Poll()) ui_.gpu.Add((float)(budgetMs = s.ms));
+    else if (budget_.desc.budgetMs > 0)
+        glFinish(), budgetMs = 1000.0 * (Now() - t0);
+    std::string say;
+    if (budgetMs > 0 && LiveFrameBudgetStep(budget_, now, budgetMs, &in_.quality, &renderScale_, &say)) state_.report.Say(say);
 }
 
 // Each frame while "measure costs" runs: the program on screen once more, offscreen, with every

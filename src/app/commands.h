@@ -100,6 +100,8 @@ struct LiveOptions {
     std::string logParams;              // append "time name=value ..." per frame to this file
     bool hideOverlay = false;           // start with the overlay hidden (as after Tab)
     double renderScale = 1.0;           // the scene renders at this fraction of the window (0.25..1)
+    double frameBudgetMs = 0;           // > 0: keep frames under this (frame_budget.h)
+    std::string budgetFloor;            // never below: "scale=0.5,steps=64,shadow_steps=16,ao=2"
 };
 int RunLive(const LiveOptions& o);
 #endif

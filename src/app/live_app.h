@@ -15,6 +15,7 @@
 
 #include "app/commands.h"
 #include "app/effect_costs.h"
+#include "app/frame_budget.h"
 #include "app/live_overlay.h"
 #include "app/live_session.h"
 #include "render/compile_worker.h"
@@ -201,6 +202,7 @@ private:
     bool dragWasDown_ = false, zeroWasDown_ = false;
     double dragX_ = 0.0, dragY_ = 0.0;
     int frame_ = 0, fbw_ = 0, fbh_ = 0;
+    FrameBudget budget_;         // --frame-budget: moves renderScale_ and in_.quality
     float renderScale_ = 1.0f;   // --render-scale and the overlay's resolution slider
     uint64_t internalErrors_ = 0;
 };
