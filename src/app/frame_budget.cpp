@@ -257,4 +257,27 @@ void ApplyBudgetSetting(const BudgetSetting& s, Quality* q, float* scale) {
     *scale = s.scale;
 }
 
+bool StartLiveFrameBudget(FrameBudget* b, double budgetMs, const std::string& floorText, const std::string& scene,
+                          Quality* q, float* scale, std::string* error) {
+    FrameBudgetDesc d;
+    d.budgetMs = budgetMs;
+    std::vector<BudgetSetting> c;
+    if (!ParseBudgetFloor(floorText, &d.floor, error) ||
+        !LoadBudgetCandidates(DataRoot() + "/docs/accuracy/accuracy.csv", scene, 1.0f, &c, error) ||
+        !BeginFrameBudget(b, d, c, error))
+        return false;
+    ApplyBudgetSetting(b->front[b->current], q, scale);
+    return true;
+}
+
+bool LiveFrameBudgetStep(FrameBudget& b, double now, double frameMs, Quality* q, float* scale, std::string* say) {
+    if (!StepFrameBudget(b, now, frameMs)) return false;
+    ApplyBudgetSetting(b.front[b.current], q, scale);
+    char line[256];
+    std::snprintf(line, sizeof line, "frame budget %.1f ms: median %.1f ms -> %s", b.desc.budgetMs, b.lastMedianMs,
+                  b.front[b.current].label.c_str());
+    *say = line;
+    return true;
+}
+
 }  // namespace sdfvj

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "render/render.h"
+#include "scene/scene.h"
 
 namespace sdfvj {
 
@@ -95,5 +96,15 @@ size_t PickBudgetSetting(const std::vector<BudgetSetting>& front, size_t current
 bool StepFrameBudget(FrameBudget& b, double now, double frameMs);
 
 void ApplyBudgetSetting(const BudgetSetting& s, Quality* q, float* scale);
+
+// ---- live's glue (cmd_live.cpp calls these two) ------------------------------------------
+// Starts a budget of budgetMs for `scene` from DataRoot()/docs/accuracy/accuracy.csv with the
+// floor text of --budget-floor (scales up to 1: live does not supersample); applies the best
+// setting. False with a line to show when it cannot (the show then runs without a budget).
+bool StartLiveFrameBudget(FrameBudget* b, double budgetMs, const std::string& floorText, const std::string& scene,
+                          Quality* q, float* scale, std::string* error);
+// One frame's time: when the budget moved, applies the new setting and sets `say` to
+// "frame budget 8.0 ms: median 9.1 ms -> steps=96 @ 0.85".
+bool LiveFrameBudgetStep(FrameBudget& b, double now, double frameMs, Quality* q, float* scale, std::string* say);
 
 }  // namespace sdfvj
