@@ -35,9 +35,9 @@ case "${1:-}" in
     out="${OUT:?set OUT to the folder for the results}"
     run() { bash "$0" remote "$@"; }
     run bench --scenes midi primitives character mandelbulb --sizes 3840x2160 --tests full --paths compute \
-      --frames 20 --warmup 5 --markdown "$out/bench_4k.md" > "$out/bench_4k.txt" 2>&1 || true
+      --frames 20 --warmup 5 --markdown "$out/bench_4k.md" --csv "$out/bench_4k.csv" > "$out/bench_4k.txt" 2>&1 || true
     run bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 15 --warmup 5 \
-      --out "$out/accuracy" --markdown "$out/accuracy.md" > "$out/accuracy.txt" 2>&1 || true
+      --out "$out/accuracy" --markdown "$out/accuracy.md" --csv "$out/accuracy_bench.csv" > "$out/accuracy.txt" 2>&1 || true
     for s in midi character; do
       run bench reload --scene $s --size 1920x1080 --path compute > "$out/reload_$s.txt" 2>&1 || true
     done
@@ -55,8 +55,19 @@ case "${1:-}" in
           --path compute --first-frame > "$out/launch_${s}_$launch.txt" 2>&1 || true
       done
     done
-    run bench effects --scene midi --size 1920x1080 --path compute > "$out/effects_midi.txt" 2>&1 || true
-    timeout 240 bash "$0" remote bench --frames 10 --warmup 3 --markdown "$out/bench.md" > "$out/bench.txt" 2>&1 || true
+    run bench effects --scene midi --size 1920x1080 --path compute --csv "$out/effects_midi.csv" > "$out/effects_midi.txt" 2>&1 || true
+    timeout 240 bash "$0" remote bench --frames 10 --warmup 3 --markdown "$out/bench.md" --csv "$out/bench.csv" > "$out/bench.txt" 2>&1 || true
+    # Scaling (issue 13), every cell interleaved in one run: cost against resolution for every
+    # scene, against primitive count (midi 5, character 15, field50, field150), and the effects
+    # table of the 150-shape field; CSV for docs/performance/.
+    timeout 240 bash "$0" remote bench --sizes 640x480 1280x720 1920x1080 3840x2160 7680x4320 --tests full --paths compute \
+      --frames 10 --warmup 3 --markdown "$out/scaling_resolution.md" --csv "$out/scaling_resolution.csv" \
+      > "$out/scaling_resolution.txt" 2>&1 || true
+    timeout 200 bash "$0" remote bench --scenes midi character field50 field150 --sizes 640x360 1920x1080 3840x2160 \
+      --tests full none --paths compute --frames 15 --warmup 3 --markdown "$out/scaling_primitives.md" \
+      --csv "$out/scaling_primitives.csv" > "$out/scaling_primitives.txt" 2>&1 || true
+    run bench effects --scene field150 --size 1920x1080 --path compute --csv "$out/effects_field150.csv" \
+      > "$out/effects_field150.txt" 2>&1 || true
     ;;
   remote)
     shift
