@@ -170,6 +170,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::stringstream modeList(o.modes);
     std::string modeName;
     bool workerMeasured = false;
+    // The worker contexts live until the bench ends: on Mesa 22.3 llvmpipe, destroying a shared
+    // context after the render context loaded program binaries (the program cache) crashed a later
+    // draw on the render context (reproduced: warm cache, worker mode, then any mode). `live` keeps
+    // its worker context for the whole session, so it never meets this.
+    std::vector<std::unique_ptr<HeadlessContext>> workerContexts;
     while (std::getline(modeList, modeName, ',')) {
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : -1;
         if (mode < 0) return Fail("--modes: '" + modeName + "', expected driver, worker or binary");
@@ -182,7 +187,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             if (workerMeasured) continue;
             mode = 1;
         }
-        HeadlessContext shared;
+        workerContexts.push_back(std::make_unique<HeadlessContext>());
+        HeadlessContext& shared = *workerContexts.back();
         std::unique_ptr<CompileWorker> worker;
         if (mode >= 1) {
             if (!shared.CreateShared(gl, &error, mode == 1)) return Fail(error);

@@ -20,7 +20,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Runs on a context of its own (same display, no shared objects): the programs loaded from
+// binaries here never meet the worker contexts other tests make and destroy on the main one
+// (Mesa 22.3 crashed a draw after a shared context went away once binaries had been loaded).
 struct CacheRig {
+    HeadlessContext own;
     fs::path folder;
     SceneInfo scene;
     VariantKey key;
@@ -28,6 +32,9 @@ struct CacheRig {
 
     explicit CacheRig(const std::string& name) {
         RequireGl();
+        std::string ownError;
+        REQUIRE(own.CreateShared(*TestContext(), &ownError, false));
+        REQUIRE(own.MakeCurrent());
         folder = fs::temp_directory_path() / ("sdfvj-progcache-" + name + "-" + std::to_string(::getpid()));
         fs::remove_all(folder);
         setenv("XDG_CACHE_HOME", folder.c_str(), 1);
@@ -42,6 +49,7 @@ struct CacheRig {
         if (!binaries) WARN("the driver gives no program binaries (Mesa with MESA_SHADER_CACHE_DISABLE): nothing to cache");
     }
     ~CacheRig() {
+        TestContext()->MakeCurrent();   // `own` is destroyed after this, not current
         setenv("SDFVJ_PROGRAM_CACHE", "0", 1);
         unsetenv("XDG_CACHE_HOME");
         SetProgramCacheDriver("");
