@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,10 @@ struct IsfFrameInputs {
     std::array<float, 4> date{2024, 1, 1, 0};   // DATE: year, month, day, seconds in the day
     std::array<float, 4> mouse{};               // Shadertoy iMouse (pixels)
     std::vector<std::pair<std::string, float>> params;   // IsfParams names -> value (clamped here)
+    // Sound for `audio` / `audioFFT` inputs, e.g. src/audio's AudioSpectrum: waveform samples
+    // -1..1 (read by the shader as 0.5 + 0.5 * s) and spectrum bins 0..1, one texel each in a
+    // N x 1 texture, rgb = the value. Empty: silence (wave at rest 0.5, spectrum 0).
+    std::span<const float> audioWaveform, audioSpectrum;
 };
 
 // One ISF file with its program, buffers and imported images. Owns GL objects: create, use and

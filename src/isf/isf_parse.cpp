@@ -213,7 +213,7 @@ struct Checker {
                 return Fail(at + "/DEFAULT", who + " has DEFAULT outside [MIN, MAX], expected a default inside its range");
         }
         if (d.type == IsfInputType::Audio || d.type == IsfInputType::AudioFFT)
-            Notice(at + "/TYPE", who + " is " + type + ": audio does not reach ISF yet, it reads a silent texture");
+            Notice(at + "/TYPE", who + " is " + type + ": 512 values a frame from the audio input (MAX is not followed); silent without one");
         *out = std::move(d);
         return true;
     }

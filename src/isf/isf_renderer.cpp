@@ -123,6 +123,8 @@ struct IsfEffect::State {
     IsfFile file;
     std::vector<ParamDecl> params;
     unsigned program = 0, vao = 0, sampler = 0, black = 0, silence = 0;
+    unsigned audioTex[2] = {0, 0};                  // waveform, spectrum (IsfFrameInputs audio*)
+    int audioSize[2] = {0, 0};
     std::map<std::string, int> locations;
     std::map<std::string, Buffer> buffers;          // by TARGET; "" is the output
     std::map<std::string, unsigned> imports;        // IMPORTED name -> texture
@@ -161,7 +163,34 @@ IsfEffect::~IsfEffect() {
     if (s_->sampler) glDeleteSamplers(1, &s_->sampler);
     if (s_->black) glDeleteTextures(1, &s_->black);
     if (s_->silence) glDeleteTextures(1, &s_->silence);
+    for (unsigned t : s_->audioTex)
+        if (t) glDeleteTextures(1, &t);
 }
+
+namespace {
+// Uploads one audio row as an N x 1 RGBA32F texture (rgb = value, a = 1); remade when N changes.
+unsigned UploadAudioRow(unsigned* tex, int* size, std::span<const float> values, bool wave) {
+    const int n = (int)values.size();
+    if (*tex && *size != n) {
+        glDeleteTextures(1, tex);
+        *tex = 0;
+    }
+    if (!*tex) {
+        glCreateTextures(GL_TEXTURE_2D, 1, tex);
+        glTextureStorage2D(*tex, 1, GL_RGBA32F, n, 1);
+        *size = n;
+    }
+    std::vector<float> rgba((size_t)n * 4, 1.0f);
+    for (int i = 0; i < n; ++i) {
+        float v = values[(size_t)i];
+        if (!std::isfinite(v)) v = 0.0f;
+        v = wave ? 0.5f + 0.5f * std::clamp(v, -1.0f, 1.0f) : std::clamp(v, 0.0f, 1.0f);
+        rgba[(size_t)i * 4] = rgba[(size_t)i * 4 + 1] = rgba[(size_t)i * 4 + 2] = v;
+    }
+    glTextureSubImage2D(*tex, 0, 0, 0, n, 1, GL_RGBA, GL_FLOAT, rgba.data());
+    return *tex;
+}
+}  // namespace
 
 bool IsfEffect::IsValid() const { return s_->program != 0; }
 const IsfFile& IsfEffect::File() const { return s_->file; }
@@ -255,6 +284,13 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);
+    // The frame's sound, uploaded once for all passes (only when the file has audio inputs).
+    unsigned wave = s.silence, fft = s.black;
+    const bool hasAudio = std::any_of(f.inputs.begin(), f.inputs.end(), [](const IsfInput& i) {
+        return i.type == IsfInputType::Audio || i.type == IsfInputType::AudioFFT;
+    });
+    if (hasAudio && !in.audioWaveform.empty()) wave = UploadAudioRow(&s.audioTex[0], &s.audioSize[0], in.audioWaveform, true);
+    if (hasAudio && !in.audioSpectrum.empty()) fft = UploadAudioRow(&s.audioTex[1], &s.audioSize[1], in.audioSpectrum, false);
     unsigned output = input;
     for (size_t pi = 0; pi < f.passes.size(); ++pi) {
         const IsfPass& pass = f.passes[pi];
@@ -295,7 +331,7 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
                 const int l = s.Location(i.name);
                 if (i.type == IsfInputType::Image) { s.BindImage(i.name, input ? input : s.black); continue; }
                 if (i.type == IsfInputType::Audio || i.type == IsfInputType::AudioFFT) {
-                    s.BindImage(i.name, i.type == IsfInputType::Audio ? s.silence : s.black);
+                    s.BindImage(i.name, i.type == IsfInputType::Audio ? wave : fft);
                     continue;
                 }
                 if (l < 0) continue;
