@@ -123,6 +123,7 @@ void LiveSession::Reload() {
         live_.Request(state_.wanted);
     }
     live_.Update(changed);
+    ReloadPost(changed);
     StartFadeIfSceneChanged(Now());
 }
 
@@ -145,7 +146,8 @@ void LiveSession::StartFadeIfSceneChanged(double now) {
 // The program on screen decides the parameters (its header may have changed), and its error
 // the overlay's last line.
 void LiveSession::UpdateProgram() {
-    if (live_.Current()) FollowScene(state_, live_.Scene());
+    UpdatePost();
+    if (live_.Current()) FollowScene(state_, SceneWithPost());
     if (state_.sendFeedback && state_.pendingTargets.empty()) {
         input_.SendFeedback(state_.params, state_.currentPreset);
         state_.sendFeedback = false;
@@ -223,9 +225,13 @@ void LiveSession::DrawScene(double now) {
         FrameInputs old = in_;
         old.params = fade_.params;
         fadeRenderer_.Draw(*fade_.program, fade_.scene, old);
-        crossfade_.Draw(fadeRenderer_.Texture(), renderer_.Texture(), Ease(fade_.easing, t), 0, fbw_, fbh_);
+        const bool post = post_ && !post_->Empty() && postInput_.Resize(rw, rh, &error);
+        crossfade_.Draw(fadeRenderer_.Texture(), renderer_.Texture(), Ease(fade_.easing, t),
+                        post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);
+        if (post) DrawPost(postInput_.Texture(), rw, rh, now);
     } else {
         fade_ = Fade{};   // done: the old program may go
+        if (DrawPost(renderer_.Texture(), rw, rh, now)) return;
         glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         glBlitFramebuffer(0, 0, rw, rh, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, rw == fbw_ && rh == fbh_ ? GL_NEAREST : GL_LINEAR);

@@ -167,7 +167,16 @@ int RunRender(const RenderOptions& o) {
     // ISF (src/isf): --scene x.fs is a generator instead of a raymarched scene; --post filters the
     // frame. --param NAME=VALUE goes to the ISF input of that name, else to the scene.
     const bool isfScene = IsIsfPath(o.show.scene);
-    const std::vector<std::string> postPaths = SplitIsfList(o.post);
+    // The post chain: --post, else the preset's "post" (read here only to know its inputs).
+    std::string postList = o.show.post;
+    if (postList.empty() && !o.show.preset.empty() && !isfScene) {
+        ShowOptions peek = o.show;
+        peek.params.clear();
+        Show peeked;
+        std::string ignored;   // the real PrepareShow below reports it
+        if (PrepareShow(peek, &peeked, &ignored)) postList = peeked.post;
+    }
+    const std::vector<std::string> postPaths = SplitIsfList(postList);
     std::vector<std::string> isfPaths = postPaths;
     if (isfScene) isfPaths.insert(isfPaths.begin(), ResolveIsfPath(o.show.scene));
     std::vector<ParamDecl> isfDecls;
@@ -186,6 +195,17 @@ int RunRender(const RenderOptions& o) {
     }
     Show show;
     if (!isfScene && !PrepareShow(showOptions, &show, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
+    // The preset's values for the post chain's inputs, where --param did not set them.
+    for (const auto& [name, value] : show.params) {
+        if (std::none_of(show.postDecls.begin(), show.postDecls.end(), [&](const ParamDecl& d) { return d.name == name; }))
+            continue;
+        const auto given = [&](const std::pair<std::string, float>& v) { return v.first == name; };
+        const bool overridden = std::any_of(o.show.params.begin(), o.show.params.end(),
+                                            [&](const std::string& kv) { return kv.rfind(name + "=", 0) == 0; });
+        auto it = std::find_if(isfValues.begin(), isfValues.end(), given);
+        if (it == isfValues.end()) isfValues.emplace_back(name, value);
+        else if (!overridden) it->second = value;
+    }
 
     // Replay: a take drives the parameters through the mapping, exactly as live input does.
     std::unique_ptr<ReplayDriver> replay;

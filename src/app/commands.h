@@ -18,7 +18,6 @@ struct RenderOptions {
     std::string replay;        // .mid take (full build only)
     std::string mapping;       // mapping for the replay; default: preset's, else generic profile
     std::string video;         // pipe to ffmpeg
-    std::string post;          // ISF post chain: "bloom,rgb_split" or .fs paths (src/isf)
     bool quiet = false;
 };
 int RunRender(const RenderOptions& o);

@@ -20,6 +20,7 @@
 #include "app/live_session.h"
 #include "render/compile_worker.h"
 #include "render/field_morph.h"
+#include "isf/isf.h"
 #include "render/live_program.h"
 #include "shader/watch.h"
 #include "take/take.h"
@@ -170,6 +171,16 @@ private:
         bool waiting = false;   // the morph program still compiles: the old scene holds, t stays 0
     } fade_;
     FieldMorph fieldMorph_;
+    // The ISF post chain (live_post.cpp) and its inputs, which join the scene's parameters.
+    std::unique_ptr<IsfChain> post_;
+    std::string postShown_;
+    std::vector<ParamDecl> postDecls_;
+    FrameRenderer postInput_;   // a crossfade's mix, when a post chain filters it
+    double postLast_ = 0.0;
+    void UpdatePost();
+    SceneInfo SceneWithPost() const;
+    void ReloadPost(const std::vector<std::string>& changed);
+    bool DrawPost(unsigned texture, int w, int h, double now);
     void PrepareFieldMorph();
     bool FadeMorphsFields();
     bool DrawFieldFade(double now, int rw, int rh);

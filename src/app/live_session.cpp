@@ -99,7 +99,7 @@ bool OpenLiveState(const ShowOptions& options, const std::string& mappingOption,
     s.params = ShowParamState(s.show);
     s.wanted = VariantKey{s.show.scene.path, s.show.effects, s.show.path};
     if (!s.show.preset.automation.Empty() &&
-        !s.automation.automation.Load(s.show.preset.automation, s.show.scene.params, error))
+        !s.automation.automation.Load(s.show.preset.automation, ShowDecls(s.show), error))
         return false;
     if (s.show.preset.automation.bpm > 0) s.automation.tempo.SetBpm(0.0, s.show.preset.automation.bpm);
     s.automation.automation.Start(0.0);
@@ -159,7 +159,7 @@ bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload, dou
     std::string err;
     Automation scripts;
     const AutomationDesc& desc = next.preset.automation;
-    if (!PrepareShow(so, &next, &err) || (!desc.Empty() && !scripts.Load(desc, next.scene.params, &err))) {
+    if (!PrepareShow(so, &next, &err) || (!desc.Empty() && !scripts.Load(desc, ShowDecls(next), &err))) {
         state.report.Say(err + (reload ? " — keeping the current values" : " — keeping the current preset"));
         return false;
     }

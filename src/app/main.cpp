@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     cmdRender->add_option("--replay", render.replay, "a Standard MIDI File whose events drive the parameters");
     cmdRender->add_option("--mapping", render.mapping, "mapping for --replay (default: the preset's, else generic_8knob)");
     cmdRender->add_option("--video", render.video, "pipe frames to ffmpeg (H.264) and write this .mp4 instead of PNGs; odd sizes are padded to even (libx264 needs them)");
-    cmdRender->add_option("--post", render.post,
+    cmdRender->add_option("--post", render.show.post,
                           "ISF post effects over the frame, in order: names in shaders/isf (bloom, feedback_trails, "
                           "kaleidoscope, rgb_split, film_grain, edge_glow, color_grade, mirror) or .fs files, "
                           "comma-separated; --param sets their inputs too. --scene also takes an ISF or Shadertoy .fs "
@@ -139,6 +139,9 @@ int main(int argc, char** argv) {
     cmdLive->add_option("--mapping", live.mapping, "controller mapping TOML (default: the preset's, else generic_8knob)");
     cmdLive->add_option("--record", live.record, "record incoming MIDI and OSC to this .mid");
     cmdLive->add_option("--replay", live.replay, "play a take into the show in real time (rehearsal)");
+    cmdLive->add_option("--post", live.show.post,
+                        "ISF post effects over the frame (as for render; else the preset's \"post\"); their inputs "
+                        "are parameters for OSC, mappings and the overlay; saved .fs files reload");
     cmdLive->add_option("--seconds", live.seconds, "quit after this many seconds (0: run until closed)");
     cmdLive->add_option("--screenshot", live.screenshot, "write the last frame to this PNG on exit");
     cmdLive->add_option("--log-params", live.logParams,

@@ -1,4 +1,5 @@
 // Replay for the full build: take -> ReplayCursor -> mapping -> smoothing, on the fixed clock.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -36,7 +37,7 @@ bool LoadShowMapping(const Show& show, const std::string& option, Mapping* mappi
 
 // Starting values of a show as a ParamState: scene defaults overridden by preset and --param.
 ParamState ShowParamState(const Show& show) {
-    ParamState s = MakeParamState(show.scene.params);
+    ParamState s = MakeParamState(ShowDecls(show));   // the scene's inputs, then the post chain's
     for (const auto& [name, value] : show.params) {
         int i = FindParam(s, name);
         if (i >= 0) s.value[i] = s.target[i] = value;
@@ -116,7 +117,7 @@ public:
         std::string error;
         Automation scripts;
         const AutomationDesc& desc = next->preset.automation;
-        if (!PrepareShow(so, next.get(), &error) || (!desc.Empty() && !scripts.Load(desc, next->scene.params, &error))) {
+        if (!PrepareShow(so, next.get(), &error) || (!desc.Empty() && !scripts.Load(desc, ShowDecls(*next), &error))) {
             reports->push_back(error + " — " + cueAt + " is not followed, the show stays as it is");
             return;
         }
@@ -182,7 +183,7 @@ std::unique_ptr<ReplayDriver> MakeReplayDriver(const Show& show, const std::stri
     if (!LoadShowMapping(show, mappingPath, &d->mapping, error)) return nullptr;
     d->params = ShowParamState(show);
     const AutomationDesc& scripts = show.preset.automation;
-    if (!scripts.Empty() && !d->automation.automation.Load(scripts, show.scene.params, error)) return nullptr;
+    if (!scripts.Empty() && !d->automation.automation.Load(scripts, ShowDecls(show), error)) return nullptr;
     if (scripts.bpm > 0) d->automation.tempo.SetBpm(0.0, scripts.bpm);
     d->automation.automation.Start(0.0);
     d->presetFile = show.preset.path;

@@ -1,5 +1,9 @@
 #include "app/show.h"
 
+#include <algorithm>
+
+#include "isf/isf.h"
+
 #include <cstdio>
 #include <filesystem>
 
@@ -18,6 +22,13 @@ bool ParseSize(const std::string& text, int* w, int* h, std::string* error) {
     *w = a;
     *h = b;
     return true;
+}
+
+std::vector<ParamDecl> ShowDecls(const Show& show) {
+    std::vector<ParamDecl> decls = show.scene.params;
+    for (const ParamDecl& d : show.postDecls)
+        if (std::none_of(decls.begin(), decls.end(), [&](const ParamDecl& x) { return x.name == d.name; })) decls.push_back(d);
+    return decls;
 }
 
 bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
@@ -55,9 +66,17 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
         return false;
     }
 
+    // The post chain's inputs are parameters like the scene's (parsed only: no GL here).
+    s.post = !opts.post.empty() ? opts.post : s.preset.post;
+    if (!s.post.empty() && !IsfListParams(SplitIsfList(s.post), &s.postDecls, error)) {
+        if (opts.post.empty()) *error = s.preset.path + ": post: " + *error;
+        return false;
+    }
+    const std::vector<ParamDecl> decls = ShowDecls(s);
+
     // Parameter values: scene defaults, then the preset, then --param; each clamped and reported.
     auto setParam = [&](const std::string& name, float value, const std::string& origin) {
-        for (const ParamDecl& d : s.scene.params) {
+        for (const ParamDecl& d : decls) {
             if (d.name != name) continue;
             float c = ClampParam(d, value);
             if (c != value)
@@ -69,12 +88,12 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
             return true;
         }
         std::string known;
-        for (const ParamDecl& d : s.scene.params) known += (known.empty() ? "" : ", ") + d.name;
+        for (const ParamDecl& d : decls) known += (known.empty() ? "" : ", ") + d.name;
         *error = origin + ": scene '" + s.scene.name + "' has no parameter '" + name + "', expected one of: " +
                  (known.empty() ? "(none)" : known);
         return false;
     };
-    for (const ParamDecl& d : s.scene.params) s.params.emplace_back(d.name, d.defaultValue);
+    for (const ParamDecl& d : decls) s.params.emplace_back(d.name, d.defaultValue);
     for (const auto& [name, value] : s.preset.params)
         if (!setParam(name, value, s.preset.path)) return false;
     for (const std::string& kv : opts.params) {

@@ -18,6 +18,7 @@ struct ShowOptions {
     std::string normals;      // --normals central|forward|tetrahedron
     std::string path = "auto";
     std::vector<std::string> params;   // --param name=value
+    std::string post;         // --post: ISF post chain ("bloom,mirror" or .fs paths); else the preset's
     Quality quality;
 };
 
@@ -26,10 +27,15 @@ struct Show {
     Preset preset;            // empty unless a preset was given
     EffectSet effects;        // the variant being rendered
     RenderPath path = RenderPath::Fragment;
-    std::vector<std::pair<std::string, float>> params;   // starting values, clamped
+    std::vector<std::pair<std::string, float>> params;   // starting values, clamped (post inputs too)
+    std::string post;                   // the ISF post chain: --post, else the preset's "post"
+    std::vector<ParamDecl> postDecls;   // its inputs: presets, --param, OSC and mappings set them by name
     Quality quality;
     std::unique_ptr<Program> program;
 };
+
+// Every parameter of a show: the scene's inputs, then its post chain's (a name both have is one).
+std::vector<ParamDecl> ShowDecls(const Show& show);
 
 // Resolves scene and preset and parses every option (no GL needed). Errors are one line.
 bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error);

@@ -182,13 +182,13 @@ bool ParsePresetJson(const std::string& text, const std::string& path, Preset* o
     if (!j.is_object()) return fail("", "preset is not a JSON object, expected {\"scene\": ..., \"params\": {...}}");
     Preset p;
     p.path = path;
-    static const char* kKeys = "scene, params, effects, normals, mapping, take, bpm, morph, envelopes, cues or loop_bars";
+    static const char* kKeys = "scene, params, effects, normals, mapping, take, post, bpm, morph, envelopes, cues or loop_bars";
     for (auto it = j.begin(); it != j.end(); ++it) {
         const std::string& k = it.key();
         const json& v = it.value();
         if (k == "params" || k == "bpm" || k == "morph" || k == "envelopes" || k == "cues" || k == "loop_bars") continue;
         std::string* field = k == "scene" ? &p.scene : k == "effects" ? &p.effects : k == "normals" ? &p.normals
-                           : k == "mapping" ? &p.mapping : k == "take" ? &p.take : nullptr;
+                           : k == "mapping" ? &p.mapping : k == "take" ? &p.take : k == "post" ? &p.post : nullptr;
         if (!field) return fail("/" + k, "unknown key '" + k + "', expected " + kKeys);
         if (!v.is_string()) return fail("/" + k, k + " is " + v.type_name() + ", expected a string");
         *field = v.get_ref<const std::string&>();

@@ -87,6 +87,7 @@ struct Preset {
     std::string normals;
     std::string mapping;       // path relative to the data root
     std::string take;          // path relative to the data root
+    std::string post;          // ISF post chain, as for --post: "bloom,mirror" or .fs paths (src/isf)
     AutomationDesc automation; // scripted parameters, envelopes, cues, tempo, morph (automation module)
 };
 // Presets are strict: unknown keys are errors (with their line), params are finite numbers

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -200,4 +201,62 @@ TEST_CASE("live render scale: --render-scale 0.25 fills the window with the scen
     INFO("quarter against full: mean " << d.meanAbs << ", " << d.fractionOver * 100 << "% of pixels over 24/255");
     CHECK(d.meanAbs < 12.0);                       // the same picture, softer
     CHECK(d.maxAbs > 0);                           // but not the full-size render
+}
+
+TEST_CASE("live post: --post mirror filters the window's frame, and its input answers OSC like a scene's") {
+    // mirror's `mode` input (0 left onto right ... 3 top onto bottom) becomes a show parameter.
+    LiveRun run("post-mirror", {"--post", "mirror", "--param", "spin=0"}, false);
+    INFO(ReadText(run.log));
+    REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
+    REQUIRE(run.WaitForLog("post: mirror", 20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    run.Osc("/sdfvj/param/mode", "f", "1.0");   // 0..1 over the input's range [0, 3]: 3, top onto bottom
+    REQUIRE(run.Wait() == 0);
+    const std::vector<Frame> frames = ReadParamLog(run.params);
+    REQUIRE(frames.size() >= 3);
+    CHECK(frames.front().second.at("mode") == Approx(0.0f));
+    CHECK(frames.back().second.at("mode") == Approx(3.0f));
+    CHECK(frames.back().second.at("twist") == Approx(0.5f));   // the scene's own inputs are still there
+
+    // The last frame: mode 3 (top onto bottom) makes row y the mirror of row H-1-y (within 2/255:
+    // the upscale to the window samples both halves alike, the mirror line may round).
+    Image shot;
+    REQUIRE(LoadPng(run.shot, &shot));
+    REQUIRE(shot.width == kW);
+    CHECK(LumaSpread(shot) > 5.0);
+    int worst = 0;
+    for (int y = 0; y < kH / 2 - 1; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const int a = shot.rgba[((size_t)y * kW + x) * 4 + c], b = shot.rgba[((size_t)(kH - 1 - y) * kW + x) * 4 + c];
+                worst = std::max(worst, std::abs(a - b));
+            }
+    CHECK(worst <= 2);
+}
+
+TEST_CASE("live post: a preset's post chain loads with it, and an unknown effect keeps the preset on stage") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "post-preset");
+    const fs::path root = fs::path(dir) / "root";
+    fs::create_directories(root);
+    for (const char* sub : {"shaders", "presets", "mappings"})
+        fs::copy(fs::path(SDFVJ_SOURCE_ROOT) / sub, root / sub, fs::copy_options::recursive);
+    std::ofstream(root / "presets" / "split.json") << R"({"scene": "midi", "post": "rgb_split", "params": {"amount": 10}})";
+    std::ofstream(root / "presets" / "broken.json") << "{\"scene\": \"midi\",\n \"post\": \"no_such_effect\"}";
+    const std::string log = dir + "/live.log", params = dir + "/params.txt";
+    const int port = FreeUdpPort();
+    const pid_t pid = Spawn({SDFVJ_BIN, "live", "--preset", "split", "--size", "160x90", "--seconds", "4", "--path", "fragment",
+                             "--osc-port", std::to_string(port), "--midi", "no-such-controller", "--log-params", params,
+                             "--hide-overlay"},
+                            log, {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}, {"SDFVJ_ROOT", root.string()}});
+    REQUIRE(PollFor(20, [&] { return ReadText(log).find("post: rgb_split") != std::string::npos; }));
+    REQUIRE(Run({"oscsend", "localhost", std::to_string(port), "/sdfvj/preset", "s", "broken"}, dir + "/oscsend.log", 10) == 0);
+    REQUIRE(WaitExit(pid, 40) == 0);
+    const std::string out = ReadText(log);
+    INFO(out);
+    CHECK(out.find("broken.json: post:") != std::string::npos);
+    CHECK(out.find("keeping the current preset") != std::string::npos);
+    const std::vector<Frame> frames = ReadParamLog(params);
+    REQUIRE(!frames.empty());
+    CHECK(frames.front().second.at("amount") == Approx(10.0f));   // the preset set the post input
+    CHECK(frames.back().second.at("amount") == Approx(10.0f));
 }

@@ -84,7 +84,7 @@ TEST_CASE("preset: every wrong-typed or out-of-range field is an error on its li
         {"mapping null", "\"mapping\": \"mappings/akai_lpd8.toml\"", "\"mapping\": null", 8, "mapping is null, expected a string"},
         {"take object", "\"take\": \"presets/demo_take.mid\"", "\"take\": {}", 9, "take is object, expected a string"},
         {"unknown key", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"colour\": 1", 10,
-         "unknown key 'colour', expected scene, params, effects, normals, mapping, take, bpm, morph, envelopes, cues or loop_bars"},
+         "unknown key 'colour', expected scene, params, effects, normals, mapping, take, post, bpm, morph, envelopes, cues or loop_bars"},
         {"bpm string", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"bpm\": \"fast\"", 10,
          "bpm is not a tempo, expected a number of beats per minute in [20, 400]"},
         {"bpm huge", "\"take\": \"presets/demo_take.mid\"", "\"take\": \"presets/demo_take.mid\",\n  \"bpm\": 1e30", 10,
