@@ -16,6 +16,7 @@
 #include "app/commands.h"
 #include "app/replay_driver.h"
 #include "isf/isf.h"
+#include "render/field_morph.h"
 
 extern char** environ;
 
@@ -121,7 +122,18 @@ public:
         next.show->path = show.path;
         if (!BuildShow(next.show.get(), RenderPathName(show.path), error, false)) return false;
         fade_.reset();
+        field_.Reset();
         std::string why;
+        if (next.fadeSeconds > 0 && next.show->preset.automation.morph.fieldMorph) {
+            // As in `live`: the two fields morph in one program where both scenes allow it.
+            field_.Prepare(show.scene, next.show->scene, UnionEffects(show.effects, next.show->effects), show.path);
+            if (field_.Wait() != FieldMorph::State::Ready) {
+                const std::string& e = field_.Error();
+                std::fprintf(stderr, "sdfvj render: %s and %s cannot morph as one field (%s) — crossfading their frames\n",
+                             show.scene.name.c_str(), next.show->scene.name.c_str(), e.substr(0, e.find('\n')).c_str());
+                field_.Reset();
+            }
+        }
         if (next.fadeSeconds > 0 && !crossfade_.Init(&why))
             std::fprintf(stderr, "sdfvj render: %s — the scene change cuts\n", why.c_str());
         else if (next.fadeSeconds > 0)
@@ -135,7 +147,12 @@ public:
         std::string error;
         if (!fade_ || in.time - fade_->start >= fade_->seconds || !old_.Resize(w, h, &error) || !mixed_.Resize(w, h, &error)) {
             fade_.reset();   // done: the old program may go
+            field_.Reset();
             return scene;
+        }
+        if (field_.Current()) {
+            field_.Draw(mixed_, in, fade_->params, fade_->weight(in.time - fade_->start));
+            return mixed_;
         }
         FrameInputs old = in;
         old.params = fade_->params;
@@ -152,6 +169,7 @@ private:
         std::function<float(double)> weight;
     };
     std::unique_ptr<Fade> fade_;
+    FieldMorph field_;   // the fields' morph, when both scenes compile into one program
     FrameRenderer old_, mixed_;
     Crossfade crossfade_;
 };

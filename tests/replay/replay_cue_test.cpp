@@ -18,7 +18,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // A data root with presets a (midi at 240 bpm, a cue at bar 1 = 1 s to b), a_still (a without
-// the cue), b (primitives, morphs in over 0.5 s, linear).
+// the cue), b (primitives, crossfades in over 0.5 s, linear), a_field and b_field (the same with
+// the fields morphing).
 std::string CueRoot() {
     const std::string root = FreshDir(SDFVJ_REPLAY_OUT, "cue-root");
     for (const char* d : {"shaders", "mappings"}) fs::create_directory_symlink(fs::path(SDFVJ_SOURCE_ROOT) / d, fs::path(root) / d);
@@ -28,7 +29,11 @@ std::string CueRoot() {
     write("a.json", a + R"(, "cues": [{"bar": 1, "preset": "b"}]})");
     write("a_still.json", a + "}");
     write("b.json", R"({"scene": "primitives", "params": {"spin": 0, "bob": 0}, "effects": "none",
-                       "morph": {"seconds": 0.5, "easing": "linear"}})");
+                       "morph": {"seconds": 0.5, "easing": "linear", "scenes": "crossfade"}})");
+    // The same switch with the default scene morph: the two fields in one program.
+    write("a_field.json", a + R"(, "cues": [{"bar": 1, "preset": "b_field"}]})");
+    write("b_field.json", R"({"scene": "primitives", "params": {"spin": 0, "bob": 0}, "effects": "none",
+                             "morph": {"seconds": 0.5, "easing": "linear"}})");
     return root;
 }
 
@@ -109,4 +114,27 @@ TEST_CASE("replay cues: a cue to a preset that does not exist is reported with i
     INFO(log);
     CHECK(log.find("a.json:2: cue preset 'no_such_preset' does not exist") != std::string::npos);
     CHECK(fs::exists(out + "/frame_00007.png"));
+}
+
+TEST_CASE("replay cues: a cue to another scene morphs the two fields in render as in live, the same bytes every run") {
+    const std::string root = CueRoot();
+    const std::string run1 = Render(root, "a_field", "cue-field1"), run2 = Render(root, "a_field", "cue-field2");
+    const std::string still = Render(root, "a_still", "cue-field-a"), b = Render(root, "b", "cue-field-b");
+    INFO(ReadText(run1 + ".log"));
+    CHECK(ReadText(run1 + ".log").find("cannot morph") == std::string::npos);
+    for (int i = 0; i < 8; ++i) {
+        char name[64];
+        std::snprintf(name, sizeof name, "/frame_%05d.png", i);
+        INFO("frame " << i);
+        CHECK(Bytes(run1 + name) == Bytes(run2 + name));
+    }
+    for (int i : {0, 3}) CHECK(CompareImages(Frame(run1, i), Frame(still, i), 0).maxAbs == 0);
+    // Half way: a third picture, neither scene and not the average of their frames.
+    const Image mid = Frame(run1, 5), from = Frame(still, 5), to = Frame(b, 5);
+    Image avg = from;
+    for (size_t k = 0; k < avg.rgba.size(); ++k) avg.rgba[k] = (uint8_t)((from.rgba[k] + to.rgba[k] + 1) / 2);
+    CHECK(CompareImages(mid, from, 8).fractionOver > 0.05);
+    CHECK(CompareImages(mid, to, 8).fractionOver > 0.05);
+    CHECK(CompareImages(mid, avg, 16).fractionOver > 0.05);
+    for (int i : {6, 7}) CHECK(CompareImages(Frame(run1, i), Frame(b, i), 0).maxAbs == 0);
 }
