@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -48,6 +49,21 @@ bool Get(const std::string& in, size_t* at, T* v) {
     std::memcpy(v, in.data() + *at, sizeof(T));
     *at += sizeof(T);
     return true;
+}
+
+// Keeps the folder to the newest kMaxFiles programs (SDFVJ_PROGRAM_CACHE_MAX_FILES overrides):
+// a live-coding session stores one program per save, and nothing else ever deletes them.
+// Loads touch their file, so "newest" means most recently used.
+void Evict(const fs::path& folder) {
+    size_t maxFiles = 400;
+    if (const char* v = std::getenv("SDFVJ_PROGRAM_CACHE_MAX_FILES")) maxFiles = (size_t)std::max(1L, std::atol(v));
+    std::vector<std::pair<fs::file_time_type, fs::path>> files;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(folder, ec))
+        if (e.path().extension() == ".bin") files.emplace_back(e.last_write_time(ec), e.path());
+    if (files.size() <= maxFiles) return;
+    std::sort(files.begin(), files.end());
+    for (size_t i = 0; i + maxFiles < files.size(); ++i) fs::remove(files[i].second, ec);
 }
 
 }  // namespace
@@ -126,6 +142,8 @@ unsigned LoadCachedProgram(const std::string& text, RenderPath path) {
         while (glGetError() != GL_NO_ERROR) {}   // GL_INVALID_ENUM for an unknown format is expected here
         return refuse();
     }
+    std::error_code ec;
+    fs::last_write_time(file, fs::file_time_type::clock::now(), ec);   // recently used: evicted last
     return prog;
 }
 
@@ -178,6 +196,7 @@ bool StoreCachedBinary(unsigned format, const std::vector<uint8_t>& binaryBytes,
         fs::remove(tmp, ec);
         return false;
     }
+    Evict(folder);
     return true;
 }
 

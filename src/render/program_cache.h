@@ -13,6 +13,7 @@
 // refuses (glProgramBinary fails to link after a driver update) is deleted and the program is
 // compiled as if there were no cache. Nothing here reports an error to the performer.
 // Writes are atomic (a temp file renamed over the name): a crash never leaves half a file.
+// The newest 400 programs are kept (SDFVJ_PROGRAM_CACHE_MAX_FILES), older ones deleted on a store.
 // Off with SDFVJ_PROGRAM_CACHE=0 or `--no-program-cache`. GL calls: the calling thread's context.
 #pragma once
 #include <cstdint>

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "gl_fixture.h"
 #include "render/live_program.h"
@@ -169,4 +170,24 @@ TEST_CASE("program cache: SDFVJ_PROGRAM_CACHE=0 neither reads nor writes", "[cac
     REQUIRE(fs::exists(rig.File(rig.key)));
     setenv("SDFVJ_PROGRAM_CACHE", "0", 1);
     CHECK_FALSE(rig.Start(rig.key)->Current()->FromCache());
+}
+
+TEST_CASE("program cache: the folder keeps the most recently used programs only", "[cache]") {
+    CacheRig rig("evict");
+    if (!rig.binaries) return;
+    setenv("SDFVJ_PROGRAM_CACHE_MAX_FILES", "2", 1);
+    struct Unset { ~Unset() { unsetenv("SDFVJ_PROGRAM_CACHE_MAX_FILES"); } } unset;
+    VariantKey ao = rig.key, fog = rig.key;
+    ao.effects.ao = true;
+    fog.effects.fog = !rig.key.effects.fog;
+    rig.Start(rig.key);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));   // distinct file times
+    rig.Start(ao);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    CHECK(rig.Start(rig.key)->Current()->FromCache());   // used again: now newer than `ao`
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    rig.Start(fog);                                       // a third program: the oldest goes
+    CHECK(fs::exists(rig.File(rig.key)));
+    CHECK(fs::exists(rig.File(fog)));
+    CHECK_FALSE(fs::exists(rig.File(ao)));
 }
