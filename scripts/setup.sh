@@ -7,7 +7,7 @@ PACKAGES=(build-essential cmake pkg-config
   librtmidi-dev liblo-dev liblo-tools libglfw3-dev libglm-dev libimgui-dev catch2 libepoxy-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev mesa-utils xvfb xauth xfonts-base libxtst-dev
   jackd2 libjack-jackd2-dev libaubio-dev libfftw3-dev
-  libtomlplusplus-dev nlohmann-json3-dev libstb-dev libcli11-dev libmuparser-dev ffmpeg python3
+  libtomlplusplus-dev nlohmann-json3-dev libstb-dev libcli11-dev libmuparser-dev ffmpeg parallel python3
   clang-14 libclang-rt-14-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
