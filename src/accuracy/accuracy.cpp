@@ -57,6 +57,11 @@ CpuScene<float> MakeCpuSceneGlobal32(const std::string& name) {
     if (!b) UnknownCpuScene(name);
     return b->makeGlobal32 ? b->makeGlobal32() : b->make32();
 }
+CpuScene<double> MakeCpuSceneGlobal64(const std::string& name) {
+    const CpuSceneBuild* b = FindCpuScene(name);
+    if (!b) UnknownCpuScene(name);
+    return b->makeGlobal64 ? b->makeGlobal64() : b->make64();
+}
 
 void ParallelRows(int height, int threads, const std::function<void(int)>& f) {
     int n = threads > 0 ? threads : (int)std::max(1u, std::thread::hardware_concurrency());

@@ -39,6 +39,7 @@ CpuScene<double> MakeCpuScene64(const std::string& name);
 // (MakeCpuSceneGlobal32), which the sweep's "plain" row marches as a plain raymarcher would.
 bool HasGlobalLipschitzBuild(const std::string& name);
 CpuScene<float> MakeCpuSceneGlobal32(const std::string& name);   // falls back to MakeCpuScene32
+CpuScene<double> MakeCpuSceneGlobal64(const std::string& name);  // falls back to MakeCpuScene64
 
 // Sets every uniform the way FrameRenderer::Draw does for (scene, in) at width x height
 // (parameters clamped to their declared range).

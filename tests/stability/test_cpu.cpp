@@ -234,7 +234,8 @@ TEST_CASE("stability: on the twisted, displaced midi scene the naive step overst
     REQUIRE(FindScene("midi", &scene, &error));
     // The raw field (SCENE_GLOBAL_LIPSCHITZ build): what a plain raymarcher marches. The shipped
     // scene divides the blob by the same bound inside map(), checked at the end.
-    auto s = accuracy::MakeCpuScene64("midi_global");
+    REQUIRE(accuracy::HasGlobalLipschitzBuild("midi"));
+    auto s = accuracy::MakeCpuSceneGlobal64("midi");
     auto shipped = accuracy::MakeCpuScene64("midi");
     const int w = 48, h = 36;
     const double maxDist = 15, dt = 2e-3;
