@@ -20,8 +20,9 @@ namespace {
 // A data root with presets a (midi at 240 bpm, a cue at bar 1 = 1 s to b), a_still (a without
 // the cue), b (primitives, crossfades in over 0.5 s, linear), a_field and b_field (the same with
 // the fields morphing).
-std::string CueRoot() {
-    const std::string root = FreshDir(SDFVJ_REPLAY_OUT, "cue-root");
+// Each test has its own (ctest runs them in parallel).
+std::string CueRoot(const std::string& name) {
+    const std::string root = FreshDir(SDFVJ_REPLAY_OUT, name);
     for (const char* d : {"shaders", "mappings"}) fs::create_directory_symlink(fs::path(SDFVJ_SOURCE_ROOT) / d, fs::path(root) / d);
     fs::create_directory(fs::path(root) / "presets");
     auto write = [&](const char* name, const std::string& text) { std::ofstream(fs::path(root) / "presets" / name) << text; };
@@ -62,7 +63,7 @@ std::string Bytes(const std::string& path) { return ReadText(path); }
 }  // namespace
 
 TEST_CASE("replay cues: render --preset follows a cue to another preset and scene, crossfading over its morph time") {
-    const std::string root = CueRoot();
+    const std::string root = CueRoot("cue-root1");
     const std::string run1 = Render(root, "a", "cue-run1"), run2 = Render(root, "a", "cue-run2");
     const std::string still = Render(root, "a_still", "cue-a-still"), b = Render(root, "b", "cue-b");
     const std::string log = ReadText(run1 + ".log");
@@ -105,7 +106,7 @@ TEST_CASE("replay cues: render --preset follows a cue to another preset and scen
 }
 
 TEST_CASE("replay cues: a cue to a preset that does not exist is reported with its line and the show goes on") {
-    const std::string root = CueRoot();
+    const std::string root = CueRoot("cue-root2");
     std::ofstream(fs::path(root) / "presets" / "a.json")
         << R"({"scene": "midi", "bpm": 240, "params": {"spin": 0}, "effects": "none",
   "cues": [{"bar": 1, "preset": "no_such_preset"}]})";
@@ -117,7 +118,7 @@ TEST_CASE("replay cues: a cue to a preset that does not exist is reported with i
 }
 
 TEST_CASE("replay cues: a cue to another scene morphs the two fields in render as in live, the same bytes every run") {
-    const std::string root = CueRoot();
+    const std::string root = CueRoot("cue-root3");
     const std::string run1 = Render(root, "a_field", "cue-field1"), run2 = Render(root, "a_field", "cue-field2");
     const std::string still = Render(root, "a_still", "cue-field-a"), b = Render(root, "b", "cue-field-b");
     INFO(ReadText(run1 + ".log"));
