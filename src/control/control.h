@@ -211,6 +211,11 @@ struct MidiDecoder {
     uint64_t stray = 0;          // data bytes without a status
     uint64_t ignored = 0;        // SysEx, clock, active sensing, system common
     uint64_t messages = 0;
+    // MIDI Time Code (control/mtc.h): a quarter frame (F1 dd) becomes a 2-byte event, a full-frame
+    // SysEx an event made by MtcFullFrameEvent; other SysEx stays ignored.
+    bool quarterFrame = false;   // the data byte being skipped is a quarter frame's
+    uint8_t sysex[10] = {};
+    int sysexSize = 0;           // -1: longer than a full frame
 };
 void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double time,
                      std::vector<ControlEvent>* out);

@@ -8,6 +8,7 @@
 #include <lo/lo.h>
 
 #include "control/control.h"
+#include "control/mtc.h"
 
 namespace sdfvj {
 namespace {
@@ -46,11 +47,23 @@ void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double t
             d.inSysex = true;
             d.status = 0;
             d.have = d.skip = 0;
+            d.sysex[0] = b;
+            d.sysexSize = 1;
             ++d.ignored;
             continue;
         }
         if (b == 0xF7) {
+            Timecode tc;
+            if (d.inSysex && d.sysexSize == 9) {
+                d.sysex[9] = b;
+                if (ParseMtcFullFrame(d.sysex, 10, &tc)) {   // MTC full frame: a locate
+                    --d.ignored;
+                    ++d.messages;
+                    if (out) out->push_back(MtcFullFrameEvent(tc, time));
+                }
+            }
             d.inSysex = false;
+            d.sysexSize = 0;
             continue;
         }
         if (b >= 0xF1) {             // system common: cancels running status, skip its data
@@ -58,7 +71,8 @@ void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double t
             d.status = 0;
             d.have = 0;
             d.skip = (b == 0xF2) ? 2 : (b == 0xF1 || b == 0xF3) ? 1 : 0;
-            ++d.ignored;
+            d.quarterFrame = b == 0xF1;
+            if (!d.quarterFrame) ++d.ignored;
             continue;
         }
         if (b >= 0x80) {             // channel status
@@ -67,9 +81,24 @@ void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double t
             d.have = d.skip = 0;
             continue;
         }
-        if (d.inSysex) continue;
+        if (d.inSysex) {
+            if (d.sysexSize > 0 && d.sysexSize < 9) d.sysex[d.sysexSize++] = b;
+            else d.sysexSize = -1;
+            continue;
+        }
         if (d.skip > 0) {
             --d.skip;
+            if (d.quarterFrame) {     // F1 dd: MIDI Time Code, for --sync mtc (mapping ignores it)
+                d.quarterFrame = false;
+                ControlEvent e;
+                e.time = time;
+                e.source = EventSource::Midi;
+                e.midi[0] = 0xF1;
+                e.midi[1] = b;
+                e.midiSize = 2;
+                ++d.messages;
+                if (out) out->push_back(e);
+            }
             continue;
         }
         if (d.status == 0) {
