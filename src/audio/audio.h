@@ -18,10 +18,11 @@
 //   }
 // Offline (tests, a WAV): AudioAnalyzer a; a.Process(samples, n); AudioFeatures f = a.TakeFeatures();
 //
-// Threads: the JACK process thread touches only the ring and two atomics (see jack_input.cpp);
-// everything else here belongs to the thread that calls Poll().
+// Threads: the JACK process thread touches only the ring and two atomics; AudioInput's analysis
+// thread drains the ring every 5 ms and publishes features under a mutex held only for a copy
+// (aubio's beat tracker takes ~4 ms every ~1.4 s: that must not land on a frame); Poll() takes
+// the latest features (see jack_input.cpp).
 #pragma once
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -120,25 +121,25 @@ public:
     AudioInput(const AudioInput&) = delete;
     AudioInput& operator=(const AudioInput&) = delete;
 
-    // Render thread: analyses the samples that arrived since the last call and returns the
-    // features (onset/beat: since the last call). `now` is unused by the analysis (it runs on
-    // the audio's own clock) and kept for symmetry with the other inputs.
+    // Render thread: the latest features the analysis thread published (onset/beat: any since
+    // the last call) and a copy of its spectrum and waveform for Textures(). Never waits for the
+    // analysis. `now` is unused (the analysis runs on the audio's own clock).
     AudioFeatures Poll(double now);
-    const AudioSpectrum& Textures() const { return analyzer_.Spectrum(); }
-    const AudioAnalyzer& Analyzer() const { return analyzer_; }
+    const AudioSpectrum& Textures() const { return textures_; }   // as of the last Poll()
 
     std::string PortName() const;      // full name, "sdfvj-audio:in"
-    int SampleRate() const { return analyzer_.SampleRate(); }
+    int SampleRate() const { return rate_; }
+    float BinHz() const { return float(rate_) / float(2 * kAudioBins); }
     uint64_t Overruns() const;         // samples dropped because Poll() fell behind
     bool ServerGone() const;           // the server shut down; Poll() then sees no new audio
 
     struct Impl;
 
 private:
-    AudioInput(std::unique_ptr<Impl> impl, int sampleRate, const AudioInputDesc& desc);
-    std::unique_ptr<Impl> impl_;
-    AudioAnalyzer analyzer_;
-    std::vector<float> scratch_;
+    AudioInput(std::unique_ptr<Impl> impl, int sampleRate);
+    std::unique_ptr<Impl> impl_;   // the client, ring, analysis thread and published features
+    int rate_ = 48000;
+    AudioSpectrum textures_;
 };
 
 }  // namespace sdfvj

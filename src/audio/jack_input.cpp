@@ -5,14 +5,20 @@
 //                        when the ring is full the rest is dropped and counted (never waits,
 //                        never allocates, takes no lock).
 //   JACK notify thread   OnShutdown(): sets `gone`. Nothing else.
-//   caller of Poll()     reads the ring up to `written`, bumps `read`, runs the analysis.
+//   analysis thread      every 5 ms: reads the ring up to `written`, bumps `read`, runs the
+//                        analysis (owns the AudioAnalyzer), publishes features and spectrum
+//                        under `mutex` (held for a copy only).
+//   caller of Poll()     copies the published features out under `mutex`; never analyses.
 // The ring is single-producer single-consumer: `written` is stored with release after the
 // samples, `read` with release after they were copied out, so neither side sees a torn sample.
 #include <jack/jack.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
+#include <mutex>
+#include <thread>
 
 #include "audio/audio.h"
 
@@ -27,6 +33,39 @@ struct AudioInput::Impl {
     std::atomic<uint64_t> read{0};
     std::atomic<uint64_t> overruns{0};
     std::atomic<bool> gone{false};
+
+    std::unique_ptr<AudioAnalyzer> analyzer;   // analysis thread only (after Open)
+    std::thread worker;
+    std::atomic<bool> stop{false};
+    std::mutex mutex;                          // guards the three below
+    AudioFeatures published;                   // onset/beat: any since the last Poll
+    AudioSpectrum spectrum;
+    bool fresh = false;
+
+    void AnalysisLoop() {
+        std::vector<float> scratch(4096);
+        while (!stop.load()) {
+            const uint64_t w = written.load(std::memory_order_acquire);
+            uint64_t r = read.load(std::memory_order_relaxed);
+            if (r < w) {
+                while (r < w) {
+                    const size_t n = std::min<size_t>(size_t(w - r), scratch.size());
+                    for (size_t i = 0; i < n; ++i) scratch[i] = ring[(r + i) & mask];
+                    r += n;
+                    read.store(r, std::memory_order_release);
+                    analyzer->Process(scratch.data(), n);
+                }
+                AudioFeatures f = analyzer->TakeFeatures();
+                std::lock_guard<std::mutex> lock(mutex);
+                f.onset = f.onset || (fresh && published.onset);
+                f.beat = f.beat || (fresh && published.beat);
+                published = f;
+                spectrum = analyzer->Spectrum();
+                fresh = true;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+    }
 
     static int Process(jack_nframes_t n, void* arg) {
         Impl& s = *static_cast<Impl*>(arg);
@@ -43,6 +82,8 @@ struct AudioInput::Impl {
     static void OnShutdown(void* arg) { static_cast<Impl*>(arg)->gone.store(true); }
 
     ~Impl() {
+        stop = true;
+        if (worker.joinable()) worker.join();
         if (client) {
             jack_deactivate(client);
             jack_client_close(client);
@@ -101,28 +142,28 @@ std::unique_ptr<AudioInput> AudioInput::Open(const AudioInputDesc& desc, std::st
         if (rc == 0 || rc == EEXIST) *status += ", connected from " + desc.connect;
         else *status += "; cannot connect from '" + desc.connect + "' (see `jack_lsp`), connect it by hand";
     }
-    return std::unique_ptr<AudioInput>(new AudioInput(std::move(impl), rate, desc));
+    // Made here (FFTW plans on the opening thread), used only by the analysis thread from now on.
+    impl->analyzer = std::make_unique<AudioAnalyzer>(AudioAnalyzerDesc{rate, desc.onsetThreshold, 0});
+    Impl* raw = impl.get();
+    impl->worker = std::thread([raw] { raw->AnalysisLoop(); });
+    return std::unique_ptr<AudioInput>(new AudioInput(std::move(impl), rate));
 }
 
-AudioInput::AudioInput(std::unique_ptr<Impl> impl, int sampleRate, const AudioInputDesc& desc)
-    : impl_(std::move(impl)), analyzer_(AudioAnalyzerDesc{sampleRate, desc.onsetThreshold, 0}) {
-    scratch_.resize(4096);
-}
+AudioInput::AudioInput(std::unique_ptr<Impl> impl, int sampleRate) : impl_(std::move(impl)), rate_(sampleRate) {}
 
-AudioInput::~AudioInput() = default;   // Impl deactivates the client before the ring goes
+AudioInput::~AudioInput() = default;   // Impl joins the analysis thread, then closes the client
 
 AudioFeatures AudioInput::Poll(double /*now*/) {
     Impl& s = *impl_;
-    const uint64_t w = s.written.load(std::memory_order_acquire);
-    uint64_t r = s.read.load(std::memory_order_relaxed);
-    while (r < w) {
-        const size_t n = std::min<size_t>(size_t(w - r), scratch_.size());
-        for (size_t i = 0; i < n; ++i) scratch_[i] = s.ring[(r + i) & s.mask];
-        r += n;
-        s.read.store(r, std::memory_order_release);
-        analyzer_.Process(scratch_.data(), n);
+    std::lock_guard<std::mutex> lock(s.mutex);
+    if (!s.fresh) {
+        AudioFeatures f = s.published;
+        f.onset = f.beat = false;   // already reported
+        return f;
     }
-    return analyzer_.TakeFeatures();
+    s.fresh = false;
+    textures_ = s.spectrum;
+    return s.published;
 }
 
 std::string AudioInput::PortName() const { return jack_port_name(impl_->port); }

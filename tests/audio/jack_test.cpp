@@ -51,7 +51,7 @@ struct SinePlayer {
     std::string PortName() const { return jack_port_name(port); }
 };
 
-// Polls (as a 100 fps render loop would) until `done` says yes or 3 s pass. The window holds the
+// Polls (as a 100 fps render loop would; the analysis thread publishes every 5 ms) until `done` says yes or 3 s pass. The window holds the
 // last 1024 samples, so the click of a change in the signal leaves it within a few polls.
 template <typename F>
 AudioFeatures PollUntil(AudioInput& in, F done) {
@@ -78,7 +78,7 @@ TEST_CASE("audio jack: a sine played into the port moves the right bin and band"
     REQUIRE(in);
     CHECK(status.find("listening on JACK port sdfvj-test-audio:in") != std::string::npos);
     CHECK(status.find("connected from sdfvj-test-sine:out") != std::string::npos);
-    const float binHz = in->Analyzer().BinHz();
+    const float binHz = in->BinHz();
 
     // 21 bins up (~1 kHz at 48 kHz): a mid-band sine.
     player.hz = 21 * binHz;
