@@ -174,6 +174,43 @@ private:
     Crossfade crossfade_;
 };
 
+// `--frame-range A:B` (both inclusive) or `A:` (to the last frame) against a whole render of
+// `frames` frames; `frames` < 0 means "not known" (no take, no --frames): B then sets the length.
+// B past the last frame is clamped, so a farm's last slice may say more than it needs.
+bool ParseFrameRange(const std::string& text, int frames, int* first, int* last, std::string* error) {
+    const size_t colon = text.find(':');
+    auto number = [](const std::string& t, int* v) {
+        if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return false;
+        *v = std::stoi(t);
+        return true;
+    };
+    const std::string a = colon == std::string::npos ? "" : text.substr(0, colon), b = colon == std::string::npos ? "" : text.substr(colon + 1);
+    if (!number(a, first) || (!b.empty() && !number(b, last))) {
+        *error = "--frame-range '" + text + "': expected A:B or A: with frame indices (0-based, B included), e.g. 0:99";
+        return false;
+    }
+    if (b.empty()) {
+        if (frames < 0) { *error = "--frame-range " + text + " runs to the end: give --frames (or a take) to say where that is"; return false; }
+        *last = frames - 1;
+    }
+    if (frames >= 0) *last = std::min(*last, frames - 1);
+    if (*first > *last) {
+        *error = "--frame-range " + text + ": no frames in it (the whole render has " + std::to_string(frames < 0 ? *last + 1 : frames) +
+                 "), expected A <= B";
+        return false;
+    }
+    return true;
+}
+
+// True when a post/generator pass keeps its image across frames (feedback): a frame range must
+// then draw the frames before it too, not only step the parameters.
+bool HasFeedback(IsfChain& chain) {
+    for (size_t i = 0; i < chain.Size(); ++i)
+        for (const IsfPass& pass : chain.Stage(i).File().passes)
+            if (pass.persistent) return true;
+    return false;
+}
+
 }  // namespace
 
 int RunRender(const RenderOptions& o) {
@@ -235,6 +272,21 @@ int RunRender(const RenderOptions& o) {
         if (!o.framesGiven && !takePath.empty()) frames = (int)std::ceil(replay->Duration() * o.fps) + 1;
     }
     if (frames <= 0) { std::fprintf(stderr, "sdfvj render: --frames must be at least 1\n"); return 2; }
+    // --frame-range: the frames before A only step the state (take, mapping, smoothing, automation,
+    // cues, whose programs are built at their frames as in the whole run); nothing is drawn.
+    int first = 0, last = frames - 1;
+    const bool lengthKnown = o.framesGiven || !takePath.empty();
+    if (!o.frameRange.empty()) {
+        if (!ParseFrameRange(o.frameRange, lengthKnown ? frames : -1, &first, &last, &error)) {
+            std::fprintf(stderr, "sdfvj render: %s\n", error.c_str());
+            return 2;
+        }
+        if (!lengthKnown) frames = last + 1;
+    }
+    if (o.countFrames) {
+        std::printf("%d\n", frames);
+        return 0;
+    }
 
     if (!gl.Create(&error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
     if (!o.quiet) std::fprintf(stderr, "GL: %s\n", gl.Description().c_str());
@@ -266,10 +318,13 @@ int RunRender(const RenderOptions& o) {
         fs::create_directories(o.out, ec);
         if (ec) { std::fprintf(stderr, "sdfvj render: cannot create %s: %s\n", o.out.c_str(), ec.message().c_str()); return 2; }
     }
+    const bool feedback = HasFeedback(isf);
     if (!o.quiet)
-        std::fprintf(stderr, "rendering %s [%s, %s path] %dx%d, %d frames at %g fps -> %s\n", show.scene.name.c_str(),
-                     isfScene ? "ISF" : DescribeEffects(show.effects).c_str(), isfScene ? "fragment" : RenderPathName(show.path), w, h, frames, o.fps,
-                     o.video.empty() ? o.out.c_str() : o.video.c_str());
+        std::fprintf(stderr, "rendering %s [%s, %s path] %dx%d, frames %d..%d of %d at %g fps -> %s\n", show.scene.name.c_str(),
+                     isfScene ? "ISF" : DescribeEffects(show.effects).c_str(), isfScene ? "fragment" : RenderPathName(show.path), w, h,
+                     first, last, frames, o.fps, o.video.empty() ? o.out.c_str() : o.video.c_str());
+    if (first > 0 && feedback && !o.quiet)
+        std::fprintf(stderr, "sdfvj render: an ISF pass is PERSISTENT (feedback): frames 0..%d are drawn too, not written\n", first - 1);
 
     FrameInputs in;
     in.quality = show.quality;
@@ -277,7 +332,7 @@ int RunRender(const RenderOptions& o) {
     const double dt = 1.0 / o.fps;
     CueSwitcher cues;
     auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < frames; ++i) {
+    for (int i = 0; i <= last; ++i) {
         in.frame = i;
         in.time = i * dt;
         if (replay) {
@@ -292,6 +347,7 @@ int RunRender(const RenderOptions& o) {
                 return 1;
             }
         }
+        if (i < first && !feedback) continue;   // fast-forward: state only
         std::vector<uint8_t> rgba;
         if (isf.Empty()) {
             fr.Draw(*show.program, show.scene, in);
@@ -304,7 +360,9 @@ int RunRender(const RenderOptions& o) {
             isfIn.params = isfValues;
             if (!isfScene) fr.Draw(*show.program, show.scene, in);
             const unsigned sceneTexture = isfScene ? 0u : cues.Frame(fr, in, w, h).Texture();
-            rgba = ReadTextureRgba(isf.Render(sceneTexture, w, h, isfIn), w, h);
+            const unsigned out = isf.Render(sceneTexture, w, h, isfIn);
+            if (i < first) continue;   // drawn for the feedback only
+            rgba = ReadTextureRgba(out, w, h);
         }
         if (video) {
             if (!video->Write(rgba)) {
@@ -322,7 +380,7 @@ int RunRender(const RenderOptions& o) {
             }
         }
         if (!o.quiet)
-            PrintProgress(i + 1, frames, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            PrintProgress(i - first + 1, last - first + 1, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     if (video) {
         std::string how = video->Finish();

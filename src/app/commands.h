@@ -19,6 +19,9 @@ struct RenderOptions {
     std::string mapping;       // mapping for the replay; default: preset's, else generic profile
     std::string video;         // pipe to ffmpeg
     bool quiet = false;
+    std::string frameRange;    // "A:B" (inclusive), "A:" to the end: only these frames, the same bytes
+                               // as in the whole render (docs/farm.md)
+    bool countFrames = false;  // print the whole render's frame count and exit (no GL)
 };
 int RunRender(const RenderOptions& o);
 

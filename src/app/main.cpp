@@ -65,6 +65,10 @@ int main(int argc, char** argv) {
                           "comma-separated; --param sets their inputs too. --scene also takes an ISF or Shadertoy .fs "
                           "generator (docs/isf.md)");
     cmdRender->add_flag("--quiet", render.quiet, "no progress bar");
+    cmdRender->add_option("--frame-range", render.frameRange,
+                          "A:B (0-based, B included) or A: to the end: only these frames, byte-identical to the same "
+                          "frames of the whole render; files keep their absolute index (docs/farm.md)");
+    cmdRender->add_flag("--count-frames", render.countFrames, "print how many frames the whole render has and exit");
 
     BenchOptions bench;
     auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
