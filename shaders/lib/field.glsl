@@ -21,11 +21,12 @@
 //   - where F < e - 1.25 blend: the nearest shape is within F + blend/4 < e - blend, so it is
 //     one of the four, and any shape left out is >= blend farther than it, so it changes no
 //     smooth minimum: T = F and f = F (exact, the surface and everything within
-//     1 - FIELD_RADIUS * size - 1.25 blend >= 0.1 of it);
+//     1 - FIELD_RADIUS * size - 1.25 blend of it: 0.2 at the scenes' defaults, 0.11 at worst);
 //   - elsewhere f <= e - 1.25 blend <= F: still a bound, and never <= 0 (e >= 1 - radius);
 //   - e is continuous (along x the cut moves from one cell to the next where both candidate
 //     columns are 1 away), so f is continuous and 1-Lipschitz: sceneLipschitz() stays 1, and
-//     normals, AO probes (h <= 0.16) and penumbrae near surfaces see F itself.
+//     normals, AO probes (h <= 0.16, inside the exact zone but at the largest knobs) and
+//     penumbrae near surfaces see F itself.
 #ifndef SDF_LIB_FIELD_GLSL
 #define SDF_LIB_FIELD_GLSL
 #include "lib/common.glsl"
@@ -33,9 +34,10 @@
 #include "lib/domain.glsl"
 #include "lib/combinators.glsl"
 
-const float FIELD_RADIUS = 0.385f;   // every shape within this * size of its cell's axis (XZ)
+const float FIELD_UNIT = 1.17f;      // shape dimensions below are in units of size * FIELD_UNIT
+const float FIELD_RADIUS = 0.45f;    // every shape within this * size of its cell's axis (XZ): 0.38 * 1.17
 const float FIELD_MAX_SIZE = 1.0f;
-const float FIELD_MAX_BLEND = 0.35f; // 1 - 0.385 - 1.25 * 0.35 = 0.18 > 0 at the largest size
+const float FIELD_MAX_BLEND = 0.35f; // 1 - 0.45 - 1.25 * 0.35 = 0.11 > 0 at the largest size
 
 // Albedo of a cell: a six-colour palette walked along the diagonal.
 vec3 fieldColor(float i, float j) {
@@ -54,12 +56,12 @@ float fieldLift(float i, float j, float wave, float phase) {
 }
 
 // Highest point of any shape: the capsule's top at lift = wave.
-float fieldTop(float size, float wave) { return 0.95f * size + max(wave, 0.0f); }
+float fieldTop(float size, float wave) { return 0.95f * FIELD_UNIT * max(size, 0.05f) + max(wave, 0.0f); }
 
 // The shape of cell (i, j), q relative to the cell's centre on the floor: its distance, exact;
 // every shape lies within FIELD_RADIUS * size of the cell's vertical axis, at y >= lift >= 0.
 float fieldShape(vec3 q, float i, float j, float size, float wave, float phase, float spin) {
-    float s = max(size, 0.05f);
+    float s = max(size, 0.05f) * FIELD_UNIT;
     float lift = fieldLift(i, j, wave, phase);
     float turn = spin * (mod(i + j, 2.0f) < 0.5f ? 1.0f : -1.0f) + 0.9f * i + 0.4f * j;
     float kind = mod(i + 3.0f * j + floor(0.5f * i), 4.0f);
