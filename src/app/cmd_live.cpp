@@ -72,6 +72,8 @@ bool LiveSession::Start(std::string* error) {
         if (!r.ok) std::fprintf(stderr, "sdfvj live: not replaying: %s\n", r.error.c_str());
         else replay_ = std::make_unique<ReplayCursor>(rehearsal_);
     }
+    if (!ParseSyncMode(o_.sync, &sync_.mode, error)) return false;
+    if (sync_.mode != LiveSync::Mode::Wall) state_.report.Say("sdfvj live: " + LiveSyncStatus(sync_, 0.0));
     error->clear();
     last_ = Now();
     return true;
@@ -79,14 +81,19 @@ bool LiveSession::Start(std::string* error) {
 
 bool LiveSession::Frame() {
     glfwPollEvents();
-    const double now = Now(), dt = now - last_;
-    last_ = now;
+    const double wall = Now(), dt = wall - last_;
+    last_ = wall;
     if (frame_ >= 2) fps_ = fps_ == 0 ? 1.0 / std::max(dt, 1e-6) : 0.95 * fps_ + 0.05 / std::max(dt, 1e-6);
-    if ((o_.seconds > 0 && now >= o_.seconds) || glfwWindowShouldClose(window_) ||
+    if ((o_.seconds > 0 && wall >= o_.seconds) || glfwWindowShouldClose(window_) ||
         glfwGetKey(window_, GLFW_KEY_ESCAPE) == GLFW_PRESS)
         return false;
     ReadKeys();
-    Guard("input", [&] { ApplyControl(state_, PollInput(now), now); });
+    double now = wall;   // the show clock: the wall clock, or a master's timecode (--sync mtc)
+    Guard("input", [&] {
+        std::vector<ControlEvent> events = PollInput(wall);
+        now = SyncShowClock(&events, wall);
+        ApplyControl(state_, events, now);
+    });
     Guard("actions", [&] { ApplyActions(state_, now); });
     Guard("reload", [&] { Reload(); });
     Guard("program", [&] { UpdateProgram(); });
@@ -103,13 +110,31 @@ bool LiveSession::Frame() {
 // Controllers, OSC and the rehearsal take all arrive through one queue; the recorder keeps
 // every event the show applies.
 std::vector<ControlEvent> LiveSession::PollInput(double now) {
-    if (replay_)
+    if (replay_ && sync_.mode != LiveSync::Mode::Mtc)   // else the take plays on the show clock (SyncShowClock)
         for (ControlEvent& e : replay_->Until(now)) queue_.Push(std::move(e));
     std::vector<ControlEvent> events = queue_.DrainUntil(now);
     ObserveEvents(ui_, events);   // the overlay's monitor, and learn when it is armed
     if (recorder_.IsOpen())
         for (const ControlEvent& e : events) recorder_.Record(e);
     return events;
+}
+
+// --sync mtc: the master's timecode is the show clock (live_sync.h); what it says goes to the
+// overlay and stderr once. The rehearsal take plays on it: a jump back starts the take over.
+double LiveSession::SyncShowClock(std::vector<ControlEvent>* events, double wall) {
+    if (sync_.mode != LiveSync::Mode::Mtc) return wall;
+    std::vector<std::string> say;
+    const double show = LiveSyncStep(sync_, events, wall, &say);
+    for (const std::string& line : say) state_.report.Say(line);
+    if (replay_) {
+        if (show < takeAt_) replay_ = std::make_unique<ReplayCursor>(rehearsal_);
+        for (ControlEvent& e : replay_->Until(show)) {
+            e.time = show;
+            events->push_back(std::move(e));
+        }
+        takeAt_ = show;
+    }
+    return show;
 }
 
 // Saved files: the mapping and the preset on stage (live_session), shaders (LiveProgram).

@@ -104,6 +104,7 @@ struct LiveOptions {
     double renderScale = 1.0;           // the scene renders at this fraction of the window (0.25..1)
     double frameBudgetMs = 0;           // > 0: keep frames under this (frame_budget.h)
     std::string budgetFloor;            // never below: "scale=0.5,steps=64,shadow_steps=16,ao=2"
+    std::string sync;                   // "mtc": the show clock follows MIDI Time Code; "clock": MIDI clock (live_sync.h)
 };
 int RunLive(const LiveOptions& o);
 #endif

@@ -18,6 +18,7 @@
 #include "app/frame_budget.h"
 #include "app/live_overlay.h"
 #include "app/live_session.h"
+#include "app/live_sync.h"
 #include "render/compile_worker.h"
 #include "render/field_morph.h"
 #include "isf/isf.h"
@@ -197,6 +198,9 @@ private:
     FrameRenderer costRenderer_;
     void StartFadeIfSceneChanged(double now);
     FrameInputs in_;
+    LiveSync sync_;              // --sync: the show clock from a master (live_sync.h)
+    double takeAt_ = 0.0;        // where the rehearsal take's cursor is, on the show clock (--sync mtc)
+    double SyncShowClock(std::vector<ControlEvent>* events, double wall);
     TakeRecorder recorder_;
     Take rehearsal_;
     std::unique_ptr<ReplayCursor> replay_;

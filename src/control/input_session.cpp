@@ -144,7 +144,7 @@ struct InputSession::Impl {
         p->owner = this;
         p->in = std::make_unique<RtMidiIn>(rtApi, client, 1024);
         p->in->setErrorCallback(QuietRtMidiError, nullptr);
-        p->in->ignoreTypes(true, false, true);   // SysEx and active sensing never reach us; MIDI clock does (tempo)
+        p->in->ignoreTypes(false, false, true);   // active sensing never reaches us; MIDI clock does (tempo), SysEx too (MTC full frames; others are counted as ignored)
         p->in->setCallback(&Impl::OnMidi, p.get());
         return p;
     }

@@ -1,0 +1,163 @@
+// `live --sync mtc` as a show runs it: a real window on Xvfb (fixture `xvfb`), MIDI Time Code from
+// an RtMidiOut through JACK's dummy server (fixture `jackd`) into live's virtual port. The show
+// clock is --log-params's time column; each new line is compared with the master's time when the
+// test saw it: it follows within a frame while the master runs, across a seek, holds where a
+// stop's full frame puts it, and freewheels through a dropout (said once).
+#include <rtmidi/RtMidi.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <thread>
+
+#include "control/mtc.h"
+#include "live_util.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A line of the param log as the test saw it: when (seconds since the master started) and the
+// show time it holds.
+struct Seen {
+    double at = 0.0, show = 0.0;
+};
+
+void Send(RtMidiOut& out, const std::vector<uint8_t>& bytes, size_t from, size_t n) {
+    std::vector<unsigned char> m(bytes.begin() + from, bytes.begin() + from + n);
+    out.sendMessage(&m);
+}
+
+}  // namespace
+
+TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, across a seek, a stop and a dropout") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "sync-mtc");
+    const std::string log = dir + "/live.log", params = dir + "/params.txt";
+    const std::string port = "sdfvj-sync-" + std::to_string(getpid());
+    const pid_t pid = Spawn({SDFVJ_BIN, "live", "--scene", "midi", "--size", "64x36", "--seconds", "16", "--path", "fragment",
+                             "--effects", "none", "--osc-port", "0", "--midi", "no-such-controller", "--log-params", params,
+                             "--hide-overlay", "--sync", "mtc"},
+                            log, {{"DISPLAY", Display()}});
+    REQUIRE(PollFor(30, [&] { return ReadText(log).find("waiting for the master's timecode") != std::string::npos; }));
+
+    RtMidiOut out(RtMidi::UNIX_JACK, port);
+    bool connected = false;
+    REQUIRE(PollFor(5, [&] {
+        for (unsigned i = 0; i < out.getPortCount() && !connected; ++i)
+            if (const std::string n = out.getPortName(i); n.size() > 6 && n.compare(n.size() - 6, 6, ":sdfvj") == 0) {
+                out.openPort(i, "mtc");
+                connected = true;
+            }
+        return connected;
+    }));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));   // let JACK finish the connection
+
+    // The master's timeline (t: seconds since it started). 25 fps: a quarter frame every 10 ms.
+    //   [0, 2)     runs from 10:00:00:00
+    //   [2, 3.5)   jumps to 01:00:00:00 and runs
+    //   [3.5, 4.5) stops: one full frame at 01:00:01:12, nothing else
+    //   [4.5, 5.5) runs from 01:00:02:00
+    //   [5.5, 7)   drops out: nothing at all
+    const double stopAt = TimecodeSeconds(TimecodeAt(3601.5, MtcRate::Fps25));
+    auto master = [&](double t) {
+        if (t < 2.0) return 36000.0 + t;
+        if (t < 3.5) return 3600.0 + (t - 2.0);
+        if (t < 4.5) return stopAt;
+        return 3602.0 + (t - 4.5);   // the dropout: the show should freewheel on at speed 1
+    };
+
+    const Clock::time_point t0 = Clock::now();
+    auto since = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+    std::atomic<bool> done{false};
+    std::vector<Seen> seen;
+    std::thread watcher([&] {   // each new line of the log, with when it was seen (read from where it was)
+        std::ifstream in(params, std::ios::binary);
+        in.seekg(0, std::ios::end);
+        std::string partial;
+        while (!done) {
+            std::string chunk(1 << 16, '\0');
+            in.clear();
+            in.read(chunk.data(), (std::streamsize)chunk.size());
+            chunk.resize((size_t)in.gcount());
+            const double at = since();
+            partial += chunk;
+            for (size_t nl; (nl = partial.find('\n')) != std::string::npos; partial.erase(0, nl + 1))
+                seen.push_back({at, std::atof(partial.c_str())});
+            if (chunk.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+    });
+    // Quarter frames: piece k of a group of 8 goes out at the group's start + k/4 frame; the
+    // group's pieces carry the label of the frame it starts on.
+    auto run = [&](double from, double until, double timecodeAtFrom) {
+        for (int q = 0;; ++q) {
+            const double t = from + q * 0.01;
+            if (t >= until - 1e-9) break;
+            std::this_thread::sleep_until(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t)));
+            const std::vector<uint8_t> group = MtcQuarterFrames(TimecodeAt(timecodeAtFrom + (q / 8) * 0.08 + 1e-6, MtcRate::Fps25));
+            Send(out, group, size_t(q % 8) * 2, 2);
+        }
+    };
+    run(0.0, 2.0, 36000.0);
+    run(2.0, 3.5, 3600.0);
+    std::this_thread::sleep_until(t0 + std::chrono::milliseconds(3500));
+    const std::vector<uint8_t> full = MtcFullFrame(TimecodeAt(3601.5, MtcRate::Fps25));
+    Send(out, full, 0, full.size());
+    run(4.5, 5.5, 3602.0);
+    std::this_thread::sleep_until(t0 + std::chrono::milliseconds(7000));
+    done = true;
+    watcher.join();
+    kill(pid, SIGTERM);
+    WaitExit(pid, 20);
+    const std::string text = ReadText(log);
+    INFO(text);
+
+    // Compare where the master was settled (0.25 s after each change; the first time needs 8
+    // quarter frames and JACK's 5 ms period). A line is seen up to one render frame after its
+    // frame began: the error allowed is one MTC frame (40 ms) plus that frame's gap.
+    const double frame = 1.0 / 25.0;
+    auto settled = [](double t) {
+        for (double change : {0.0, 2.0, 3.5, 4.5, 5.5})
+            if (t >= change && t < change + 0.35) return false;
+        return t < 6.9;
+    };
+    std::vector<double> errors;
+    int checked[5] = {0, 0, 0, 0, 0};
+    for (size_t i = 1; i < seen.size(); ++i) {
+        const Seen& s = seen[i];
+        if (!settled(s.at)) continue;
+        const double gap = s.at - seen[i - 1].at;
+        const double err = s.show - master(s.at);
+        const int phase = s.at < 2 ? 0 : s.at < 3.5 ? 1 : s.at < 4.5 ? 2 : s.at < 5.5 ? 3 : 4;
+        ++checked[phase];
+        INFO("seen at " << s.at << " s: show " << s.show << ", master " << master(s.at) << ", frame gap " << gap);
+        if (phase == 2) CHECK(s.show == Approx(stopAt).margin(1e-3));   // holding: not a tick further
+        else CHECK(std::abs(err) <= frame + gap + 0.005);
+        errors.push_back(std::abs(err));
+    }
+    for (int p = 0; p < 5; ++p) {
+        INFO("phase " << p);
+        CHECK(checked[p] >= 5);   // the show drew frames in every phase
+    }
+    std::sort(errors.begin(), errors.end());
+    REQUIRE(!errors.empty());
+    CHECK(errors[errors.size() / 2] < frame);   // the median within one frame
+    std::printf("live sync: %zu frames compared (per phase %d %d %d %d %d), |show - master| median %.1f ms, max %.1f ms\n",
+                errors.size(), checked[0], checked[1], checked[2], checked[3], checked[4], 1000 * errors[errors.size() / 2],
+                1000 * errors.back());
+
+    CHECK(CountInFile(log, "MTC locked at 10:00:00:") == 1);
+    CHECK(CountInFile(log, "MTC jump to 01:00:00:") == 1);
+    CHECK(CountInFile(log, "MTC locate to 01:00:01:12@25") == 1);
+    CHECK(CountInFile(log, "freewheeling") == 1);
+}
