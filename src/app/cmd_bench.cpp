@@ -1,7 +1,7 @@
 // `sdfvj bench`: GPU milliseconds per frame, every scene x the seed's four lighting tests x sizes
 // x both render paths. Median of N frames after warm-up; GL timer queries on a real GPU, glFinish
 // and a wall clock on llvmpipe (whose timer queries are meaningless). Trusted as bench_support.h
-// says: 1 s warm-up after each compile, sizes and paths interleaved, a drift check, --csv.
+// says: 1 s warm-up after the compiles, every cell interleaved, a drift check, --csv.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -24,7 +24,7 @@ int RunBench(const BenchOptions& o) {
     const bool wallClock = IsSoftwareRenderer();
     const std::string gpu = GlRendererName();
     std::printf("# sdfvj bench on %s\n# timing: %s, median of %d frames after %d warm-up; every program warmed %.1f s "
-                "after its compile; sizes and paths of a scene and test interleaved frame by frame\n",
+                "after the compiles; every scene, test, size and path interleaved frame by frame\n",
                 gl.Description().c_str(), wallClock ? "glFinish + wall clock (software renderer)" : "GL_TIME_ELAPSED",
                 o.frames, o.warmup, 1.0);
 
@@ -56,90 +56,88 @@ int RunBench(const BenchOptions& o) {
     std::fflush(stdout);
 
     BenchCsv csv;
-    // One target per size, so the sizes of a (scene, test) interleave without reallocating.
+    // One target per size, so all sizes interleave without reallocating.
     std::vector<std::unique_ptr<FrameRenderer>> targets;
     for (auto [w, h] : sizes) {
         targets.push_back(std::make_unique<FrameRenderer>());
         if (!targets.back()->Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
     }
-    // The first cell, kept to be timed again at the end (the drift check).
-    struct First { std::unique_ptr<Program> program; SceneInfo scene; FrameInputs in; Drift drift; };
-    std::unique_ptr<First> first;
+    // Every program first: each (scene, test, size, path) is one setting, and each round draws
+    // every setting once, so a clock change lands on all of them alike (scenes and sizes are
+    // compared across rows: the scaling tables of docs/performance.md).
+    struct Cell { size_t scene, test, size; RenderPath path; Program* program; std::vector<double> ms; };
+    std::vector<SceneInfo> infos;
+    std::vector<FrameInputs> inputs;
+    std::vector<std::unique_ptr<Program>> programs;
+    std::vector<Cell> cells;
     for (const std::string& name : scenes) {
         SceneInfo scene;
         if (!FindScene(name, &scene, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
         FrameInputs in;
         for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
         in.time = 1.0;
-        for (const LightingTest& t : tests) {
-            std::map<RenderPath, std::unique_ptr<Program>> programs;
+        for (size_t t = 0; t < tests.size(); ++t)
             for (RenderPath p : paths) {
                 ShaderSource src;
-                EffectSet e = t.effects;
-                VariantKey key{scene.path, e, p};
                 auto prog = std::make_unique<Program>();
-                if (!AssembleProgram(scene, key, &src, &error) || !prog->Build(src, p, &error)) {
+                if (!AssembleProgram(scene, VariantKey{scene.path, tests[t].effects, p}, &src, &error) ||
+                    !prog->Build(src, p, &error)) {
                     std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str());
                     return 1;
                 }
-                programs[p] = std::move(prog);
+                for (size_t s = 0; s < sizes.size(); ++s) cells.push_back({infos.size(), t, s, p, prog.get(), {}});
+                programs.push_back(std::move(prog));
             }
-            // every (size, path) of this scene and test is one setting; each round draws each once
-            struct Cell { size_t size; RenderPath path; std::vector<double> ms; };
-            std::vector<Cell> cells;
-            for (size_t s = 0; s < sizes.size(); ++s)
-                for (RenderPath p : paths) cells.push_back({s, p, {}});
-            auto draw = [&](Cell& c, int frame) {
-                in.frame = frame;
-                targets[c.size]->Draw(*programs[c.path], scene, in, true);
-                return targets[c.size]->LastGpuMs();
-            };
-            WarmGpu([&] { for (Cell& c : cells) draw(c, 0); });
-            if (!first) {
-                first = std::make_unique<First>();
-                first->scene = scene;
-                first->in = in;
-                first->drift.label = scene.name + " " + t.name + " " + SizeName(sizes[0].first, sizes[0].second) + " " +
-                                     RenderPathName(cells[0].path);
-                first->drift.startMs = TimeMedian([&] { return draw(cells[0], 0); }, o.frames);
-            }
-            for (int i = 0; i < o.warmup + o.frames; ++i)
-                for (Cell& c : cells) {
-                    double ms = draw(c, i);
-                    if (i >= o.warmup) c.ms.push_back(ms);
-                }
-            if (!first->program) first->program = std::move(programs[cells[0].path]);
+        infos.push_back(scene);
+        inputs.push_back(in);
+    }
+    auto draw = [&](Cell& c, int frame) {
+        inputs[c.scene].frame = frame;
+        targets[c.size]->Draw(*c.program, infos[c.scene], inputs[c.scene], true);
+        return targets[c.size]->LastGpuMs();
+    };
+    std::fprintf(stderr, "sdfvj bench: %zu programs compiled, %zu settings; warming up\n", programs.size(), cells.size());
+    WarmGpu([&] { for (Cell& c : cells) draw(c, 0); });
+    Drift drift;
+    if (!cells.empty()) {
+        const Cell& c = cells[0];
+        drift.label = infos[c.scene].name + " " + tests[c.test].name + " " + SizeName(sizes[c.size].first, sizes[c.size].second) +
+                      " " + RenderPathName(c.path);
+        drift.startMs = TimeMedian([&] { return draw(cells[0], 0); }, o.frames);
+    }
+    for (int i = 0; i < o.warmup + o.frames; ++i)
+        for (Cell& c : cells) {
+            double ms = draw(c, i);
+            if (i >= o.warmup) c.ms.push_back(ms);
+        }
+    if (!cells.empty()) drift.endMs = TimeMedian([&] { return draw(cells[0], 0); }, o.frames);
+
+    for (size_t sc = 0; sc < infos.size(); ++sc)
+        for (size_t t = 0; t < tests.size(); ++t)
             for (size_t s = 0; s < sizes.size(); ++s) {
                 auto [w, h] = sizes[s];
                 char row[256];
-                std::snprintf(row, sizeof row, "| %s | %s | %dx%d |", scene.name.c_str(), t.name, w, h);
+                std::snprintf(row, sizeof row, "| %s | %s | %dx%d |", infos[sc].name.c_str(), tests[t].name, w, h);
                 std::string line = row;
                 std::vector<double> medians;
-                for (Cell& c : cells) {
-                    if (c.size != s) continue;
-                    medians.push_back(MedianMs(c.ms));
-                    csv.Add(scene.name, t.name, SizeName(w, h), RenderPathName(c.path), medians.back(), gpu);
-                    std::snprintf(row, sizeof row, " %.3f |", medians.back());
-                    line += row;
-                }
+                for (RenderPath p : paths)
+                    for (Cell& c : cells) {
+                        if (c.scene != sc || c.test != t || c.size != s || c.path != p) continue;
+                        medians.push_back(MedianMs(c.ms));
+                        csv.Add(infos[sc].name, tests[t].name, SizeName(w, h), RenderPathName(p), medians.back(), gpu);
+                        std::snprintf(row, sizeof row, " %.3f |", medians.back());
+                        line += row;
+                    }
                 if (medians.size() == 2) {
                     std::snprintf(row, sizeof row, " %.2f |", medians[1] > 0 ? medians[0] / medians[1] : 0.0);
                     line += row;
                 }
                 std::printf("%s\n", line.c_str());
-                std::fflush(stdout);
                 table += line + "\n";
             }
-        }
-    }
-    if (first) {
-        FrameRenderer& fr = *targets[0];
-        first->drift.endMs = TimeMedian([&] {
-            fr.Draw(*first->program, first->scene, first->in, true);
-            return fr.LastGpuMs();
-        }, o.frames);
-        std::printf("%s\n", first->drift.Line().c_str());
-        table += "\n" + first->drift.Line() + "\n";
+    if (!cells.empty()) {
+        std::printf("%s\n", drift.Line().c_str());
+        table += "\n" + drift.Line() + "\n";
     }
     if (!o.markdown.empty()) {
         std::ofstream md(o.markdown);
