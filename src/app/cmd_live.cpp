@@ -65,6 +65,13 @@ bool LiveSession::Start(std::string* error) {
     live_.Request(state_.wanted);
     live_.Wait();
     for (const auto& line : input_.StatusLines()) std::fprintf(stderr, "%s\n", line.c_str());
+    if (!o_.audio.empty()) {   // no server: one line, and the show goes on without audio
+        AudioInputDesc audio;
+        if (o_.audio != "in") audio.connect = o_.audio;
+        std::string status;
+        audio_ = AudioInput::Open(audio, &status);
+        if (!status.empty()) std::fprintf(stderr, "%s\n", status.c_str());
+    }
     if (!o_.record.empty() && !recorder_.Open(o_.record, error))
         std::fprintf(stderr, "sdfvj live: not recording: %s\n", error->c_str());
     if (!o_.replay.empty()) {
@@ -112,6 +119,7 @@ bool LiveSession::Frame() {
 std::vector<ControlEvent> LiveSession::PollInput(double now) {
     if (replay_ && sync_.mode != LiveSync::Mode::Mtc)   // else the take plays on the show clock (SyncShowClock)
         for (ControlEvent& e : replay_->Until(now)) queue_.Push(std::move(e));
+    if (audio_) queue_.Push(AudioFeatureEvent(audio_->Poll(now), now));   // mapping and recorder, like a knob
     std::vector<ControlEvent> events = queue_.DrainUntil(now);
     ObserveEvents(ui_, events);   // the overlay's monitor, and learn when it is armed
     if (recorder_.IsOpen())

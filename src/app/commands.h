@@ -92,6 +92,7 @@ struct LiveOptions {
     std::string size = "1280x720";
     bool fullscreen = false;
     std::string midi;                   // port substring or index
+    std::string audio;                  // JACK audio input: "" off, "in" an unconnected port, else the port to connect from
     int oscPort = 9000;
     std::string oscFeedback;
     std::string mapping;

@@ -22,6 +22,7 @@
 #include "render/compile_worker.h"
 #include "render/field_morph.h"
 #include "isf/isf.h"
+#include "audio/audio.h"
 #include "render/live_program.h"
 #include "shader/watch.h"
 #include "take/take.h"
@@ -172,6 +173,8 @@ private:
         bool waiting = false;   // the morph program still compiles: the old scene holds, t stays 0
     } fade_;
     FieldMorph fieldMorph_;
+    // Audio through JACK (--audio): its features enter the queue each frame like a knob.
+    std::unique_ptr<AudioInput> audio_;
     // The ISF post chain (live_post.cpp) and its inputs, which join the scene's parameters.
     std::unique_ptr<IsfChain> post_;
     std::string postShown_;

@@ -114,6 +114,7 @@ std::string ControlLabel(const MappingEntry& e) {
         case SourceKind::Program: return "program " + (e.number < 0 ? std::string("any") : std::to_string(e.number)) + ch;
         case SourceKind::Nrpn: return "NRPN " + std::to_string(e.number) + ch;
         case SourceKind::Osc: return "OSC " + e.oscAddress;
+        case SourceKind::Audio: return std::string("audio ") + AudioFeatureName(e.audio);
     }
     return "?";
 }

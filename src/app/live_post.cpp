@@ -74,6 +74,10 @@ bool LiveSession::DrawPost(unsigned texture, int w, int h, double now) {
     in.date = {(float)(local.tm_year + 1900), (float)(local.tm_mon + 1), (float)local.tm_mday,
                (float)(local.tm_hour * 3600 + local.tm_min * 60 + local.tm_sec)};
     in.params = in_.params;
+    if (audio_) {   // ISF audio / audioFFT inputs
+        in.audioWaveform = audio_->Textures().waveform;
+        in.audioSpectrum = audio_->Textures().spectrum;
+    }
     const unsigned out = post_->Render(texture, w, h, in);
     crossfade_.Draw(out, out, 0.0f, 0, fbw_, fbh_);   // the chain's output, scaled to the window
     return true;

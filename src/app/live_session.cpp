@@ -199,7 +199,8 @@ void ApplyActions(LiveState& state, double now) {
     const MappingActions& a = state.actions;
     if (a.tapTempo) {
         state.automation.tap.Tap(now);
-        state.automation.tempo.TapOnBeat(now, state.automation.tap.bpm);
+        // A detected beat (an audio mapping on tap_tempo) brings its own tempo.
+        state.automation.tempo.TapOnBeat(now, a.detectedBpm > 0 ? a.detectedBpm : state.automation.tap.bpm);
     }
     // Preset pads and /sdfvj/preset: values glide there through smoothing; a new scene or effect
     // set compiles while the current one keeps rendering.

@@ -143,6 +143,10 @@ int main(int argc, char** argv) {
     cmdLive->add_option("--mapping", live.mapping, "controller mapping TOML (default: the preset's, else generic_8knob)");
     cmdLive->add_option("--record", live.record, "record incoming MIDI and OSC to this .mid");
     cmdLive->add_option("--replay", live.replay, "play a take into the show in real time (rehearsal)");
+    cmdLive->add_option("--audio", live.audio,
+                        "audio input through JACK: a port to connect from (system:capture_1), or 'in' for an "
+                        "unconnected port sdfvj-audio:in; its level, bands, onsets and beat drive mapping entries "
+                        "(audio = \"bass\"), ISF audio inputs and the recorder (docs/audio.md)");
     cmdLive->add_option("--post", live.show.post,
                         "ISF post effects over the frame (as for render; else the preset's \"post\"); their inputs "
                         "are parameters for OSC, mappings and the overlay; saved .fs files reload");
