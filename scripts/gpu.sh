@@ -6,8 +6,8 @@
 #   scripts/gpu.sh remote ARGS..  there (the device tool runs it in the repo root, carrying .gl and
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
-#   scripts/gpu.sh measure        there: every figure docs/ quotes, in one device call, into $OUT
-#                                 (4K targets, accuracy sweep, reload latency, effects, full table)
+#   scripts/gpu.sh measure [reload|frames]  there: every figure docs/ quotes into $OUT; `reload`
+#                                 (issue 12) and `frames` (4K, accuracy, effects, scaling) each fit a call
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -32,42 +32,48 @@ case "${1:-}" in
     du -sh .gl .devbuild
     ;;
   measure)
+    # `measure reload` (issue 12) and `measure frames` (issue 13) each fit one device call;
+    # `measure` alone runs both.
     out="${OUT:?set OUT to the folder for the results}"
+    part="${2:-all}"
     run() { bash "$0" remote "$@"; }
-    run bench --scenes midi primitives character mandelbulb --sizes 3840x2160 --tests full --paths compute \
-      --frames 20 --warmup 5 --markdown "$out/bench_4k.md" --csv "$out/bench_4k.csv" > "$out/bench_4k.txt" 2>&1 || true
-    run bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 15 --warmup 5 \
-      --out "$out/accuracy" --markdown "$out/accuracy.md" --csv "$out/accuracy_bench.csv" > "$out/accuracy.txt" 2>&1 || true
+    if [ "$part" = reload ] || [ "$part" = all ]; then
     for s in midi character; do
-      run bench reload --scene $s --size 1920x1080 --path compute > "$out/reload_$s.txt" 2>&1 || true
+      timeout 100 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --rounds 3 > "$out/reload_$s.txt" 2>&1 || true
     done
     # Reload (issue 12): the rows above have the drivers' disk caches off and a new program every
     # save, tiered on NVIDIA; below: without the quick tier, the warm-cache row, and a second
     # launch served by the program cache (first launch compiles into an empty cache folder).
     for s in midi character; do
-      timeout 200 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes driver --rounds 3 \
+      timeout 80 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes driver --rounds 3 \
         --tiered off > "$out/reload_${s}_untiered.txt" 2>&1 || true
-      timeout 200 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes driver --rounds 3 \
+      timeout 40 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes driver --rounds 3 \
         --warm-cache > "$out/reload_${s}_warm.txt" 2>&1 || true
       rm -rf /tmp/sdfvj-launch-cache
       for launch in first second; do
-        XDG_CACHE_HOME=/tmp/sdfvj-launch-cache timeout 120 bash "$0" remote bench reload --scene $s --size 1920x1080 \
+        XDG_CACHE_HOME=/tmp/sdfvj-launch-cache timeout 60 bash "$0" remote bench reload --scene $s --size 1920x1080 \
           --path compute --first-frame > "$out/launch_${s}_$launch.txt" 2>&1 || true
       done
     done
-    run bench effects --scene midi --size 1920x1080 --path compute --csv "$out/effects_midi.csv" > "$out/effects_midi.txt" 2>&1 || true
-    timeout 240 bash "$0" remote bench --frames 10 --warmup 3 --markdown "$out/bench.md" --csv "$out/bench.csv" > "$out/bench.txt" 2>&1 || true
+    fi
+    if [ "$part" = frames ] || [ "$part" = all ]; then
+    timeout 100 bash "$0" remote bench --scenes midi primitives character mandelbulb field50 field150 --sizes 3840x2160 --tests full --paths compute \
+      --frames 20 --warmup 5 --markdown "$out/bench_4k.md" --csv "$out/bench_4k.csv" > "$out/bench_4k.txt" 2>&1 || true
+    timeout 150 bash "$0" remote bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 15 --warmup 5 \
+      --out "$out/accuracy" --markdown "$out/accuracy.md" --csv "$out/accuracy_bench.csv" > "$out/accuracy.txt" 2>&1 || true
+    timeout 60 bash "$0" remote bench effects --scene midi --size 1920x1080 --path compute --csv "$out/effects_midi.csv" > "$out/effects_midi.txt" 2>&1 || true
     # Scaling (issue 13), every cell interleaved in one run: cost against resolution for every
     # scene, against primitive count (midi 5, character 15, field50, field150), and the effects
     # table of the 150-shape field; CSV for docs/performance/.
-    timeout 240 bash "$0" remote bench --sizes 640x480 1280x720 1920x1080 3840x2160 7680x4320 --tests full --paths compute \
+    timeout 150 bash "$0" remote bench --sizes 640x480 1280x720 1920x1080 3840x2160 7680x4320 --tests full --paths compute \
       --frames 10 --warmup 3 --markdown "$out/scaling_resolution.md" --csv "$out/scaling_resolution.csv" \
       > "$out/scaling_resolution.txt" 2>&1 || true
-    timeout 200 bash "$0" remote bench --scenes midi character field50 field150 --sizes 640x360 1920x1080 3840x2160 \
+    timeout 100 bash "$0" remote bench --scenes midi character field50 field150 --sizes 640x360 1920x1080 3840x2160 \
       --tests full none --paths compute --frames 15 --warmup 3 --markdown "$out/scaling_primitives.md" \
       --csv "$out/scaling_primitives.csv" > "$out/scaling_primitives.txt" 2>&1 || true
-    run bench effects --scene field150 --size 1920x1080 --path compute --csv "$out/effects_field150.csv" \
+    timeout 60 bash "$0" remote bench effects --scene field150 --size 1920x1080 --path compute --csv "$out/effects_field150.csv" \
       > "$out/effects_field150.txt" 2>&1 || true
+    fi
     ;;
   remote)
     shift
