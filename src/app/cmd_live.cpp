@@ -48,7 +48,7 @@ bool LiveSession::Start(std::string* error) {
     if (o_.frameBudgetMs > 0 && !StartLiveFrameBudget(&budget_, o_.frameBudgetMs, o_.budgetFloor, state_.show.scene.name,
                                                       &in_.quality, &renderScale_, &budgetError))
         state_.report.Say("sdfvj live: no frame budget: " + budgetError);
-    if (o_.show.path == "auto") {
+    if (o_.show.path == "auto" && !state_.show.isfScene) {
         std::string log;
         state_.show.path = ProbeRenderPath(state_.show.scene, &log);
         std::fprintf(stderr, "%s\n", log.c_str());
@@ -62,8 +62,10 @@ bool LiveSession::Start(std::string* error) {
         Watch(DataRoot() + "/" + dir);
     // The first program: a shader that does not compile keeps the window open with the error on
     // screen, and the next save that fixes it starts the show.
-    live_.Request(state_.wanted);
-    live_.Wait();
+    if (!state_.show.isfScene) {   // an ISF generator is the post chain's first stage instead
+        live_.Request(state_.wanted);
+        live_.Wait();
+    }
     for (const auto& line : input_.StatusLines()) std::fprintf(stderr, "%s\n", line.c_str());
     if (!o_.audio.empty()) {   // no server: one line, and the show goes on without audio
         AudioInputDesc audio;
@@ -80,6 +82,7 @@ bool LiveSession::Start(std::string* error) {
         else replay_ = std::make_unique<ReplayCursor>(rehearsal_);
     }
     if (!ParseSyncMode(o_.sync, &sync_.mode, error)) return false;
+    if (!OpenLiveForward(o_.forward, &forward_, error)) return false;
     if (sync_.mode != LiveSync::Mode::Wall) state_.report.Say("sdfvj live: " + LiveSyncStatus(sync_, 0.0));
     error->clear();
     last_ = Now();
@@ -99,9 +102,14 @@ bool LiveSession::Frame() {
     Guard("input", [&] {
         std::vector<ControlEvent> events = PollInput(wall);
         now = SyncShowClock(&events, wall);
+        DropPresetStatesOnStage(&events, state_.currentPreset);   // a leader's state for the preset on stage
+        ForwardBeforeControl(forward_, state_);
         ApplyControl(state_, events, now);
     });
-    Guard("actions", [&] { ApplyActions(state_, now); });
+    Guard("actions", [&] {
+        ApplyActions(state_, now);
+        ForwardAfterActions(forward_, state_, now);   // --forward: to the follower nodes
+    });
     Guard("reload", [&] { Reload(); });
     Guard("program", [&] { UpdateProgram(); });
     Guard("automation", [&] { RunAutomation(state_, now, frame_); });
@@ -151,7 +159,7 @@ void LiveSession::Reload() {
     state_.foldersToWatch.clear();
     const std::vector<std::string> changed = watcher_.Poll();
     ApplyFileChanges(state_, changed, Now());
-    if (!(state_.wanted == live_.Key())) {
+    if (!(state_.wanted == live_.Key()) && !state_.show.isfScene) {
         PrepareFieldMorph();
         live_.Request(state_.wanted);
     }
@@ -246,6 +254,12 @@ void LiveSession::DrawScene(double now) {
     glClear(GL_COLOR_BUFFER_BIT);
     // The scene renders at renderScale_ of the window and is upscaled (linear) when it is smaller.
     const int rw = std::max(1, (int)std::lround(fbw_ * renderScale_)), rh = std::max(1, (int)std::lround(fbh_ * renderScale_));
+    if (state_.show.isfScene && fbw_ > 0 && fbh_ > 0) {   // an ISF generator: the chain draws it all
+        in_.time = now;
+        in_.frame = frame_++;
+        DrawPost(0, rw, rh, now);
+        return;
+    }
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;
     in_.time = now;
     in_.frame = frame_++;

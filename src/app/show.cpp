@@ -52,7 +52,20 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
         *error = "no scene given, expected --scene NAME or --preset FILE (see `sdfvj list`)";
         return false;
     }
-    if (!FindScene(sceneName, &s.scene, error)) return false;
+    if (IsIsfPath(sceneName)) {
+        // An ISF generator (or a Shadertoy mainImage): no raymarched program; it is the post
+        // chain's first stage, and its inputs are the show's parameters.
+        s.isfScene = true;
+        s.scene.name = fs::path(sceneName).stem().string();
+        s.scene.path = ResolveIsfPath(sceneName);
+        s.scene.description = "ISF generator";
+        if (!fs::is_regular_file(s.scene.path)) {
+            *error = "cannot read ISF scene '" + sceneName + "', expected a .fs file";
+            return false;
+        }
+    } else if (!FindScene(sceneName, &s.scene, error)) {
+        return false;
+    }
     s.effects = s.scene.effects;
     if (!s.preset.effects.empty() && !ParseEffectList(s.preset.effects, &s.effects, error)) {
         *error = s.preset.path + ": " + *error;
@@ -68,6 +81,7 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
 
     // The post chain's inputs are parameters like the scene's (parsed only: no GL here).
     s.post = !opts.post.empty() ? opts.post : s.preset.post;
+    if (s.isfScene) s.post = s.scene.path + (s.post.empty() ? "" : "," + s.post);
     if (!s.post.empty() && !IsfListParams(SplitIsfList(s.post), &s.postDecls, error)) {
         if (opts.post.empty()) *error = s.preset.path + ": post: " + *error;
         return false;

@@ -30,6 +30,7 @@ struct Show {
     std::vector<std::pair<std::string, float>> params;   // starting values, clamped (post inputs too)
     std::string post;                   // the ISF post chain: --post, else the preset's "post"
     std::vector<ParamDecl> postDecls;   // its inputs: presets, --param, OSC and mappings set them by name
+    bool isfScene = false;              // the scene is an ISF or Shadertoy generator: the first stage of `post`
     Quality quality;
     std::unique_ptr<Program> program;
 };

@@ -37,6 +37,7 @@ struct LiveRun {
         std::vector<std::string> argv = {SDFVJ_BIN, "live", "--scene", "midi", "--size", std::to_string(kW) + "x" + std::to_string(kH),
                                          "--seconds", "3", "--path", "fragment", "--effects", "none", "--osc-port", std::to_string(oscPort),
                                          "--midi", "no-such-controller", "--screenshot", shot, "--log-params", params};
+        if (std::find(extra.begin(), extra.end(), "--scene") != extra.end()) argv.erase(argv.begin() + 2, argv.begin() + 4);
         if (!overlay) argv.push_back("--hide-overlay");
         argv.insert(argv.end(), extra.begin(), extra.end());
         pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}});
@@ -259,4 +260,33 @@ TEST_CASE("live post: a preset's post chain loads with it, and an unknown effect
     REQUIRE(!frames.empty());
     CHECK(frames.front().second.at("amount") == Approx(10.0f));   // the preset set the post input
     CHECK(frames.back().second.at("amount") == Approx(10.0f));
+}
+
+TEST_CASE("live isf scene: --scene x.fs runs an ISF generator in the window, its inputs answer OSC") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "isf-scene");
+    const std::string fs = dir + "/grey.fs";
+    std::ofstream(fs) << R"(/*{
+    "DESCRIPTION": "a flat grey of the input's level, for the live test",
+    "ISFVSN": "2",
+    "INPUTS": [{"NAME": "level", "TYPE": "float", "DEFAULT": 0.25, "MIN": 0.0, "MAX": 1.0}]
+}*/
+void main() { gl_FragColor = vec4(vec3(level), 1.0); }
+)";
+    LiveRun run("isf-scene-run", {"--scene", fs}, false);
+    INFO(ReadText(run.log));
+    REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
+    REQUIRE(run.WaitForLog("post: " + fs, 20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    run.Osc("/sdfvj/param/level", "f", "0.75");
+    REQUIRE(run.Wait() == 0);
+    const std::vector<Frame> frames = ReadParamLog(run.params);
+    REQUIRE(frames.size() >= 3);
+    CHECK(frames.front().second.at("level") == Approx(0.25f));
+    CHECK(frames.back().second.at("level") == Approx(0.75f));
+    // The last frame is the generator's flat grey at 0.75 (sRGB-free: 191 of 255, within 2).
+    Image shot;
+    REQUIRE(LoadPng(run.shot, &shot));
+    REQUIRE(shot.width == kW);
+    CHECK(MeanLuma(shot, 0, 0, 1, 1) == Approx(191.0).margin(2.0));
+    CHECK(ReadText(run.log).find("error") == std::string::npos);
 }
