@@ -41,6 +41,12 @@ case "${1:-}" in
     for s in midi character; do
       timeout 100 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --rounds 3 > "$out/reload_$s.txt" 2>&1 || true
     done
+    # The compile process (issue 12: `sdfvj compile-server` compiles, the render thread loads its
+    # binary) against the driver's parallel compile, in one run each.
+    timeout 60 bash "$0" remote bench reload --scene midi --size 1920x1080 --path compute --modes process,driver \
+      --rounds 3 > "$out/reload_midi_process.txt" 2>&1 || true
+    timeout 90 bash "$0" remote bench reload --scene character --size 1920x1080 --path compute --modes process,driver \
+      --rounds 3 > "$out/reload_character_process.txt" 2>&1 || true
     # Reload (issue 12): the rows above have the drivers' disk caches off and a new program every
     # save, tiered on NVIDIA; below: without the quick tier, the warm-cache row, and a second
     # launch served by the program cache (first launch compiles into an empty cache folder).

@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "app/commands.h"
+#include "render/compile_process.h"
 #include "render/compile_worker.h"
 #include "render/live_program.h"
 #include "render/program_cache.h"
@@ -176,8 +177,18 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     // its worker context for the whole session, so it never meets this.
     std::vector<std::unique_ptr<HeadlessContext>> workerContexts;
     while (std::getline(modeList, modeName, ',')) {
-        int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : -1;
-        if (mode < 0) return Fail("--modes: '" + modeName + "', expected driver, worker or binary");
+        int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3 : -1;
+        if (mode < 0) return Fail("--modes: '" + modeName + "', expected driver, worker, binary or process");
+        // process: `sdfvj compile-server` compiles, the render thread loads its binary. A driver
+        // without binaries cannot serve it: measured as what PendingProgram falls back to.
+        std::unique_ptr<CompileProcess> process;
+        if (mode == 3) {
+            process = std::make_unique<CompileProcess>();
+            if (!process->Start(&error)) {
+                std::printf("\ncompile process: %s: measured in-process instead\n", error.c_str());
+                process.reset();
+            }
+        }
         if (mode == 2 && binaryFormats == 0) {
             // A mode the driver cannot serve falls back instead of failing the bench.
             std::printf("\nbinary hand-over: the driver gives no program binaries (GL_NUM_PROGRAM_BINARY_FORMATS 0; "
@@ -190,7 +201,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         workerContexts.push_back(std::make_unique<HeadlessContext>());
         HeadlessContext& shared = *workerContexts.back();
         std::unique_ptr<CompileWorker> worker;
-        if (mode >= 1) {
+        if (mode == 1 || mode == 2) {
             if (!shared.CreateShared(gl, &error, mode == 1)) return Fail(error);
             worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2,
                                                      [&shared] { shared.ReleaseCurrent(); });
@@ -207,6 +218,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         watcher.Poll();
         LiveProgram live;
         if (o.tiered != "auto") live.SetTiered(o.tiered == "on");
+        live.SetCompileProcess(process.get());   // only the process mode uses one
         live.Request(VariantKey{sceneFile.string(), scene.effects, path});
         live.Wait();
         if (!live.Current()) return Fail(live.Error(), 1);
@@ -268,7 +280,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (o.driverCache == "warm")
             for (int round = 1; round <= o.rounds; ++round) runRound(round);   // untimed: fills the caches
 
-        const char* how = mode == 2 ? "on a worker thread with its own context, handing over a program binary"
+        const char* how = process ? "in a compile process (sdfvj compile-server), handing over a program binary"
+                          : mode == 2 ? "on a worker thread with its own context, handing over a program binary"
                           : mode == 1 ? "on a worker thread with a shared context"
                           : PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
                                                                        : "on the render thread";

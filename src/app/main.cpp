@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "render/compile_process.h"
 #ifdef SDFVJ_HAS_LIVE
 #include "control/control.h"
 #endif
@@ -37,6 +38,9 @@ void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Hidden: the compile process the show spawns of itself (render/compile_process.h); its
+    // stdin and stdout are the job socket, so nothing else may print to stdout here.
+    if (argc == 2 && std::string(argv[1]) == "compile-server") return RunCompileServer(0, 1);
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
     CLI::App app{
         "sdfvj — raymarch signed-distance-field scenes live from MIDI/OSC, or offline from a recorded take.\n\n"
@@ -116,7 +120,7 @@ int main(int argc, char** argv) {
                           "(on, empty folders of this run) or warm (as set, warmed by an untimed pass)")
         ->capture_default_str();
     cmdReload->add_flag_callback("--warm-cache", [&] { reloadBench.driverCache = "warm"; }, "same as --driver-cache warm");
-    cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary (comma-separated)")
+    cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary, process (comma-separated)")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();
     cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();

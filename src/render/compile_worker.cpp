@@ -12,10 +12,7 @@
 
 namespace sdfvj {
 
-namespace {
-
-// Compiles and links on the calling thread's context; 0 and the raw log on failure.
-unsigned CompileLink(const std::string& text, RenderPath path, std::string* rawLog, bool retrievable) {
+unsigned CompileLinkHere(const std::string& text, RenderPath path, std::string* rawLog, bool retrievable) {
     GLuint prog = glCreateProgram();
     if (retrievable) glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     std::vector<GLuint> stages;
@@ -61,9 +58,7 @@ unsigned CompileLink(const std::string& text, RenderPath path, std::string* rawL
     return prog;
 }
 
-// Runs the program once into a 1x1 target so the driver finishes its lazy back-end compile
-// here rather than on the render thread's first draw. Uniforms are zero: the shader exits early.
-void Prime(unsigned prog, RenderPath path, bool floatImage) {
+void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
     GLuint tex = 0, fbo = 0, vao = 0;
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
@@ -87,8 +82,6 @@ void Prime(unsigned prog, RenderPath path, bool floatImage) {
     if (fbo) glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &tex);
 }
-
-}  // namespace
 
 CompileWorker::CompileWorker(std::function<bool()> bindContext, bool handOverBinary, std::function<void()> releaseContext)
     : handOverBinary_(handOverBinary) {
@@ -192,11 +185,11 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
         Done done;
         const auto t0 = std::chrono::steady_clock::now();
         auto elapsedMs = [t0] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); };
-        unsigned prog = CompileLink(job.text, job.path, &log, handOverBinary_ || job.store);
+        unsigned prog = CompileLinkHere(job.text, job.path, &log, handOverBinary_ || job.store);
         if (prog && handOverBinary_) {
             // Primed here too: Mesa keys its disk cache on the shader, not the context, so the
             // render context's first draw of the handed-over binary finds this JIT there.
-            Prime(prog, job.path, job.text.find("rgba32f") != std::string::npos);
+            PrimeProgram(prog, job.path, job.text.find("rgba32f") != std::string::npos);
             GLint length = 0;
             glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &length);
             done.binary.resize(length > 0 ? (size_t)length : 0);
@@ -213,7 +206,7 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
             done.buildMs = elapsedMs();
             if (job.store && !done.noBinary) StoreCachedBinary(done.format, done.binary, job.text, job.path);
         } else if (prog) {
-            Prime(prog, job.path, job.text.find("rgba32f") != std::string::npos);
+            PrimeProgram(prog, job.path, job.text.find("rgba32f") != std::string::npos);
             done.buildMs = elapsedMs();   // the cache store below is not part of the compile
             if (job.store) StoreCachedProgram(prog, job.text, job.path);
         }

@@ -24,6 +24,13 @@
 
 namespace sdfvj {
 
+// Compiles and links on the calling thread's context; 0 and the driver's raw log on failure.
+// `retrievable` asks for GL_PROGRAM_BINARY_RETRIEVABLE_HINT (the binary is read back).
+unsigned CompileLinkHere(const std::string& text, RenderPath path, std::string* rawLog, bool retrievable);
+// Runs the program once into a 1x1 target so the driver finishes its lazy back-end compile here
+// rather than on the render thread's first draw. Uniforms are zero: the shader exits early.
+void PrimeProgram(unsigned prog, RenderPath path, bool floatImage);
+
 class CompileWorker {
 public:
     // `bindContext` runs once on the worker thread and must make a shared context current there.

@@ -9,12 +9,22 @@
 #include <cstring>
 #include <filesystem>
 
+#include "render/compile_process.h"
+
 namespace fs = std::filesystem;
 
 namespace sdfvj {
 
 bool LiveProgram::TieredCompileDefault() {
     const char* env = std::getenv("SDFVJ_TIERED");
+    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
+    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
+    const GLubyte* vendor = glGetString(GL_VENDOR);
+    return vendor && std::strstr((const char*)vendor, "NVIDIA") != nullptr;
+}
+
+bool LiveProgram::ProcessCompileDefault() {
+    const char* env = std::getenv("SDFVJ_COMPILE_PROCESS");
     if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
     if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
     const GLubyte* vendor = glGetString(GL_VENDOR);
@@ -68,6 +78,9 @@ void LiveProgram::Rebuild() {
         quick_.Cancel();
         return;   // compiled in an earlier run: Update() puts it on screen
     }
+    CompileProcess* process = processSet_ ? process_ : ProcessCompileDefault() ? SharedCompileProcess() : nullptr;
+    quick_.SetProcess(process);
+    pending_.SetProcess(process);
     // The quick tier is queued first: on a compile worker (one job at a time) it must not wait
     // behind the optimized build.
     if (Tiered()) quick_.Begin(src, key_.path, BuildTier::Quick);

@@ -12,6 +12,8 @@
 // earlier run is on screen at once. Tiered (by default where the driver takes the quick tier's
 // hint, NVIDIA): a quick tier (QuickTierText) is compiled first and goes on screen, the optimized
 // program compiles behind it and replaces it when ready; the image is the same.
+// On NVIDIA builds go to a compile process (compile_process.h) by default: the driver serializes
+// compiles process-wide, so only another process keeps the render thread free.
 // Render thread only (GL).
 #pragma once
 #include <map>
@@ -49,6 +51,11 @@ public:
     // True where the driver honours `#pragma optionNV(inline none)` (GL_VENDOR contains NVIDIA),
     // unless SDFVJ_TIERED=0. Needs a current context.
     static bool TieredCompileDefault();
+    // Builds go to this compile process (nullptr: none, in-process). Default: ProcessCompileDefault().
+    void SetCompileProcess(CompileProcess* process) { process_ = process; processSet_ = true; }
+    // True on NVIDIA (GL_VENDOR), unless SDFVJ_COMPILE_PROCESS=0; SDFVJ_COMPILE_PROCESS=1 turns it on
+    // anywhere. Needs a current context.
+    static bool ProcessCompileDefault();
 
 private:
     // Programs are shared between the cache and the screen: evicting a cache entry (its files
@@ -70,6 +77,8 @@ private:
     std::map<VariantKey, Cached> cache_;
     PendingProgram pending_;               // the optimized program (or one from the disk cache)
     PendingProgram quick_;                 // its quick tier, while tiered
+    CompileProcess* process_ = nullptr;
+    bool processSet_ = false;              // false: ProcessCompileDefault() picks the shared process
     int tiered_ = -1;                      // -1: TieredCompileDefault(), asked when a build starts (GL current)
     uint64_t pendingHash_ = 0;
     std::string error_;

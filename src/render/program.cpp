@@ -1,6 +1,7 @@
 #include <epoxy/gl.h>
 
 #include "render/render.h"
+#include "render/compile_process.h"
 #include "render/compile_worker.h"
 #include "render/program_cache.h"
 
@@ -59,6 +60,13 @@ void PendingProgram::SetWorker(CompileWorker* worker) { g_worker = worker; }
 PendingProgram::~PendingProgram() { Cancel(); }
 
 void PendingProgram::Cancel() {
+    if (procTicket_) {
+        if (!procDone_ && process_) process_->Forget(procTicket_);
+        procTicket_ = 0;
+        procDone_ = false;
+        procDied_ = false;
+        workerBinary_.clear();
+    }
     if (ticket_) {
         if (workerDone_) {
             if (workerProgram_) glDeleteProgram(workerProgram_);
@@ -106,6 +114,13 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path, BuildTier t
     const bool store = tier == BuildTier::Optimized && ProgramCacheEnabled();
     const std::string quickText = tier == BuildTier::Quick ? QuickTierText(src.text) : std::string();
     const std::string& text = tier == BuildTier::Quick ? quickText : source_.text;
+    if (process_ && process_->Usable()) {
+        procTicket_ = process_->Submit(text, path, store);
+        if (procTicket_) {
+            origin_.beginCallMs = NowMs() - beganAt_;
+            return;
+        }
+    }
     if (g_worker) {
         ticket_ = g_worker->Submit(text, path, store);
         origin_.beginCallMs = NowMs() - beganAt_;
@@ -132,6 +147,21 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path, BuildTier t
 }
 
 bool PendingProgram::Ready() const {
+    if (procTicket_) {
+        if (!procDone_ && process_) {
+            CompileProcess::Result r;
+            procDone_ = process_->Poll(procTicket_, &r);
+            if (procDone_) {
+                procDied_ = r.died || (r.linked && r.noBinary);
+                workerLog_ = std::move(r.log);
+                workerBinary_ = std::move(r.binary);
+                workerFormat_ = r.format;
+                workerMs_ = r.buildMs;
+                workerNoBinary_ = !r.linked;   // here: the compile failed, the log says why
+            }
+        }
+        return procDone_;
+    }
     if (ticket_) {
         if (!workerDone_ && g_worker) {
             CompileWorker::Result r;
@@ -154,8 +184,52 @@ bool PendingProgram::Ready() const {
     return done == GL_TRUE;
 }
 
+// The compile process could not serve this program (it died, gave no binary, or the driver
+// refused the binary): compiled here instead, with nothing said to the performer.
+bool PendingProgram::FinishInProcess(Program* into, std::string* log) {
+    CompileProcess* process = process_;
+    CompileWorker* worker = g_worker;
+    process_ = nullptr;
+    g_worker = nullptr;
+    const bool quick = origin_.quickTier;
+    Begin(source_, path_, quick ? BuildTier::Quick : BuildTier::Optimized);
+    g_worker = worker;
+    process_ = process;
+    return Finish(into, log);
+}
+
 bool PendingProgram::Finish(Program* into, std::string* log) {
     const double finishAt = NowMs();
+    if (procTicket_) {
+        while (!Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        procTicket_ = 0;
+        procDone_ = false;
+        if (procDied_) {
+            procDied_ = false;
+            return FinishInProcess(into, log);
+        }
+        if (workerNoBinary_) {   // the compile failed in the server
+            workerNoBinary_ = false;
+            *log = MapCompileLog(workerLog_, source_);
+            if (log->empty()) *log = "shader failed to compile with no message from the driver";
+            return false;
+        }
+        GLuint prog = glCreateProgram();
+        glProgramBinary(prog, workerFormat_, workerBinary_.data(), (GLsizei)workerBinary_.size());
+        workerBinary_.clear();
+        GLint linked = 0;
+        glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+        if (!linked) {
+            glDeleteProgram(prog);
+            while (glGetError() != GL_NO_ERROR) {}   // an unknown format is GL_INVALID_ENUM: expected here
+            return FinishInProcess(into, log);
+        }
+        origin_.buildMs = workerMs_;
+        origin_.fromProcess = true;
+        origin_.finishCallMs = NowMs() - finishAt;
+        into->Adopt(prog, path_, source_, origin_);
+        return true;
+    }
     if (ticket_) {
         while (!Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
         ticket_ = 0;

@@ -73,6 +73,7 @@ Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch);
 struct ProgramOrigin {
     bool fromCache = false;   // loaded from the on-disk program cache (program_cache.h): nothing compiled
     bool quickTier = false;   // the quickly built first tier of a tiered compile (an optimized one follows)
+    bool fromProcess = false; // compiled in the compile process, loaded here as its binary
     double buildMs = 0.0;     // wall time of its compile + link (+ the worker's priming draw), on whichever thread built it
     double beginCallMs = 0.0;   // time the render thread spent in PendingProgram::Begin (driver calls that block show here)
     double finishCallMs = 0.0;  // ... and in Finish, once Ready() (status queries, uniform lookup, cache store)
@@ -125,10 +126,14 @@ private:
 // An optimized build that links is stored in the on-disk program cache (program_cache.h);
 // BeginFromCache() starts from there when it can.
 class CompileWorker;
+class CompileProcess;
 class PendingProgram {
 public:
     // With a worker, Begin() queues the compile on the worker's thread and context instead.
     static void SetWorker(CompileWorker* worker);
+    // With a usable compile process (compile_process.h), Begin() sends the compile there (before
+    // any worker); Finish() loads its binary, or compiles here when the process cannot serve.
+    void SetProcess(CompileProcess* process) { process_ = process; }
     PendingProgram() = default;
     ~PendingProgram();
     PendingProgram(const PendingProgram&) = delete;
@@ -139,7 +144,7 @@ public:
     // Takes the program from the on-disk cache when it holds this source for this driver: then
     // true, Ready() at once and the program FromCache(). False (nothing started) otherwise.
     bool BeginFromCache(const ShaderSource& src, RenderPath path);
-    bool Active() const { return id_ != 0 || ticket_ != 0; }
+    bool Active() const { return id_ != 0 || ticket_ != 0 || procTicket_ != 0; }
     bool FromCache() const { return origin_.fromCache; }
     bool Ready() const;
     // On success moves the program into `into`; on failure `into` is untouched and `log` holds
@@ -159,6 +164,11 @@ private:
     mutable unsigned workerFormat_ = 0;
     mutable double workerMs_ = 0.0;
     mutable bool workerNoBinary_ = false;         // binary hand-over refused: Finish() compiles here
+    CompileProcess* process_ = nullptr;
+    uint64_t procTicket_ = 0;                     // job on the compile process
+    mutable bool procDone_ = false;
+    mutable bool procDied_ = false;               // the server died first: Finish() compiles here
+    bool FinishInProcess(Program* into, std::string* log);
     ShaderSource source_;
     RenderPath path_ = RenderPath::Fragment;
     ProgramOrigin origin_;
