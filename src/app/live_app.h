@@ -17,6 +17,7 @@
 #include "app/effect_costs.h"
 #include "app/frame_budget.h"
 #include "app/live_overlay.h"
+#include "app/live_forward.h"
 #include "app/live_session.h"
 #include "app/live_sync.h"
 #include "render/compile_worker.h"
@@ -202,6 +203,7 @@ private:
     void StartFadeIfSceneChanged(double now);
     FrameInputs in_;
     LiveSync sync_;              // --sync: the show clock from a master (live_sync.h)
+    LiveForward forward_;        // --forward: follower nodes (live_forward.h)
     double takeAt_ = 0.0;        // where the rehearsal take's cursor is, on the show clock (--sync mtc)
     double SyncShowClock(std::vector<ControlEvent>* events, double wall);
     TakeRecorder recorder_;

@@ -165,6 +165,9 @@ int main(int argc, char** argv) {
                         "mtc: the show clock (automation, u_time, the take, --log-params) follows MIDI Time Code from any "
                         "input port; a jump seeks, a lost master freewheels then stops. clock: MIDI clock sets tempo and beat")
         ->check(CLI::IsMember({"mtc", "clock", "wall"}));
+    cmdLive->add_option("--forward", live.forward,
+                        "HOST:PORT[,HOST:PORT...]: re-send as OSC every parameter, preset and effect the show applies to "
+                        "follower nodes (other `sdfvj live`), and the whole state once a second (docs/sync.md)");
     cmdLive->add_option("--frame-budget", live.frameBudgetMs, "keep frames under MS: about once a second the best setting of the accuracy sweep's front that fits (docs/performance.md)");
     cmdLive->add_option("--budget-floor", live.budgetFloor, "never below, e.g. scale=0.5,steps=64,shadow_steps=16,ao=2");
     cmdLive->add_option("--render-scale", live.renderScale,
