@@ -121,30 +121,39 @@ uint64_t CompileProcess::Submit(const std::string& text, RenderPath path, bool s
     Pump();
     if (!Usable()) return 0;
     const uint64_t ticket = next_++;
-    Put(&outbox_, ticket);
-    Put(&outbox_, (uint32_t)path);
-    Put(&outbox_, (uint32_t)(store ? 1 : 0));
-    Put(&outbox_, (uint32_t)text.size());
-    outbox_ += text;
-    waiting_.push_back(ticket);
+    std::string job;
+    Put(&job, ticket);
+    Put(&job, (uint32_t)path);
+    Put(&job, (uint32_t)(store ? 1 : 0));
+    Put(&job, (uint32_t)text.size());
+    job += text;
+    queued_.emplace_back(ticket, std::move(job));
     Pump();
     return ticket;
 }
 
 void CompileProcess::MarkDead() {
     dead_ = true;
-    for (uint64_t t : waiting_) {
-        if (forgotten_.erase(t)) continue;
+    std::vector<uint64_t> lost;
+    if (inFlight_ && !forgotten_.erase(inFlight_)) lost.push_back(inFlight_);
+    for (const auto& [t, job] : queued_) lost.push_back(t);
+    for (uint64_t t : lost) {
         Result r;
         r.died = true;
         done_[t] = r;
     }
-    waiting_.clear();
+    inFlight_ = 0;
+    queued_.clear();
     outbox_.clear();
 }
 
 void CompileProcess::Pump() {
     if (fd_ < 0 || dead_) return;
+    if (!inFlight_ && !queued_.empty()) {
+        inFlight_ = queued_.front().first;
+        outbox_ = std::move(queued_.front().second);
+        queued_.pop_front();
+    }
     while (!outbox_.empty()) {
         const ssize_t put = ::send(fd_, outbox_.data(), outbox_.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
         if (put > 0) {
@@ -184,7 +193,7 @@ void CompileProcess::Pump() {
         const size_t logAt = at;
         at += logLength;
         Take(inbox_, &at, &ms);
-        if (!waiting_.empty() && waiting_.front() == ticket) waiting_.pop_front();
+        if (ticket == inFlight_) inFlight_ = 0;
         if (!forgotten_.erase(ticket)) {
             Result r;
             r.linked = status != 1;
@@ -197,7 +206,11 @@ void CompileProcess::Pump() {
         }
         inbox_.erase(0, at);
     }
-    if (dead_) MarkDead();
+    if (dead_) {
+        MarkDead();
+        return;
+    }
+    if (!inFlight_ && !queued_.empty()) Pump();   // the next job, now that the server is free
 }
 
 bool CompileProcess::Poll(uint64_t ticket, Result* result) {
@@ -211,8 +224,12 @@ bool CompileProcess::Poll(uint64_t ticket, Result* result) {
 
 void CompileProcess::Forget(uint64_t ticket) {
     if (done_.erase(ticket)) return;
-    for (uint64_t t : waiting_)
-        if (t == ticket) forgotten_[ticket] = true;
+    for (auto it = queued_.begin(); it != queued_.end(); ++it)
+        if (it->first == ticket) {
+            queued_.erase(it);   // never sent: no compile at all
+            return;
+        }
+    if (ticket == inFlight_) forgotten_[ticket] = true;   // its reply is dropped when it comes
 }
 
 CompileProcess* SharedCompileProcess() {

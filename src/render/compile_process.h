@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -71,7 +72,10 @@ private:
     bool dead_ = false;
     uint64_t next_ = 1;
     std::string outbox_, inbox_;
-    std::deque<uint64_t> waiting_;       // tickets sent, in order
+    // One job at a time goes to the server; the rest wait here, so a job forgotten before it was
+    // sent (the performer saved again) costs no compile. Replies come back in order.
+    std::deque<std::pair<uint64_t, std::string>> queued_;
+    uint64_t inFlight_ = 0;
     std::map<uint64_t, Result> done_;
     std::map<uint64_t, bool> forgotten_;
 };
