@@ -140,14 +140,19 @@ TEST_CASE("live forward: OSC to the leader moves twist on the follower") {
         leader.Osc({"/sdfvj/param/twist", "f", std::to_string(x)});
         const long l = leader.WaitFor({{"twist", twist}}, kDeadline);
         const double leaderS = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+        const long followerFrames = (long)follower.Frames().size();   // when the leader was seen there
         const long f = follower.WaitFor({{"twist", twist}}, kDeadline);
         const double followerS = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
-        std::printf("live forward: twist %g seen by the leader %.2f s, by the follower %.2f s after the OSC\n", twist,
-                    leaderS, followerS);
+        std::printf("live forward: twist %g seen by the leader %.2f s, by the follower %.2f s after the OSC "
+                    "(follower frame %ld, %ld frames after the leader was seen there)\n",
+                    twist, leaderS, followerS, f, f - followerFrames);
         INFO("twist " << twist << ": leader frame " << l << ", follower frame " << f << "\nleader "
                       << leader.Describe() << "\nfollower " << follower.Describe());
         CHECK(l >= 0);
         CHECK(f >= 0);
+        // Forwarded at once, not by the once-a-second state: within a few of the follower's frames
+        // of the moment the leader was seen with the value (the poll itself takes 20 ms).
+        CHECK(f - followerFrames <= 15);
     }
     // The follower heard the leader's parameters, not just its defaults: its other values agree too.
     const std::map<std::string, float> both = {{"twist", 2.4f}, {"scale", 1.0f}, {"spin", 0.3f}};
