@@ -18,32 +18,7 @@
 // by a wave rolling across the field (u_wave high, u_speed fast) and spinning (u_spin),
 // u_size scales them. Each map() evaluates 4 shapes whatever the count: see lib/field.glsl
 // for why that is exact within the blend radius.
-#include "lib/common.glsl"
-#include "lib/field.glsl"
-
 const float FIELD_NX = 15.0f;
 const float FIELD_NZ = 10.0f;
 
-// Bounding volume for the renderer (render.glsl BOUNDS): the shapes and the floor apart.
-#define SCENE_BOUND 1
-#define SCENE_GROUND 1
-
-// The floor y = 0, a dark grid under the shapes.
-vec4 mapGround(vec3 p) {
-    float grid = max(smoothstep(0.47f, 0.5f, abs(fract(p.x) - 0.5f)), smoothstep(0.47f, 0.5f, abs(fract(p.z) - 0.5f)));
-    return vec4(mix(vec3(0.16f), vec3(0.10f), grid), p.y);
-}
-
-vec4 map(vec3 p) {
-    vec4 shapes = fieldMap(p, FIELD_NX, FIELD_NZ, u_size, u_blend, u_wave, u_time * u_speed * 2.0f, u_time * u_spin);
-    return fOpUnionSmoothColor(mapGround(p), shapes, u_floorBlend);
-}
-
-// A sphere around every shape; past it plus the floor blend the smooth union leaves the floor
-// exact (the renderer's contract for SCENE_GROUND). The blend lowers the shapes' field by at
-// most blend / 4, which the sphere's extra covers too.
-vec4 sceneBound() { return fieldBound(FIELD_NX, FIELD_NZ, u_size, u_wave, 0.25f * max(u_blend, 0.0f) + max(u_floorBlend, 0.0f) + 0.02f); }
-
-// Exact shapes, rotations, the two-nearest polynomial blend, the continuous cut-off and the
-// floor's smooth union all keep |grad| <= 1 (lib/field.glsl).
-float sceneLipschitz() { return 1.0f; }
+#include "lib/field_scene.glsl"
