@@ -160,6 +160,17 @@ bool PendingProgram::Ready() const {
                 workerNoBinary_ = !r.linked;   // here: the compile failed, the log says why
             }
         }
+        if (procDone_ && procDied_) {
+            // The server died before answering: this build starts again in this process, the
+            // way it would have without a server (never a frame blocked for the whole compile).
+            // The object is never const (a member of LiveProgram), only this query is.
+            auto* self = const_cast<PendingProgram*>(this);
+            CompileProcess* process = self->process_;
+            self->process_ = nullptr;
+            self->Begin(source_, path_, origin_.quickTier ? BuildTier::Quick : BuildTier::Optimized);
+            self->process_ = process;
+            return Ready();
+        }
         return procDone_;
     }
     if (ticket_) {
@@ -200,8 +211,8 @@ bool PendingProgram::FinishInProcess(Program* into, std::string* log) {
 
 bool PendingProgram::Finish(Program* into, std::string* log) {
     const double finishAt = NowMs();
-    if (procTicket_) {
-        while (!Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    while (procTicket_ && !Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (procTicket_) {   // (a server that died has become an in-process build by now)
         procTicket_ = 0;
         procDone_ = false;
         if (procDied_) {

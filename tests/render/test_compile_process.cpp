@@ -136,6 +136,17 @@ TEST_CASE("compile process: a killed server falls back to an in-process compile 
     CHECK_FALSE(second.Origin().fromProcess);
     CHECK(CompareImages(want, Draw(second, scene), 1).maxAbs <= 1);
 
+    // A server that starts and exits at once (no GL there, say): the build restarts in-process.
+    if (served) {
+        CompileProcess quitter;
+        REQUIRE(quitter.Start(&error, "/bin/true", {}));
+        Program fourth;
+        CHECK(BuildThroughProcess(&quitter, src, RenderPath::Fragment, &fourth, &log));
+        CHECK(log.empty());
+        CHECK_FALSE(fourth.Origin().fromProcess);
+        CHECK(CompareImages(want, Draw(fourth, scene), 1).maxAbs <= 1);
+    }
+
     // A server that never started (no such executable) is the same.
     CompileProcess missing;
     std::string why;
