@@ -43,9 +43,9 @@ case "${1:-}" in
     done
     # The compile process (issue 12: `sdfvj compile-server` compiles, the render thread loads its
     # binary) against the driver's parallel compile, in one run each.
-    timeout 60 bash "$0" remote bench reload --scene midi --size 1920x1080 --path compute --modes process,driver \
+    timeout 45 bash "$0" remote bench reload --scene midi --size 1920x1080 --path compute --modes process,driver \
       --rounds 3 > "$out/reload_midi_process.txt" 2>&1 || true
-    timeout 90 bash "$0" remote bench reload --scene character --size 1920x1080 --path compute --modes process,driver \
+    timeout 75 bash "$0" remote bench reload --scene character --size 1920x1080 --path compute --modes process,driver \
       --rounds 3 > "$out/reload_character_process.txt" 2>&1 || true
     # Reload (issue 12): the rows above have the drivers' disk caches off and a new program every
     # save, tiered on NVIDIA; below: without the quick tier, the warm-cache row, and a second
