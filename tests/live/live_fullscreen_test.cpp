@@ -5,6 +5,7 @@
 
 #include <X11/Xlib.h>
 #include <X11/Xutil.h>
+#include <X11/Xatom.h>
 #include <X11/extensions/XTest.h>
 #include <X11/keysym.h>
 
@@ -14,8 +15,25 @@ using namespace sdfvj::test;
 
 namespace {
 
-// The viewable top-level window named `name`, or 0.
-Window FindWindow(::Display* dpy, const char* name) {
+// The process that owns a window (_NET_WM_PID, which GLFW sets), or 0.
+long PidOf(::Display* dpy, Window w) {
+    const Atom atom = XInternAtom(dpy, "_NET_WM_PID", True);
+    if (atom == 0) return 0;   // "None": no client has set it yet
+    Atom type = 0;
+    int format = 0;
+    unsigned long items = 0, after = 0;
+    unsigned char* data = nullptr;
+    long pid = 0;
+    if (XGetWindowProperty(dpy, w, atom, 0, 1, False, XA_CARDINAL, &type, &format, &items, &after, &data) == Success &&
+        data && items == 1 && format == 32)
+        pid = (long)*reinterpret_cast<unsigned long*>(data);
+    if (data) XFree(data);
+    return pid;
+}
+
+// The viewable top-level window named `name` that process `pid` owns, or 0. ctest runs other
+// live tests beside this one on the same display: their windows are called sdfvj too.
+Window FindWindow(::Display* dpy, const char* name, long pid) {
     Window root = DefaultRootWindow(dpy), parent = 0, *children = nullptr, found = 0;
     unsigned n = 0;
     if (!XQueryTree(dpy, root, &root, &parent, &children, &n)) return 0;
@@ -23,7 +41,8 @@ Window FindWindow(::Display* dpy, const char* name) {
         char* title = nullptr;
         XWindowAttributes a;
         if (XFetchName(dpy, children[i], &title) && title) {
-            if (std::strcmp(title, name) == 0 && XGetWindowAttributes(dpy, children[i], &a) && a.map_state == IsViewable)
+            if (std::strcmp(title, name) == 0 && PidOf(dpy, children[i]) == pid &&
+                XGetWindowAttributes(dpy, children[i], &a) && a.map_state == IsViewable)
                 found = children[i];
             XFree(title);
         }
@@ -71,7 +90,7 @@ TEST_CASE("live_fullscreen: F11 takes the window to the screen's size and back (
 
     Window w = 0;
     INFO(ReadText(log));
-    REQUIRE(PollFor(30.0, [&] { return (w = FindWindow(dpy, "sdfvj")) != 0; }));
+    REQUIRE(PollFor(30.0, [&] { return (w = FindWindow(dpy, "sdfvj", (long)pid)) != 0; }));
     CHECK(SizeOf(dpy, w).w == 320);
     CHECK(SizeOf(dpy, w).h == 180);
     // Keys go to a show that runs: wait for frames drawn after each change (one log line a frame).
