@@ -2,6 +2,8 @@
 // on the JACK API sends into InputSession's ports; the tests assert the parameter values that
 // come out of the mapping. Unique port names per process keep parallel runs apart.
 #include <rtmidi/RtMidi.h>
+
+#include "midi_out_safe.h"
 #include <unistd.h>
 
 #include <cstdio>
@@ -20,8 +22,8 @@ namespace {
 std::string Unique(const char* base) { return std::string(base) + "-" + std::to_string(getpid()); }
 
 // Opens an RtMidiOut connected to the first port whose name contains `needle`.
-std::unique_ptr<RtMidiOut> ConnectTo(const std::string& needle) {
-    auto out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("midi-test"));
+MidiOutPtr ConnectTo(const std::string& needle) {
+    auto out = MakeMidiOut(Unique("midi-test"));
     for (unsigned i = 0; i < out->getPortCount(); ++i)
         if (out->getPortName(i).find(needle) != std::string::npos) {
             out->openPort(i, "out");
@@ -152,7 +154,7 @@ TEST_CASE("midi reconnect: a controller plugged in later and replugged is picked
     CHECK(r.session->OpenMidiPorts().empty());
 
     for (int round = 0; round < 2; ++round) {
-        auto out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("fake-device"));
+        auto out = MakeMidiOut(Unique("fake-device"));
         out->openVirtualPort(dev);                                // "plug in"
         double plugged = Now();
         REQUIRE(WaitFor([&] { return !r.session->OpenMidiPorts().empty(); }, 1.0));
@@ -169,7 +171,8 @@ TEST_CASE("midi reconnect: a controller plugged in later and replugged is picked
 
 TEST_CASE("midi list shows JACK ports, and a missing device is a status line") {
     std::string dev = Unique("Lister");
-    RtMidiOut out(RtMidi::UNIX_JACK, Unique("lister-client"));
+    MidiOutPtr outOwner = MakeMidiOut(Unique("lister-client"));
+    RtMidiOut& out = *outOwner;
     out.openVirtualPort(dev);
     bool found = false;
     REQUIRE(WaitFor([&] {
@@ -191,7 +194,8 @@ TEST_CASE("midi learn: the next control that moves is written to the mapping fil
     std::remove(path.c_str());
     int rc = -1;
     std::thread learner([&] { rc = RunLearn("twist", path, 5.0); });
-    RtMidiOut out(RtMidi::UNIX_JACK, Unique("learn-client"));
+    MidiOutPtr outOwner = MakeMidiOut(Unique("learn-client"));
+    RtMidiOut& out = *outOwner;
     out.openVirtualPort(Unique("learn-src"));
     uint8_t v = 0;
     // A pad-like single value does not count; a knob sending different values does.
@@ -215,7 +219,8 @@ TEST_CASE("midi learn: an NRPN control is learned as nrpn") {
     std::remove(path.c_str());
     int rc = -1;
     std::thread learner([&] { rc = RunLearn("displacement", path, 5.0); });
-    RtMidiOut out(RtMidi::UNIX_JACK, Unique("learn-nrpn-client"));
+    MidiOutPtr outOwner = MakeMidiOut(Unique("learn-nrpn-client"));
+    RtMidiOut& out = *outOwner;
     out.openVirtualPort(Unique("learn-nrpn-src"));
     WaitFor([&] {
         Send(out, {0xB0, 99, 3});
@@ -242,7 +247,7 @@ TEST_CASE("midi replug: a controller port that vanishes and returns is heard aga
     REQUIRE(ParseMapping("[[map]]\ncc = 1\ntarget = \"displacement\"\n", "t.toml", &r.mapping).ok);
     auto status = [&] { return r.session->StatusLines()[0]; };
 
-    auto out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("soak-controller"));
+    auto out = MakeMidiOut(Unique("soak-controller"));
     out->openVirtualPort(dev);
     // Sends value `v` until it arrives (JACK connects asynchronously after the next port poll).
     auto heard = [&](uint8_t v) {
@@ -268,7 +273,7 @@ TEST_CASE("midi replug: a controller port that vanishes and returns is heard aga
         CHECK(status().find("listening to") == std::string::npos);
         CHECK(r.session->OpenMidiPorts().empty());
 
-        if (!out) out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, Unique("soak-controller"));
+        if (!out) out = MakeMidiOut(Unique("soak-controller"));
         out->openVirtualPort(dev);                                        // plugged back
         double plugged = Now();
         REQUIRE(WaitFor([&] { return !r.session->OpenMidiPorts().empty(); }, 1.0));

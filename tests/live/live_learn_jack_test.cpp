@@ -4,6 +4,8 @@
 // run over them in order: drain the queue, ObserveEvents (learn), ApplyControl, the learn stage
 // (FinishLearn writes the mapping file), the folder watcher, ApplyFileChanges (reload).
 #include <rtmidi/RtMidi.h>
+
+#include "../control/midi_out_safe.h"
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -71,7 +73,8 @@ TEST_CASE("live_learn jack: the learn button, a real CC through JACK, the mappin
     InputSession input(io, queue, &Now);
     INFO(input.StatusLines()[0]);
     REQUIRE(input.StatusLines()[0].rfind("MIDI (JACK)", 0) == 0);
-    RtMidiOut out(RtMidi::UNIX_JACK, "learn-test-out-" + std::to_string(getpid()));
+    MidiOutPtr outOwner = MakeMidiOut("learn-test-out-" + std::to_string(getpid()));
+    RtMidiOut& out = *outOwner;
     bool connected = false;
     for (unsigned i = 0; i < out.getPortCount() && !connected; ++i)
         if (out.getPortName(i).find(vname) != std::string::npos) {

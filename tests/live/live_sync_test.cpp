@@ -4,6 +4,8 @@
 // test saw it: it follows within a frame while the master runs, across a seek, holds where a
 // stop's full frame puts it, and freewheels through a dropout (said once).
 #include <rtmidi/RtMidi.h>
+
+#include "../control/midi_out_safe.h"
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -51,7 +53,9 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
                             log, {{"DISPLAY", Display()}});
     REQUIRE(PollFor(30, [&] { return ReadText(log).find("waiting for the master's timecode") != std::string::npos; }));
 
-    RtMidiOut out(RtMidi::UNIX_JACK, port);
+    MidiOutPtr outOwner = MakeMidiOut(port);
+
+    RtMidiOut& out = *outOwner;
     bool connected = false;
     REQUIRE(PollFor(5, [&] {
         for (unsigned i = 0; i < out.getPortCount() && !connected; ++i)

@@ -13,6 +13,10 @@
 // match at every frame (to 1e-6); when one slipped, the frames before the first slip must match
 // and the final values (0.5 s after the last event) must agree to 1e-4.
 #include <rtmidi/RtMidi.h>
+
+#include "../control/midi_out_safe.h"
+using sdfvj::test::MakeMidiOut;
+using sdfvj::test::MidiOutPtr;
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -66,7 +70,9 @@ TEST_CASE("replay of a take recorded through JACK gives the live run's parameter
     INFO(session.StatusLines()[0]);
     REQUIRE(jack);
 
-    RtMidiOut out(RtMidi::UNIX_JACK, "replay-test-out-" + std::to_string(getpid()));
+    MidiOutPtr outOwner = MakeMidiOut("replay-test-out-" + std::to_string(getpid()));
+
+    RtMidiOut& out = *outOwner;
     bool connected = false;
     for (unsigned i = 0; i < out.getPortCount() && !connected; ++i)
         if (out.getPortName(i).find(vname) != std::string::npos) {

@@ -25,6 +25,10 @@
 #include <lo/lo.h>
 #include <netinet/in.h>
 #include <rtmidi/RtMidi.h>
+
+#include "../control/midi_out_safe.h"
+using sdfvj::test::MakeMidiOut;
+using sdfvj::test::MidiOutPtr;
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -225,7 +229,7 @@ void RunOsc(const Options& o, Clock::time_point deadline) {
 
 struct MidiBlaster {
     const Options& o;
-    std::unique_ptr<RtMidiOut> out;
+    MidiOutPtr out;
     std::mt19937 rng;
     explicit MidiBlaster(const Options& opt) : o(opt), rng(opt.seed * 104729u + 3) {}
     int Uniform(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
@@ -235,7 +239,7 @@ struct MidiBlaster {
         try {
             if (newClient || !out) {
                 out.reset();
-                out = std::make_unique<RtMidiOut>(RtMidi::UNIX_JACK, "soak-driver");
+                out = MakeMidiOut("soak-driver");
                 out->setErrorCallback(&Quiet, nullptr);
             }
             out->openVirtualPort(o.midiName);
