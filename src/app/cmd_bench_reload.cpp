@@ -79,6 +79,8 @@ struct Round {
     int frames = 0;
     std::vector<double> quickFrames;   // frame times while the quick tier was on screen
     bool quickSeen = false, fromCache = false, ok = false;
+    bool usedBefore = false;   // a program on screen this round was used on the loader before the hand-over
+    double loadMs = 0;         // ... its load + first use there
 };
 
 int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h, const std::string& cacheLine) {
@@ -90,6 +92,19 @@ int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h
     const auto opened = Clock::now();
     RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
                                                                                       : ProbeRenderPath(scene, nullptr);
+    // `--modes` naming warm: a loader thread (shared context) loads the cached binary and uses it
+    // once before the first frame draws it, as `live` does where the compile process is used.
+    std::unique_ptr<HeadlessContext> shared;
+    std::unique_ptr<CompileWorker> loader;
+    struct Unset { ~Unset() { PendingProgram::SetLoader(nullptr); } } unset;
+    if (("," + o.modes + ",").find(",warm,") != std::string::npos) {
+        shared = std::make_unique<HeadlessContext>();
+        if (!shared->CreateShared(gl, &error, true)) return Fail(error);
+        HeadlessContext* ctx = shared.get();
+        loader = std::make_unique<CompileWorker>([ctx] { return ctx->MakeCurrent(); }, false, [ctx] { ctx->ReleaseCurrent(); });
+        if (!loader->Ok()) return Fail("the loader's context failed");
+        PendingProgram::SetLoader(loader.get());
+    }
     LiveProgram live;
     if (o.tiered != "auto") live.SetTiered(o.tiered == "on");
     live.Request(VariantKey{scene.path, scene.effects, path});
@@ -102,17 +117,22 @@ int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h
     if (!fr.Resize(w, h, &error)) return Fail(error);
     FrameInputs in;
     for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+    const auto drawAt = Clock::now();
     fr.Draw(*live.Current(), live.Scene(), in);
     glFinish();
-    const double firstMs = MsSince(opened);
+    const double firstMs = MsSince(opened), drawMs = MsSince(drawAt);
     const Program& p = *live.Current();
     std::printf("# sdfvj bench reload --first-frame: %s at %dx%d, %s path, on %s\n", scene.name.c_str(), w, h,
                 RenderPathName(path), gl.Description().c_str());
     std::printf("driver disk caches: %s; program cache: %s\n", cacheLine.c_str(),
                 ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off");
-    std::printf("first frame %.1f ms after the context was made (context %.1f ms); program %s (%.1f ms)\n", firstMs,
+    std::printf("first frame %.1f ms after the context was made (context %.1f ms); program %s (%.1f ms); "
+                "its first draw %.1f ms; %s\n", firstMs,
                 contextMs, p.FromCache() ? "from the program cache" : p.QuickTier() ? "compiled, quick tier" : "compiled",
-                p.Origin().buildMs);
+                p.Origin().buildMs, drawMs,
+                p.Origin().usedBeforeHandOver ? ("loaded and used once on the loader thread first (" +
+                                                  std::to_string((int)(p.Origin().loadMs + 0.5)) + " ms)").c_str()
+                                              : "no loader");
     live.Wait();
     return 0;
 }
@@ -168,152 +188,224 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                        : "NO constant to nudge in this scene: a comment is appended (caches may serve it)",
                 o.fps > 0 ? (std::to_string((int)o.fps) + " Hz").c_str() : "flat out");
 
-    std::stringstream modeList(o.modes);
-    std::string modeName;
-    bool workerMeasured = false;
+    // Every mode is set up first (its own compile process, worker, loader, watcher, program and
+    // target), then the rounds are interleaved: round 1 of every mode, then round 2, ..., so a
+    // machine that gets busier or quieter moves every mode's figures alike.
+    struct ModeRun {
+        int mode = 0;
+        std::string name;
+        std::unique_ptr<CompileProcess> process;
+        std::unique_ptr<HeadlessContext> shared;
+        std::unique_ptr<CompileWorker> worker;   // modes worker/binary: the compile thread; warm: the loader
+        std::unique_ptr<FolderWatcher> watcher;
+        std::unique_ptr<LiveProgram> live;
+        std::unique_ptr<FrameRenderer> fr;
+        FrameInputs in;
+        RenderPath path = RenderPath::Fragment;
+        double steadyMedian = 0;
+        std::vector<Round> rounds;
+        std::vector<int> failedRounds;
+        std::string note;
+    };
     // The worker contexts live until the bench ends: on Mesa 22.3 llvmpipe, destroying a shared
     // context after the render context loaded program binaries (the program cache) crashed a later
     // draw on the render context (reproduced: warm cache, worker mode, then any mode). `live` keeps
-    // its worker context for the whole session, so it never meets this.
+    // its worker context for the whole session, so it never meets this. (Declared before the
+    // modes, destroyed after their workers.)
     std::vector<std::unique_ptr<HeadlessContext>> workerContexts;
+    std::vector<ModeRun> runs;
+    auto bindMode = [](ModeRun& m) {   // the render thread's globals for this mode's builds
+        PendingProgram::SetWorker(m.mode == 1 || m.mode == 2 ? m.worker.get() : nullptr);
+        PendingProgram::SetLoader(m.mode == 4 ? m.worker.get() : nullptr);
+    };
+    struct Unset {
+        ~Unset() {
+            PendingProgram::SetWorker(nullptr);
+            PendingProgram::SetLoader(nullptr);
+        }
+    } unset;
+    std::stringstream modeList(o.modes);
+    std::string modeName;
+    bool workerMeasured = false;
     while (std::getline(modeList, modeName, ',')) {
-        int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3 : -1;
-        if (mode < 0) return Fail("--modes: '" + modeName + "', expected driver, worker, binary or process");
-        // process: `sdfvj compile-server` compiles, the render thread loads its binary. A driver
-        // without binaries cannot serve it: measured as what PendingProgram falls back to.
-        std::unique_ptr<CompileProcess> process;
-        if (mode == 3) {
-            process = std::make_unique<CompileProcess>();
-            if (!process->Start(&error)) {
-                std::printf("\ncompile process: %s: measured in-process instead\n", error.c_str());
-                process.reset();
+        int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
+                   : modeName == "warm" ? 4 : -1;
+        if (mode < 0) return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process or warm");
+        ModeRun m;
+        m.name = modeName;
+        // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
+        // same, but a loader thread (shared context) loads the binary and uses it once before the
+        // hand-over. A driver without binaries cannot serve either: measured as the fallback.
+        if (mode == 3 || mode == 4) {
+            m.process = std::make_unique<CompileProcess>();
+            if (!m.process->Start(&error)) {
+                m.note = "compile process: " + error + ": measured in-process instead";
+                m.process.reset();
             }
         }
         if (mode == 2 && binaryFormats == 0) {
             // A mode the driver cannot serve falls back instead of failing the bench.
             std::printf("\nbinary hand-over: the driver gives no program binaries (GL_NUM_PROGRAM_BINARY_FORMATS 0; "
                         "Mesa gives them only with its disk cache on): %s\n",
-                        workerMeasured ? "same as the shared-context worker above, not repeated"
+                        workerMeasured ? "same as the shared-context worker, not repeated"
                                        : "measured as the shared-context worker instead");
             if (workerMeasured) continue;
             mode = 1;
         }
-        workerContexts.push_back(std::make_unique<HeadlessContext>());
-        HeadlessContext& shared = *workerContexts.back();
-        std::unique_ptr<CompileWorker> worker;
-        if (mode == 1 || mode == 2) {
-            if (!shared.CreateShared(gl, &error, mode == 1)) return Fail(error);
-            worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2,
-                                                     [&shared] { shared.ReleaseCurrent(); });
-            if (!worker->Ok()) return Fail("the worker's context failed");
-            PendingProgram::SetWorker(worker.get());
-        }
-        struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
+        m.mode = mode;
         workerMeasured = workerMeasured || mode == 1;
-        FolderWatcher watcher;
-        for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"}) watcher.Watch((root / d).string(), &error);
-        const RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
-                                                                                                : ProbeRenderPath(scene, nullptr);
+        if (mode == 1 || mode == 2 || mode == 4) {
+            workerContexts.push_back(std::make_unique<HeadlessContext>());
+            HeadlessContext& shared = *workerContexts.back();
+            if (!shared.CreateShared(gl, &error, mode != 2)) return Fail(error);
+            m.worker = std::make_unique<CompileWorker>([&shared] { return shared.MakeCurrent(); }, mode == 2,
+                                                       [&shared] { shared.ReleaseCurrent(); });
+            if (!m.worker->Ok()) return Fail("the worker's context failed");
+        }
+        bindMode(m);
+        m.watcher = std::make_unique<FolderWatcher>();
+        for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"}) m.watcher->Watch((root / d).string(), &error);
+        m.path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
+                                                                                  : ProbeRenderPath(scene, nullptr);
         SaveLikeAnEditor(sceneFile, saveText(100 * mode));   // this mode's starting program: new as well
-        watcher.Poll();
-        LiveProgram live;
-        if (o.tiered != "auto") live.SetTiered(o.tiered == "on");
-        live.SetCompileProcess(process.get());   // only the process mode uses one
-        live.Request(VariantKey{sceneFile.string(), scene.effects, path});
-        live.Wait();
-        if (!live.Current()) return Fail(live.Error(), 1);
-        FrameRenderer fr;
-        if (!fr.Resize(w, h, &error)) return Fail(error);
-        FrameInputs in;
-        for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+        m.watcher->Poll();
+        m.live = std::make_unique<LiveProgram>();
+        if (o.tiered != "auto") m.live->SetTiered(o.tiered == "on");
+        m.live->SetCompileProcess(m.process.get());   // only the process modes use one
+        m.live->Request(VariantKey{sceneFile.string(), scene.effects, m.path});
+        m.live->Wait();
+        if (!m.live->Current()) return Fail(m.live->Error(), 1);
+        m.fr = std::make_unique<FrameRenderer>();
+        if (!m.fr->Resize(w, h, &error)) return Fail(error);
+        for (const ParamDecl& d : scene.params) m.in.params.emplace_back(d.name, d.defaultValue);
+        runs.push_back(std::move(m));
+    }
 
-        // One frame as `live` runs it: the reload step, the draw, the pixels done; then paced.
-        double updateMs = 0;
-        auto frameOnce = [&](bool* swapped) {
-            const auto t0 = Clock::now();
-            *swapped = live.Update(watcher.Poll());
-            updateMs = MsSince(t0);
-            fr.Draw(*live.Current(), live.Scene(), in);
-            glFinish();
-            const double ms = MsSince(t0);
-            if (o.fps > 0 && ms < 1000.0 / o.fps)
-                std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / o.fps - ms) * 1000)));
-            return ms;
-        };
+    // One frame as `live` runs it: the reload step, the draw, the pixels done; then paced.
+    double updateMs = 0;
+    auto frameOnce = [&](ModeRun& m, bool* swapped) {
+        const auto t0 = Clock::now();
+        *swapped = m.live->Update(m.watcher->Poll());
+        updateMs = MsSince(t0);
+        m.fr->Draw(*m.live->Current(), m.live->Scene(), m.in);
+        glFinish();
+        const double ms = MsSince(t0);
+        if (o.fps > 0 && ms < 1000.0 / o.fps)
+            std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / o.fps - ms) * 1000)));
+        return ms;
+    };
+    for (ModeRun& m : runs) {
+        bindMode(m);
         std::vector<double> steady;
         bool swapped = false;
-        for (int i = 0; i < 30; ++i) steady.push_back(frameOnce(&swapped));
-        const double steadyMedian = MedianMs(steady);
+        for (int i = 0; i < 30; ++i) steady.push_back(frameOnce(m, &swapped));
+        m.steadyMedian = MedianMs(steady);
+    }
 
-        auto runRound = [&](int round) {
-            Round r;
-            SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * mode + round) : original + "// round " + std::to_string(round) + "\n");
-            const auto saved = Clock::now();
-            while (MsSince(saved) < 120000) {
-                const double ms = frameOnce(&swapped);
-                ++r.frames;
-                r.longestFrame = std::max(r.longestFrame, ms);
-                r.longestUpdate = std::max(r.longestUpdate, updateMs);
-                if (!swapped) {
-                    if (r.firstMs > 0 && live.Current()->QuickTier()) r.quickFrames.push_back(ms);
-                    if (!live.Error().empty() && !live.Pending()) break;
-                    continue;
-                }
-                if (r.firstMs == 0) {
-                    r.firstMs = MsSince(saved);
-                    r.firstDraw = ms - updateMs;
-                }
-                r.quickSeen = r.quickSeen || live.Current()->QuickTier();
-                if (live.Current()->QuickTier()) r.quickFrames.push_back(ms);
-                if (!live.Current()->QuickTier()) {
-                    r.optimizedMs = MsSince(saved);
-                    r.compileMs = live.Current()->Origin().buildMs;
-                    r.fromCache = live.Current()->FromCache();
-                    r.beginCall = live.Current()->Origin().beginCallMs;
-                    r.finishCall = live.Current()->Origin().finishCallMs;
-                    r.ok = true;
-                    break;
-                }
-            }
-            return r;
-        };
-        if (o.driverCache == "warm")
-            for (int round = 1; round <= o.rounds; ++round) runRound(round);   // untimed: fills the caches
-
-        const char* how = process ? "in a compile process (sdfvj compile-server), handing over a program binary"
-                          : mode == 2 ? "on a worker thread with its own context, handing over a program binary"
-                          : mode == 1 ? "on a worker thread with a shared context"
-                          : PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
-                                                                       : "on the render thread";
-        std::printf("\n## %s, %s path, compile %s; tiered: %s\n", scene.name.c_str(), RenderPathName(path), how,
-                    live.Tiered() ? "yes (quick tier first)" : "no");
-        std::printf("| round | first tier on screen ms | optimized on screen ms | frames | longest frame ms | "
-                    "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
-                    "compile ms (its own) | from program cache |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
-        std::vector<double> first, optimized, longest, compile;
-        for (int round = 1; round <= o.rounds; ++round) {
-            const Round r = runRound(round);
-            if (!r.ok) {
-                std::printf("| %d | no new program on screen: %s |\n", round,
-                            live.Error().empty() ? "timed out after 120 s" : live.Error().c_str());
+    auto runRound = [&](ModeRun& m, int round) {
+        Round r;
+        LiveProgram& live = *m.live;
+        bool swapped = false;
+        SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * m.mode + round) : original + "// round " + std::to_string(round) + "\n");
+        const auto saved = Clock::now();
+        while (MsSince(saved) < 120000) {
+            const double ms = frameOnce(m, &swapped);
+            ++r.frames;
+            r.longestFrame = std::max(r.longestFrame, ms);
+            r.longestUpdate = std::max(r.longestUpdate, updateMs);
+            if (!swapped) {
+                if (r.firstMs > 0 && live.Current()->QuickTier()) r.quickFrames.push_back(ms);
+                if (!live.Error().empty() && !live.Pending()) break;
                 continue;
             }
+            if (r.firstMs == 0) {
+                r.firstMs = MsSince(saved);
+                r.firstDraw = ms - updateMs;
+            }
+            r.quickSeen = r.quickSeen || live.Current()->QuickTier();
+            r.usedBefore = r.usedBefore || live.Current()->Origin().usedBeforeHandOver;
+            r.loadMs = std::max(r.loadMs, live.Current()->Origin().loadMs);
+            if (live.Current()->QuickTier()) r.quickFrames.push_back(ms);
+            if (!live.Current()->QuickTier()) {
+                r.optimizedMs = MsSince(saved);
+                r.compileMs = live.Current()->Origin().buildMs;
+                r.fromCache = live.Current()->FromCache();
+                r.beginCall = live.Current()->Origin().beginCallMs;
+                r.finishCall = live.Current()->Origin().finishCallMs;
+                r.ok = true;
+                break;
+            }
+        }
+        // A round that timed out leaves no build behind for the next mode's globals.
+        if (live.Pending()) live.Wait();
+        return r;
+    };
+    if (o.driverCache == "warm")
+        for (int round = 1; round <= o.rounds; ++round)
+            for (ModeRun& m : runs) {   // untimed: fills the caches
+                bindMode(m);
+                runRound(m, round);
+            }
+    for (int round = 1; round <= o.rounds; ++round)
+        for (ModeRun& m : runs) {
+            bindMode(m);
+            Round r = runRound(m, round);
+            if (r.ok) m.rounds.push_back(r);
+            else m.failedRounds.push_back(round);
+        }
+
+    struct Summary { std::string mode; double first, optimized, longest, ratio, steady; };
+    std::vector<Summary> summary;
+    for (ModeRun& m : runs) {
+        LiveProgram& live = *m.live;
+        const char* how = m.process && m.mode == 4
+                              ? "in a compile process (sdfvj compile-server); a loader thread loads its binary and uses it once before the hand-over"
+                          : m.process ? "in a compile process (sdfvj compile-server), handing over a program binary"
+                          : m.mode == 2 ? "on a worker thread with its own context, handing over a program binary"
+                          : m.mode == 1 ? "on a worker thread with a shared context"
+                          : PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
+                                                                       : "on the render thread";
+        if (!m.note.empty()) std::printf("\n%s\n", m.note.c_str());
+        std::printf("\n## %s: %s, %s path, compile %s; tiered: %s\n", m.name.c_str(), scene.name.c_str(), RenderPathName(m.path),
+                    how, live.Tiered() ? "yes (quick tier first)" : "no");
+        std::printf("| round | first tier on screen ms | optimized on screen ms | frames | longest frame ms | "
+                    "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
+                    "compile ms (its own) | used before the hand-over (load + first use ms) | from program cache |\n"
+                    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+        std::vector<double> first, optimized, longest, compile;
+        for (int round : m.failedRounds)
+            std::printf("| %d | no new program on screen: %s |\n", round,
+                        live.Error().empty() ? "timed out after 120 s" : live.Error().c_str());
+        int round = 0;
+        for (const Round& r : m.rounds) {
+            ++round;
             first.push_back(r.firstMs);
             optimized.push_back(r.optimizedMs);
             longest.push_back(r.longestFrame);
             compile.push_back(r.compileMs);
             char quick[32] = "-";
             if (!r.quickFrames.empty()) std::snprintf(quick, sizeof quick, "%.2f", MedianMs(r.quickFrames));
-            std::printf("| %d | %.1f%s | %.1f | %d | %.1f | %.1f (%.1f / %.1f) | %.1f | %s | %.1f | %s |\n", round,
+            char used[48] = "no";
+            if (r.usedBefore) std::snprintf(used, sizeof used, "yes (%.1f)", r.loadMs);
+            std::printf("| %d | %.1f%s | %.1f | %d | %.1f | %.1f (%.1f / %.1f) | %.1f | %s | %.1f | %s | %s |\n", round,
                         r.firstMs, r.quickSeen ? " (quick)" : "", r.optimizedMs, r.frames, r.longestFrame,
-                        r.longestUpdate, r.beginCall, r.finishCall, r.firstDraw, quick, r.compileMs, r.fromCache ? "yes" : "no");
+                        r.longestUpdate, r.beginCall, r.finishCall, r.firstDraw, quick, r.compileMs, used,
+                        r.fromCache ? "yes" : "no");
         }
-        if (first.empty()) return Fail("no round put a new program on screen", 1);
+        if (first.empty()) return Fail("no round put a new program on screen (" + m.name + ")", 1);
         const double worst = MedianMs(longest);
+        const double ratio = m.steadyMedian > 0 ? worst / m.steadyMedian : 0.0;
         std::printf("median: save -> first tier %.1f ms, -> optimized %.1f ms; longest frame during a reload %.1f ms "
                     "= %.1fx the steady median %.2f ms (target <= 2x); compile %.1f ms\n",
-                    MedianMs(first), MedianMs(optimized), worst, steadyMedian > 0 ? worst / steadyMedian : 0.0,
-                    steadyMedian, MedianMs(compile));
+                    MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(compile));
+        summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian});
+    }
+    if (summary.size() > 1) {
+        std::printf("\n## modes side by side (rounds interleaved; medians)\n| mode | save -> first tier ms | save -> optimized ms | "
+                    "longest frame ms | x steady median | steady median ms |\n|---|---:|---:|---:|---:|---:|\n");
+        for (const Summary& s : summary)
+            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f |\n", s.mode.c_str(), s.first, s.optimized, s.longest, s.ratio,
+                        s.steady);
     }
     return 0;
 }

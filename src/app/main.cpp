@@ -120,7 +120,8 @@ int main(int argc, char** argv) {
                           "(on, empty folders of this run) or warm (as set, warmed by an untimed pass)")
         ->capture_default_str();
     cmdReload->add_flag_callback("--warm-cache", [&] { reloadBench.driverCache = "warm"; }, "same as --driver-cache warm");
-    cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary, process (comma-separated)")
+    cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary, process, warm (process + a loader thread that uses each binary once "
+                          "before the hand-over); comma-separated, rounds interleaved; --first-frame: warm = with the loader")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();
     cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();

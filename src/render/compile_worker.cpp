@@ -111,6 +111,19 @@ uint64_t CompileWorker::Submit(const std::string& text, RenderPath path, bool st
     return t;
 }
 
+uint64_t CompileWorker::SubmitLoad(unsigned format, std::vector<uint8_t> binary, RenderPath path, bool floatImage) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    uint64_t t = next_++;
+    Job job{t, std::string(), path, false};
+    job.load = true;
+    job.format = format;
+    job.binary = std::move(binary);
+    job.floatImage = floatImage;
+    jobs_.push_back(std::move(job));
+    wake_.notify_all();
+    return t;
+}
+
 bool CompileWorker::Poll(uint64_t ticket, Result* result) {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = done_.find(ticket);
@@ -185,6 +198,20 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
         Done done;
         const auto t0 = std::chrono::steady_clock::now();
         auto elapsedMs = [t0] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); };
+        if (job.load) {
+            // A binary to load and use once here (the driver finishes a loaded program at its first
+            // use): the render thread adopts a program that has already run.
+            done.program = LoadProgramBinary(job.format, job.binary.data(), job.binary.size());
+            done.refused = !done.program;
+            if (done.program) {
+                PrimeProgram(done.program, job.path, job.floatImage);
+                done.used = true;
+            }
+            done.buildMs = elapsedMs();
+            std::lock_guard<std::mutex> lock(mutex_);
+            done_[job.ticket] = std::move(done);
+            continue;
+        }
         unsigned prog = CompileLinkHere(job.text, job.path, &log, handOverBinary_ || job.store);
         if (prog && handOverBinary_) {
             // Primed here too: Mesa keys its disk cache on the shader, not the context, so the

@@ -50,6 +50,12 @@ public:
     // Queues a compile of `text`. With `store`, a program that links is also written to the
     // on-disk program cache (program_cache.h) from this thread, off the render thread's time.
     uint64_t Submit(const std::string& text, RenderPath path, bool store = false);
+    // Queues a load of a program binary (the compile process's, or the program cache's) on the
+    // worker's context, which must share objects with the render thread's: glProgramBinary, then
+    // one 1x1 use (PrimeProgram) and glFinish, so the driver's lazy finalization at first use
+    // (150-600 ms on NVIDIA, issue 12) happens here and not in the render thread's next frame.
+    // Result::program is the used program; 0 with `refused` when the driver refused the binary.
+    uint64_t SubmitLoad(unsigned format, std::vector<uint8_t> binary, RenderPath path, bool floatImage);
     // What a finished ticket gives back.
     struct Result {
         unsigned program = 0;            // the linked program (0 on failure, or in binary mode)
@@ -58,7 +64,9 @@ public:
         unsigned format = 0;
         bool noBinary = false;           // binary mode, but the driver gave none (GL_PROGRAM_BINARY_LENGTH 0,
                                          // Mesa with its disk cache off): the caller compiles it itself
-        double buildMs = 0.0;            // compile + link (+ priming draw) on the worker
+        double buildMs = 0.0;            // compile + link (+ priming draw) on the worker; a load: load + first use
+        bool refused = false;            // a load the driver refused (glProgramBinary did not link)
+        bool used = false;               // the program was used once here (PrimeProgram) before the hand-over
     };
     // True once the ticket is done, filling `result`. A ticket is reported once.
     bool Poll(uint64_t ticket, Result* result);
@@ -66,7 +74,16 @@ public:
     void Forget(uint64_t ticket);
 
 private:
-    struct Job { uint64_t ticket; std::string text; RenderPath path; bool store; };
+    struct Job {
+        uint64_t ticket;
+        std::string text;
+        RenderPath path;
+        bool store;
+        bool load = false;               // SubmitLoad: `binary` in `format`, no compile
+        unsigned format = 0;
+        std::vector<uint8_t> binary;
+        bool floatImage = false;
+    };
     using Done = Result;
     void Loop(std::function<bool()> bind, std::function<void()> release);
 

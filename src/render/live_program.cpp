@@ -31,6 +31,13 @@ bool LiveProgram::ProcessCompileDefault() {
     return vendor && std::strstr((const char*)vendor, "NVIDIA") != nullptr;
 }
 
+bool LiveProgram::LoaderDefault() {
+    const char* env = std::getenv("SDFVJ_LOADER");
+    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
+    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
+    return ProcessCompileDefault();
+}
+
 void LiveProgram::CancelBuilds() {
     pending_.Cancel();
     quick_.Cancel();

@@ -56,6 +56,10 @@ public:
     // True on NVIDIA (GL_VENDOR), unless SDFVJ_COMPILE_PROCESS=0; SDFVJ_COMPILE_PROCESS=1 turns it on
     // anywhere. Needs a current context.
     static bool ProcessCompileDefault();
+    // Whether binaries (the compile process's, the program cache's) should be loaded and used once
+    // on a loader thread before they go on screen (PendingProgram::SetLoader): where the compile
+    // process is used (ProcessCompileDefault()), unless SDFVJ_LOADER=0; SDFVJ_LOADER=1 anywhere.
+    static bool LoaderDefault();
 
 private:
     // Programs are shared between the cache and the screen: evicting a cache entry (its files

@@ -53,13 +53,64 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const
 
 namespace {
 CompileWorker* g_worker = nullptr;   // set by the render thread before any PendingProgram runs
+CompileWorker* g_loader = nullptr;   // likewise; its context shares objects with the render thread's
 }  // namespace
 
 void PendingProgram::SetWorker(CompileWorker* worker) { g_worker = worker; }
+void PendingProgram::SetLoader(CompileWorker* loader) { g_loader = loader; }
+CompileWorker* PendingProgram::Loader() { return g_loader; }
+
+bool PendingProgram::StartLoad(unsigned format, std::vector<uint8_t> binary) const {
+    loadDone_ = false;
+    loadProgram_ = 0;
+    loadTicket_ = g_loader->SubmitLoad(format, std::move(binary), path_, source_.text.find("rgba32f") != std::string::npos);
+    return PollLoad();
+}
+
+bool PendingProgram::PollLoad() const {
+    if (!loadDone_ && g_loader) {
+        CompileWorker::Result r;
+        loadDone_ = g_loader->Poll(loadTicket_, &r);
+        if (loadDone_) {
+            loadProgram_ = r.program;
+            loadMs_ = r.buildMs;
+        }
+    }
+    if (loadDone_ && !loadProgram_) {
+        // The driver refused the binary on the loader's context (a driver update since the cache
+        // stored it, or a binary it cannot take): built again as if there were no binary, with
+        // nothing said. The object is never const (a member of LiveProgram), only this query is.
+        auto* self = const_cast<PendingProgram*>(this);
+        const BuildTier tier = origin_.quickTier ? BuildTier::Quick : BuildTier::Optimized;
+        loadTicket_ = 0;
+        loadDone_ = false;
+        if (loadFromCache_) {
+            ForgetCachedProgram(source_.text, path_);
+            self->Begin(source_, path_, tier);
+        } else {
+            CompileProcess* process = self->process_;   // its binary would be refused again
+            self->process_ = nullptr;
+            self->Begin(source_, path_, tier);
+            self->process_ = process;
+        }
+        return Ready();
+    }
+    return loadDone_;
+}
 
 PendingProgram::~PendingProgram() { Cancel(); }
 
 void PendingProgram::Cancel() {
+    if (loadTicket_) {
+        if (loadDone_) {
+            if (loadProgram_) glDeleteProgram(loadProgram_);   // shared with the loader's context
+        } else if (g_loader) {
+            g_loader->Forget(loadTicket_);
+        }
+        loadTicket_ = 0;
+        loadDone_ = false;
+        loadProgram_ = 0;
+    }
     if (procTicket_) {
         if (!procDone_ && process_) process_->Forget(procTicket_);
         procTicket_ = 0;
@@ -92,6 +143,21 @@ bool PendingProgram::ParallelCompileAvailable() {
 bool PendingProgram::BeginFromCache(const ShaderSource& src, RenderPath path) {
     Cancel();
     const double t0 = NowMs();
+    if (g_loader) {
+        // The loader loads it and uses it once; the render thread only reads the file here.
+        unsigned format = 0;
+        std::vector<uint8_t> binary;
+        if (!ReadCachedBinary(src.text, path, &format, &binary)) return false;
+        source_ = src;
+        path_ = path;
+        origin_ = ProgramOrigin{};
+        origin_.fromCache = true;
+        beganAt_ = t0;
+        loadFromCache_ = true;
+        StartLoad(format, std::move(binary));
+        origin_.beginCallMs = NowMs() - t0;
+        return true;
+    }
     const unsigned id = LoadCachedProgram(src.text, path);
     if (!id) return false;
     source_ = src;
@@ -147,6 +213,7 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path, BuildTier t
 }
 
 bool PendingProgram::Ready() const {
+    if (loadTicket_) return PollLoad();
     if (procTicket_) {
         if (!procDone_ && process_) {
             CompileProcess::Result r;
@@ -170,6 +237,16 @@ bool PendingProgram::Ready() const {
             self->Begin(source_, path_, origin_.quickTier ? BuildTier::Quick : BuildTier::Optimized);
             self->process_ = process;
             return Ready();
+        }
+        if (procDone_ && g_loader && !workerNoBinary_ && !workerBinary_.empty()) {
+            // The server's binary goes to the loader, which loads it and uses it once.
+            auto* self = const_cast<PendingProgram*>(this);
+            self->procTicket_ = 0;
+            procDone_ = false;
+            self->origin_.buildMs = workerMs_;
+            self->origin_.fromProcess = true;
+            loadFromCache_ = false;
+            return StartLoad(workerFormat_, std::move(workerBinary_));
         }
         return procDone_;
     }
@@ -211,7 +288,19 @@ bool PendingProgram::FinishInProcess(Program* into, std::string* log) {
 
 bool PendingProgram::Finish(Program* into, std::string* log) {
     const double finishAt = NowMs();
-    while (procTicket_ && !Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    // Each Ready() may move the build on (server -> loader; a refused binary -> a compile).
+    while ((procTicket_ || loadTicket_) && !Ready()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (loadTicket_) {   // loaded and used once on the loader's context
+        loadTicket_ = 0;
+        loadDone_ = false;
+        if (loadFromCache_) origin_.buildMs = loadMs_;
+        origin_.usedBeforeHandOver = true;
+        origin_.loadMs = loadMs_;
+        origin_.finishCallMs = NowMs() - finishAt;
+        into->Adopt(loadProgram_, path_, source_, origin_);
+        loadProgram_ = 0;
+        return true;
+    }
     if (procTicket_) {   // (a server that died has become an in-process build by now)
         procTicket_ = 0;
         procDone_ = false;
@@ -225,16 +314,9 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
             if (log->empty()) *log = "shader failed to compile with no message from the driver";
             return false;
         }
-        GLuint prog = glCreateProgram();
-        glProgramBinary(prog, workerFormat_, workerBinary_.data(), (GLsizei)workerBinary_.size());
+        const GLuint prog = LoadProgramBinary(workerFormat_, workerBinary_.data(), workerBinary_.size());
         workerBinary_.clear();
-        GLint linked = 0;
-        glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-        if (!linked) {
-            glDeleteProgram(prog);
-            while (glGetError() != GL_NO_ERROR) {}   // an unknown format is GL_INVALID_ENUM: expected here
-            return FinishInProcess(into, log);
-        }
+        if (!prog) return FinishInProcess(into, log);   // refused: compiled here
         origin_.buildMs = workerMs_;
         origin_.fromProcess = true;
         origin_.finishCallMs = NowMs() - finishAt;
@@ -259,13 +341,9 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
         }
         if (!workerProgram_ && !workerBinary_.empty()) {
             // Binary hand-over: load what the worker's own context compiled and linked.
-            GLuint prog = glCreateProgram();
-            glProgramBinary(prog, workerFormat_, workerBinary_.data(), (GLsizei)workerBinary_.size());
+            const GLuint prog = LoadProgramBinary(workerFormat_, workerBinary_.data(), workerBinary_.size());
             workerBinary_.clear();
-            GLint linked = 0;
-            glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-            if (!linked) {
-                glDeleteProgram(prog);
+            if (!prog) {
                 *log = "the driver rejected the compile thread's program binary";
                 return false;
             }

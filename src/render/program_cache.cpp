@@ -103,20 +103,20 @@ std::string CachedProgramFile(const std::string& text, RenderPath path) {
     return (fs::path(ProgramCacheFolder()) / (Hex(HashBytes(Key(text, path))) + ".bin")).string();
 }
 
-unsigned LoadCachedProgram(const std::string& text, RenderPath path) {
-    if (!ProgramCacheEnabled()) return 0;
+bool ReadCachedBinary(const std::string& text, RenderPath path, unsigned* formatOut, std::vector<uint8_t>* binaryOut) {
+    if (!ProgramCacheEnabled()) return false;
     const std::string key = Key(text, path);
     const std::string file = (fs::path(ProgramCacheFolder()) / (Hex(HashBytes(key)) + ".bin")).string();
     std::string bytes;
     {
         std::ifstream in(file, std::ios::binary);
-        if (!in) return 0;   // not cached: the common case, silent
+        if (!in) return false;   // not cached: the common case, silent
         bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
     auto refuse = [&] {
         std::error_code ec;
-        fs::remove(file, ec);   // corrupt, another driver's, or refused: compile and store anew
-        return 0u;
+        fs::remove(file, ec);   // corrupt or another driver's: compile and store anew
+        return false;
     };
     size_t at = 0;
     if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) return refuse();
@@ -132,18 +132,37 @@ unsigned LoadCachedProgram(const std::string& text, RenderPath path) {
         return refuse();
     const std::string binary = bytes.substr(at);
     if (HashBytes(binary) != checksum) return refuse();
+    *formatOut = format;
+    binaryOut->assign(binary.begin(), binary.end());
+    std::error_code ec;
+    fs::last_write_time(file, fs::file_time_type::clock::now(), ec);   // recently used: evicted last
+    return true;
+}
 
+void ForgetCachedProgram(const std::string& text, RenderPath path) {
+    std::error_code ec;
+    fs::remove(CachedProgramFile(text, path), ec);
+}
+
+unsigned LoadProgramBinary(unsigned format, const void* binary, size_t length) {
     GLuint prog = glCreateProgram();
-    glProgramBinary(prog, (GLenum)format, binary.data(), (GLsizei)binary.size());
+    glProgramBinary(prog, (GLenum)format, binary, (GLsizei)length);
     GLint linked = 0;
     glGetProgramiv(prog, GL_LINK_STATUS, &linked);
     if (!linked) {
         glDeleteProgram(prog);
         while (glGetError() != GL_NO_ERROR) {}   // GL_INVALID_ENUM for an unknown format is expected here
-        return refuse();
+        return 0;
     }
-    std::error_code ec;
-    fs::last_write_time(file, fs::file_time_type::clock::now(), ec);   // recently used: evicted last
+    return prog;
+}
+
+unsigned LoadCachedProgram(const std::string& text, RenderPath path) {
+    unsigned format = 0;
+    std::vector<uint8_t> binary;
+    if (!ReadCachedBinary(text, path, &format, &binary)) return 0;
+    const unsigned prog = LoadProgramBinary(format, binary.data(), binary.size());
+    if (!prog) ForgetCachedProgram(text, path);   // refused (a driver update): compile and store anew
     return prog;
 }
 

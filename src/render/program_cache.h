@@ -37,6 +37,14 @@ std::string CachedProgramFile(const std::string& text, RenderPath path);
 // A new linked program from the cache on the current context, or 0 (absent, refused, corrupt:
 // the last two delete the file).
 unsigned LoadCachedProgram(const std::string& text, RenderPath path);
+// The cached binary of a program without loading it (no GL calls but the driver's name): for a
+// loader thread (CompileWorker::SubmitLoad). False when absent or corrupt (then deleted).
+bool ReadCachedBinary(const std::string& text, RenderPath path, unsigned* format, std::vector<uint8_t>* binary);
+// Deletes a program's file (the driver refused its binary).
+void ForgetCachedProgram(const std::string& text, RenderPath path);
+// A new program from a binary on the current context (glProgramBinary), or 0 when the driver
+// refuses it (its GL error is cleared).
+unsigned LoadProgramBinary(unsigned format, const void* binary, size_t length);
 // Stores a linked program's binary. False when the cache is off or the driver gives no binary
 // (GL_PROGRAM_BINARY_LENGTH 0: Mesa with its own disk cache off) or the folder is not writable.
 bool StoreCachedProgram(unsigned program, const std::string& text, RenderPath path);

@@ -77,6 +77,8 @@ struct ProgramOrigin {
     double buildMs = 0.0;     // wall time of its compile + link (+ the worker's priming draw), on whichever thread built it
     double beginCallMs = 0.0;   // time the render thread spent in PendingProgram::Begin (driver calls that block show here)
     double finishCallMs = 0.0;  // ... and in Finish, once Ready() (status queries, uniform lookup, cache store)
+    bool usedBeforeHandOver = false;   // loaded and used once on the loader's context (PendingProgram::SetLoader)
+    double loadMs = 0.0;               // ... that load and first use, on the loader's thread
 };
 
 // Which build of a source: the optimized program, or a quick first tier that goes on screen
@@ -131,6 +133,13 @@ class PendingProgram {
 public:
     // With a worker, Begin() queues the compile on the worker's thread and context instead.
     static void SetWorker(CompileWorker* worker);
+    // With a loader (a CompileWorker whose context shares objects with the render thread's), a
+    // program binary from the compile process or the program cache is loaded there and used once
+    // (a 1x1 dispatch or draw, glFinish) before Ready() says so: the driver's lazy finalization of
+    // a loaded binary at its first use (150-600 ms on NVIDIA) happens off the render thread.
+    // Binaries the driver refuses there are built again the way they would be without a loader.
+    static void SetLoader(CompileWorker* loader);
+    static CompileWorker* Loader();
     // With a usable compile process (compile_process.h), Begin() sends the compile there (before
     // any worker); Finish() loads its binary, or compiles here when the process cannot serve.
     void SetProcess(CompileProcess* process) { process_ = process; }
@@ -144,7 +153,7 @@ public:
     // Takes the program from the on-disk cache when it holds this source for this driver: then
     // true, Ready() at once and the program FromCache(). False (nothing started) otherwise.
     bool BeginFromCache(const ShaderSource& src, RenderPath path);
-    bool Active() const { return id_ != 0 || ticket_ != 0 || procTicket_ != 0; }
+    bool Active() const { return id_ != 0 || ticket_ != 0 || procTicket_ != 0 || loadTicket_ != 0; }
     bool FromCache() const { return origin_.fromCache; }
     bool Ready() const;
     // On success moves the program into `into`; on failure `into` is untouched and `log` holds
@@ -169,6 +178,13 @@ private:
     mutable bool procDone_ = false;
     mutable bool procDied_ = false;               // the server died first: Finish() compiles here
     bool FinishInProcess(Program* into, std::string* log);
+    mutable uint64_t loadTicket_ = 0;             // job on the loader (SetLoader)
+    mutable bool loadDone_ = false;
+    mutable unsigned loadProgram_ = 0;
+    mutable double loadMs_ = 0.0;
+    mutable bool loadFromCache_ = false;          // the binary came from the program cache (else the process)
+    bool StartLoad(unsigned format, std::vector<uint8_t> binary) const;
+    bool PollLoad() const;
     ShaderSource source_;
     RenderPath path_ = RenderPath::Fragment;
     ProgramOrigin origin_;
