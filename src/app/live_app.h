@@ -36,6 +36,7 @@ class LiveWindow {
 public:
     ~LiveWindow() {
         PendingProgram::SetWorker(nullptr);
+        PendingProgram::SetLoader(nullptr);
         worker_.reset();   // no compile may outlive the windows
         if (imgui_) {
             ImGui_ImplOpenGL3_Shutdown();
@@ -71,7 +72,11 @@ public:
         // Where it helps (Mesa; see PreferCompileThread), shader compiles run on a worker thread
         // with a hidden window's context that shares programs with this one, so a reload or a
         // variant switch does not stall frames. Elsewhere the driver's parallel compile is used.
-        if (PreferCompileThread()) {
+        // Where the compile process hands over binaries (NVIDIA), the same hidden window's thread
+        // is the loader: it loads each binary and uses it once, so the driver's finishing of a
+        // loaded program at its first use (150-600 ms) never lands in a frame (issue 12).
+        const bool loader = LiveProgram::LoaderDefault();
+        if (PreferCompileThread() || loader) {
             glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
             compileWindow_ = glfwCreateWindow(1, 1, "sdfvj compiler", nullptr, window_);
             glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
@@ -84,8 +89,9 @@ public:
                     return glfwGetCurrentContext() == cw;
                 },
                 false, [] { glfwMakeContextCurrent(nullptr); });
-            if (worker_->Ok()) PendingProgram::SetWorker(worker_.get());
-            else std::fprintf(stderr, "sdfvj live: no compile thread; shaders compile on the render thread\n");
+            if (worker_->Ok() && PreferCompileThread()) PendingProgram::SetWorker(worker_.get());
+            if (worker_->Ok() && loader) PendingProgram::SetLoader(worker_.get());
+            if (!worker_->Ok()) std::fprintf(stderr, "sdfvj live: no compile thread; shaders compile on the render thread\n");
         }
         return true;
     }
