@@ -42,10 +42,11 @@ case "${1:-}" in
       timeout 100 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --rounds 3 > "$out/reload_$s.txt" 2>&1 || true
     done
     # The compile process (issue 12: `sdfvj compile-server` compiles, the render thread loads its
-    # binary) against the driver's parallel compile, in one run each.
-    timeout 45 bash "$0" remote bench reload --scene midi --size 1920x1080 --path compute --modes process,driver \
+    # binary), the same with the loader (`warm`: a shared-context thread loads the binary and uses
+    # it once before the hand-over) and the driver's parallel compile, rounds interleaved in one run.
+    timeout 75 bash "$0" remote bench reload --scene midi --size 1920x1080 --path compute --modes process,warm,driver \
       --rounds 3 > "$out/reload_midi_process.txt" 2>&1 || true
-    timeout 75 bash "$0" remote bench reload --scene character --size 1920x1080 --path compute --modes process,driver \
+    timeout 120 bash "$0" remote bench reload --scene character --size 1920x1080 --path compute --modes process,warm,driver \
       --rounds 3 > "$out/reload_character_process.txt" 2>&1 || true
     # Reload (issue 12): the rows above have the drivers' disk caches off and a new program every
     # save, tiered on NVIDIA; below: without the quick tier, the warm-cache row, and a second
@@ -60,6 +61,9 @@ case "${1:-}" in
         XDG_CACHE_HOME=/tmp/sdfvj-launch-cache timeout 60 bash "$0" remote bench reload --scene $s --size 1920x1080 \
           --path compute --first-frame > "$out/launch_${s}_$launch.txt" 2>&1 || true
       done
+      # Second launch again, the cached binary loaded and used once on the loader thread first.
+      XDG_CACHE_HOME=/tmp/sdfvj-launch-cache timeout 60 bash "$0" remote bench reload --scene $s --size 1920x1080 \
+        --path compute --first-frame --modes warm > "$out/launch_${s}_second_warm.txt" 2>&1 || true
     done
     fi
     if [ "$part" = frames ] || [ "$part" = all ]; then
