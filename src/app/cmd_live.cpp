@@ -114,6 +114,10 @@ bool LiveSession::Frame() {
     Guard("program", [&] { UpdateProgram(); });
     Guard("automation", [&] { RunAutomation(state_, now, frame_); });
     StepSmoothing(state_.params, dt);
+    Guard("follow", [&] {   // a --forward leader heard: its values; a leader: this frame to the followers
+        FollowLeaderValues(sync_, state_.params);
+        ForwardFrame(forward_, state_, now, LiveSyncRunning(sync_));
+    });
     Guard("log", [&] { LogParams(now); });
     Guard("draw", [&] { Draw(now); });
     Guard("costs", [&] { MeasureEffectCosts(); });
@@ -125,8 +129,10 @@ bool LiveSession::Frame() {
 // Controllers, OSC and the rehearsal take all arrive through one queue; the recorder keeps
 // every event the show applies.
 std::vector<ControlEvent> LiveSession::PollInput(double now) {
-    if (replay_ && sync_.mode != LiveSync::Mode::Mtc)   // else the take plays on the show clock (SyncShowClock)
+    if (replay_ && !LiveSyncFollows(sync_)) {   // else the take plays on the show clock (SyncShowClock)
         for (ControlEvent& e : replay_->Until(now)) queue_.Push(std::move(e));
+        takeAt_ = now;
+    }
     if (audio_) queue_.Push(AudioFeatureEvent(audio_->Poll(now), now));   // mapping and recorder, like a knob
     std::vector<ControlEvent> events = queue_.DrainUntil(now);
     ObserveEvents(ui_, events);   // the overlay's monitor, and learn when it is armed
@@ -135,14 +141,18 @@ std::vector<ControlEvent> LiveSession::PollInput(double now) {
     return events;
 }
 
-// --sync mtc: the master's timecode is the show clock (live_sync.h); what it says goes to the
-// overlay and stderr once. The rehearsal take plays on it: a jump back starts the take over.
+// --sync mtc or a --forward leader heard: the master's time is the show clock (live_sync.h); what
+// it says goes to the overlay and stderr once. The rehearsal take plays on it: a jump back starts
+// the take over.
 double LiveSession::SyncShowClock(std::vector<ControlEvent>* events, double wall) {
-    if (sync_.mode != LiveSync::Mode::Mtc) return wall;
     std::vector<std::string> say;
     const double show = LiveSyncStep(sync_, events, wall, &say);
-    for (const std::string& line : say) state_.report.Say(line);
-    if (replay_) {
+    for (const std::string& line : say)   // a leader is the network's: at most a line a second
+        if (line.rfind("sdfvj live: leader", 0) == 0 || line.rfind("sdfvj live: /sdfvj/clock", 0) == 0)
+            state_.report.Limited(wall, {line}, "leader");
+        else
+            state_.report.Say(line);
+    if (replay_ && LiveSyncFollows(sync_)) {
         if (show < takeAt_) replay_ = std::make_unique<ReplayCursor>(rehearsal_);
         for (ControlEvent& e : replay_->Until(show)) {
             e.time = show;

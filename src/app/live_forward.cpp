@@ -4,6 +4,7 @@
 #include <lo/lo.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 #include "scene/scene.h"
@@ -47,6 +48,12 @@ void SendPreset(LiveForward& f, const std::string& file, bool state) {
 
 void SendEffect(LiveForward& f, const std::string& name, bool on) {
     for (lo_address a : f.targets->addresses) lo_send(a, ("/sdfvj/effect/" + name).c_str(), "i", on ? 1 : 0);
+    ++f.sent;
+}
+
+void SendEffects(LiveForward& f, const EffectSet& effects) {
+    const std::string list = DescribeEffects(effects);
+    for (lo_address a : f.targets->addresses) lo_send(a, "/sdfvj/effects", "s", list.c_str());
     ++f.sent;
 }
 
@@ -117,7 +124,29 @@ void ForwardAfterActions(LiveForward& f, const LiveState& state, double now) {
     if (now - f.lastState < f.stateInterval) return;
     f.lastState = now;
     if (!state.currentPreset.empty()) SendPreset(f, state.currentPreset, true);
+    SendEffects(f, state.wanted.effects);   // after the preset, whose own effects it replaces
     for (size_t i = 0; i < p.decls.size(); ++i) SendFloat(f, "/sdfvj/raw/" + p.decls[i].name, p.target[i]);
+}
+
+void ForwardFrame(LiveForward& f, const LiveState& state, double show, bool running) {
+    if (!IsForwarding(f)) return;
+    const double t = std::clamp(show, 0.0, double(kLeaderClockMaxSeconds));
+    int32_t seconds = int32_t(std::floor(t));
+    int32_t micros = int32_t(std::lround((t - seconds) * 1e6));
+    if (micros > 999999) micros = 0, ++seconds;
+    const ParamState& p = state.params;
+    lo_message m = lo_message_new();
+    lo_message_add_int32(m, std::min(seconds, kLeaderClockMaxSeconds));
+    lo_message_add_int32(m, micros);
+    lo_message_add_int32(m, running ? 1 : 0);
+    for (size_t i = 0; i < p.decls.size() && i < 256; ++i) {
+        lo_message_add_string(m, p.decls[i].name.c_str());
+        lo_message_add_float(m, p.value[i]);
+    }
+    for (lo_address a : f.targets->addresses) lo_send_message(a, "/sdfvj/clock", m);
+    lo_message_free(m);
+    ++f.sent;
+    ++f.frames;
 }
 
 void DropPresetStatesOnStage(std::vector<ControlEvent>* events, const std::string& currentPreset) {

@@ -6,19 +6,25 @@
 //   ForwardBeforeControl(fwd, state);                  // each frame, just before ApplyControl
 //   ...ApplyControl, ApplyActions...
 //   ForwardAfterActions(fwd, state, now);              // sends what changed, and the state once a second
+//   ...automation, smoothing...
+//   ForwardFrame(fwd, state, now, running);            // the frame: show time and the values it renders
 //
 // What goes out (the follower's ordinary OSC input takes it; docs/input.md, docs/sync.md):
 //   /sdfvj/raw/NAME f TARGET          every parameter target the mapping moved this frame, in the
 //                                     parameter's own units (after range, curve, takeover)
 //   /sdfvj/preset s FILE              a preset the show switched to (next/prev/index resolved)
 //   /sdfvj/effect/NAME i 0|1          an effect toggle
+//   /sdfvj/clock iii[sf...]           every frame: the show time (seconds, microseconds), running
+//                                     1/0, and the values the frame renders (after automation and
+//                                     smoothing); a follower locks its show clock to it and shows
+//                                     these values (live_sync.h), so both --log-params agree
 // and once a second the whole state, for a follower started late or a lost packet:
 //   /sdfvj/preset ss FILE "state"     the preset on stage; a follower already on it ignores it
 //                                     (DropPresetStatesOnStage), any other applies it
+//   /sdfvj/effects s LIST             the effect set on stage (as --effects writes it)
 //   /sdfvj/raw/NAME f TARGET          every parameter
-// The show clock is not forwarded: each node runs its own (or all follow one MTC master with
-// `--sync mtc`). Sending never blocks the frame for long (UDP); a target that cannot be
-// resolved is a line at start and is skipped.
+// Sending never blocks the frame for long (UDP); a target that cannot be resolved is a line at
+// start and is skipped.
 #pragma once
 #include <memory>
 #include <string>
@@ -40,6 +46,7 @@ struct LiveForward {
     double lastState = -1e9;                   // when the whole state last went out
     double stateInterval = 1.0;                // seconds between whole states
     uint64_t sent = 0;                         // messages sent, all targets counted once
+    uint64_t frames = 0;                       // /sdfvj/clock frames sent
 };
 
 // Parses "HOST:PORT[,HOST:PORT...]" and opens a liblo address for each. "" is no forwarding
@@ -52,6 +59,9 @@ void ForwardBeforeControl(LiveForward& f, const LiveState& state);
 // Sends this frame's moved targets, preset switch and effect toggles; the whole state when
 // stateInterval has passed since the last one.
 void ForwardAfterActions(LiveForward& f, const LiveState& state, double now);
+// After smoothing: /sdfvj/clock with the show time, whether the show clock runs (LiveSyncRunning)
+// and every parameter's value as this frame renders it.
+void ForwardFrame(LiveForward& f, const LiveState& state, double show, bool running);
 
 // Follower side: a leader's once-a-second preset state ("/sdfvj/preset ss FILE state") for the
 // preset already on stage is dropped, so it does not start that preset over every second. Every

@@ -214,17 +214,21 @@ void ApplyActions(LiveState& state, double now) {
         }
         ApplyPresetFile(state, (fs::path(DataRoot()) / "presets" / name).string(), false, now);
     }
-    // Effect pads and /sdfvj/effect/<name>: a new variant compiles while the old one renders.
+    // Effect pads, /sdfvj/effect/<name> and a leader's /sdfvj/effects: a new variant compiles
+    // while the old one renders. A change is said (the effect set asked for).
+    const EffectSet before = state.wanted.effects;
     for (const auto& [name, on] : a.effectToggles) {
         std::string err;
         EffectSet e = state.wanted.effects;
         if (!ParseEffectList((on ? "" : "-") + name, &e, &err)) {
-            state.report.Say("sdfvj live: " + err);
+            state.report.Limited(now, {"sdfvj live: " + err}, "effect");
             continue;
         }
         state.wanted.effects = e;
         state.show.effects = e;
     }
+    if (state.wanted.effects != before)
+        state.report.Limited(now, {"sdfvj live: effects " + DescribeEffects(state.wanted.effects)}, "effects");
 }
 
 void ApplyFileChanges(LiveState& state, const std::vector<std::string>& changedFiles, double now) {

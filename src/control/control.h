@@ -186,7 +186,8 @@ int TargetIndex(const MappingEntry& en, const ParamState& params);
 // `audio = "feature"` entries: gain, then attack/release on the event times, then range and curve
 // as for a knob; onset/beat pulses press pads (trigger, toggle, tap_tempo, preset, effect).
 // Built-in OSC addresses (/sdfvj/param/<name> f 0..1,
-// /sdfvj/raw/<name> f, /sdfvj/preset s|i, /sdfvj/effect/<name> i) work without any mapping.
+// /sdfvj/raw/<name> f, /sdfvj/preset s|i, /sdfvj/effect/<name> i, /sdfvj/effects s LIST) work
+// without any mapping; /sdfvj/clock is left to the show clock.
 // `actions` may be null.
 void ApplyEvent(const Mapping& m, MappingState& ms, const ControlEvent& e, ParamState& params,
                 MappingActions* actions);
@@ -224,6 +225,17 @@ void DecodeMidiBytes(MidiDecoder& d, const uint8_t* bytes, size_t size, double t
 // (a /sdfvj/ address with wrong argument types); *why says what was wrong.
 bool DecodeOscMessage(const char* path, const char* types, const void* const* argv, int argc,
                       double time, ControlEvent* out, std::string* why);
+// /sdfvj/clock iii[sf...]: a `--forward` leader's frame (docs/sync.md): its show time as whole
+// SECONDS (0..kLeaderClockMaxSeconds) and MICROSECONDS (0..999999), RUNNING 1 or stopped 0, then
+// the values that frame rendered as NAME VALUE pairs (at most 256; names 1..64 bytes, finite
+// float or int values). Anything else is false with *why ("/sdfvj/clock: ..., expected ...").
+constexpr int32_t kLeaderClockMaxSeconds = 10000000;   // 115 days
+struct LeaderClock {
+    double seconds = 0.0;
+    bool running = true;
+    std::vector<std::pair<std::string, float>> values;
+};
+bool ParseLeaderClock(const std::vector<OscArg>& args, LeaderClock* out, std::string* why);
 struct InputCounters;
 // The body of InputSession's liblo method handler: decode, count, queue. The fuzzer runs it
 // behind a real lo_server, so it fuzzes exactly what production runs. False, with *why, for a

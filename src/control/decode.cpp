@@ -1,6 +1,5 @@
 // Decoding on the input threads: MIDI bytes and OSC messages -> ControlEvents. This is the
 // code the fuzz target (fuzz_input.cpp) hammers: it must accept any bytes without crashing.
-#include <cmath>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -190,12 +189,49 @@ bool DecodeOscMessage(const char* path, const char* types, const void* const* ar
         } else if (ad.rfind("/sdfvj/effect/", 0) == 0) {
             if (ad.size() <= 14) return fail(ad + ": no effect name in the address");
             if (!numeric()) return fail(ad + ": expected one int argument, got '" + std::string(types ? types : "") + "'");
+        } else if (ad == "/sdfvj/effects") {   // a leader's whole effect set, as --effects writes it
+            if (e.args.size() != 1 || e.args[0].type != 's')
+                return fail(ad + ": expected one string argument (an effect list), got '" + std::string(types ? types : "") + "'");
+        } else if (ad == "/sdfvj/clock") {
+            std::string w;
+            if (!ParseLeaderClock(e.args, nullptr, &w)) return fail(w);
         } else {
             return fail(ad + ": unknown address, expected /sdfvj/param/<name>, /sdfvj/raw/<name>, "
-                             "/sdfvj/preset or /sdfvj/effect/<name>");
+                             "/sdfvj/preset, /sdfvj/effect/<name>, /sdfvj/effects or /sdfvj/clock");
         }
     }
     if (out) *out = std::move(e);
+    return true;
+}
+
+bool ParseLeaderClock(const std::vector<OscArg>& args, LeaderClock* out, std::string* why) {
+    auto fail = [&](const std::string& w) {
+        if (why) *why = "/sdfvj/clock: " + w;
+        return false;
+    };
+    if (args.size() < 3 || args[0].type != 'i' || args[1].type != 'i' || args[2].type != 'i')
+        return fail("expected int SECONDS, int MICROSECONDS, int RUNNING (iii), then NAME VALUE pairs");
+    if (args[0].i < 0 || args[0].i > kLeaderClockMaxSeconds)
+        return fail("seconds " + std::to_string(args[0].i) + " out of range, expected 0.." + std::to_string(kLeaderClockMaxSeconds));
+    if (args[1].i < 0 || args[1].i > 999999)
+        return fail("microseconds " + std::to_string(args[1].i) + " out of range, expected 0..999999");
+    if (args[2].i != 0 && args[2].i != 1) return fail("running " + std::to_string(args[2].i) + ", expected 1 (running) or 0 (stopped)");
+    const size_t pairs = (args.size() - 3) / 2;
+    if ((args.size() - 3) % 2 != 0 || pairs > 256) return fail("expected at most 256 NAME VALUE pairs after iii");
+    LeaderClock c;
+    c.seconds = args[0].i + args[1].i * 1e-6;
+    c.running = args[2].i == 1;
+    for (size_t k = 3; k < args.size(); k += 2) {
+        const OscArg& name = args[k];
+        const OscArg& value = args[k + 1];
+        if (name.type != 's' || name.s.empty() || name.s.size() > 64)
+            return fail("argument " + std::to_string(k + 1) + " is not a parameter name, expected a string of 1..64 bytes");
+        if (value.type != 'f' && value.type != 'i')
+            return fail(name.s.substr(0, 64) + ": expected a float value");
+        if (!std::isfinite(value.f)) return fail(name.s.substr(0, 64) + ": value is not finite");
+        if (out) c.values.emplace_back(name.s, value.f);
+    }
+    if (out) *out = std::move(c);
     return true;
 }
 

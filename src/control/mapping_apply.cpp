@@ -295,6 +295,12 @@ bool ApplyBuiltinOsc(MappingState& ms, const ControlEvent& e, ParamState& p, Map
         if (a) a->effectToggles.emplace_back(name, v != 0.0f);
         return true;
     }
+    if (ad == "/sdfvj/clock") return true;   // a leader's frame: the show clock takes it (app/live_sync.h)
+    if (ad == "/sdfvj/effects") {   // the whole set (a --forward leader's state): "none," clears first
+        if (e.args.size() != 1 || e.args[0].type != 's') Reject(ms, a, ad + ": expected one string argument (an effect list)");
+        else if (a) a->effectToggles.emplace_back("none," + e.args[0].s, true);
+        return true;
+    }
     return false;
 }
 

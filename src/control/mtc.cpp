@@ -194,7 +194,15 @@ double SeekFrames(const MtcSync& s) { return s.seekFrames > 0 ? s.seekFrames : 2
 double LostSeconds(const MtcSync& s) { return s.lostSeconds > 0 ? s.lostSeconds : 0.25; }
 double FreewheelSeconds(const MtcSync& s) { return s.freewheelSeconds > 0 ? s.freewheelSeconds : 2.0; }
 
-std::string At(double seconds, MtcRate rate) { return FormatTimecode(TimecodeAt(seconds, rate)); }
+// A time as the master names it: a timecode label, or seconds for a master that is not MTC.
+std::string At(const MtcSync& s, double seconds, MtcRate rate) {
+    if (s.name.empty()) return FormatTimecode(TimecodeAt(seconds, rate));
+    char text[48];
+    std::snprintf(text, sizeof text, "%.3f s", seconds);
+    return text;
+}
+std::string Name(const MtcSync& s) { return s.name.empty() ? "MTC" : s.name; }
+std::string Pulse(const MtcSync& s) { return s.pulse.empty() ? "quarter frame" : s.pulse; }
 
 }  // namespace
 
@@ -213,17 +221,17 @@ void MtcOnTimecode(MtcSync& s, double seconds, MtcRate rate, double localTime, b
     s.fps = MtcFramesPerSecond(rate);
     if (fullFrame) {
         if (was != MtcSync::State::Waiting && std::fabs(seconds - now) > SeekFrames(s) / s.fps) ++s.seeks;
-        s.pending.push_back("MTC locate to " + At(seconds, rate) + ": holding until the master runs");
+        s.pending.push_back(Name(s) + " locate to " + At(s, seconds, rate) + ": holding until the master runs");
         s.state = MtcSync::State::Holding;
     } else {
         const bool running = was == MtcSync::State::Locked || was == MtcSync::State::Freewheel;
         if (running && (std::fabs(seconds - now) > SeekFrames(s) / s.fps || direction != s.direction)) {
             ++s.seeks;
-            s.pending.push_back("MTC jump to " + At(seconds, rate) + " (from " + At(now, rate) + "): seek");
+            s.pending.push_back(Name(s) + " jump to " + At(s, seconds, rate) + " (from " + At(s, now, rate) + "): seek");
         }
-        if (was == MtcSync::State::Waiting) s.pending.push_back("MTC locked at " + At(seconds, rate));
+        if (was == MtcSync::State::Waiting) s.pending.push_back(Name(s) + " locked at " + At(s, seconds, rate));
         if (was == MtcSync::State::Freewheel || was == MtcSync::State::Stopped)
-            s.pending.push_back("MTC master back at " + At(seconds, rate) + ": locked");
+            s.pending.push_back((s.name.empty() ? "MTC master" : s.name) + " back at " + At(s, seconds, rate) + ": locked");
         s.state = MtcSync::State::Locked;
         s.direction = direction >= 0 ? 1 : -1;
         s.lastQuarter = localTime;
@@ -236,22 +244,23 @@ void MtcTick(MtcSync& s, double localTime) {
     const double silent = localTime - s.lastQuarter;
     if (s.state == MtcSync::State::Locked && silent > LostSeconds(s)) {
         s.state = MtcSync::State::Freewheel;
-        char text[96];
-        std::snprintf(text, sizeof text, "MTC lost (no quarter frame for %.2f s): freewheeling", LostSeconds(s));
+        char text[160];
+        std::snprintf(text, sizeof text, "%s lost (no %s for %.2f s): freewheeling", Name(s).c_str(), Pulse(s).c_str(),
+                      LostSeconds(s));
         s.pending.push_back(text);
     }
     if (s.state == MtcSync::State::Freewheel && silent > LostSeconds(s) + FreewheelSeconds(s)) {
         s.anchorShow = MtcShowTime(s, localTime);
         s.anchorLocal = localTime;
         s.state = MtcSync::State::Stopped;
-        s.pending.push_back("MTC lost for " + std::to_string(int(std::lround(silent))) + " s: stopped at " + At(s.anchorShow, s.rate));
+        s.pending.push_back(Name(s) + " lost for " + std::to_string(int(std::lround(silent))) + " s: stopped at " + At(s, s.anchorShow, s.rate));
     }
 }
 
 std::string MtcStatusLine(const MtcSync& s, double localTime) {
-    const std::string at = "MTC " + At(MtcShowTime(s, localTime), s.rate);
+    const std::string at = Name(s) + " " + At(s, MtcShowTime(s, localTime), s.rate);
     switch (s.state) {
-        case MtcSync::State::Waiting: return "MTC: waiting for the master's timecode";
+        case MtcSync::State::Waiting: return Name(s) + ": waiting for the master's timecode";
         case MtcSync::State::Locked: return at + (s.direction < 0 ? " locked (backwards)" : " locked");
         case MtcSync::State::Holding: return at + " holding (master located, not running)";
         case MtcSync::State::Freewheel: return at + " master lost: freewheeling";

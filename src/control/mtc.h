@@ -81,6 +81,9 @@ struct MtcSync {
     double seekFrames = 0;        // a jump larger than this seeks; default 2 frames
     double lostSeconds = 0;       // no quarter frame this long: freewheel; default 0.25 s
     double freewheelSeconds = 0;  // freewheel this long, then stop; default 2 s
+    // Another master than MTC (the `--forward` leader's /sdfvj/clock): its name and what it
+    // sends, for the lines said ("leader", "/sdfvj/clock"); times are then said in seconds.
+    std::string name, pulse;
 
     // State.
     enum class State { Waiting, Locked, Holding, Freewheel, Stopped };

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <thread>
 
 #include "test_util.h"
@@ -157,4 +158,180 @@ TEST_CASE("osc decode: arguments at 4-byte aligned addresses (as liblo hands the
     std::memcpy(at, &h, sizeof h);
     REQUIRE(DecodeOscMessage("/x", "h", argv, 1, 0.0, &e, &why));
     CHECK(e.args[0].i == INT32_MAX);
+}
+
+namespace {
+
+// /sdfvj/clock as a leader sends it, built by `add` on a liblo message, through the packet decoder.
+struct ClockResult {
+    OscDecodeCounts counts;
+    std::vector<ControlEvent> events;
+};
+ClockResult DecodeClock(const std::function<void(lo_message)>& add) {
+    ClockResult r;
+    lo_message m = lo_message_new();
+    add(m);
+    size_t len = 0;
+    void* buf = lo_message_serialise(m, "/sdfvj/clock", nullptr, &len);
+    DecodeOscPacket(static_cast<uint8_t*>(buf), len, 3.0, &r.events, &r.counts);
+    free(buf);
+    lo_message_free(m);
+    return r;
+}
+
+OscArg Int(int32_t v) {
+    OscArg a;
+    a.type = 'i';
+    a.i = v;
+    a.f = float(v);
+    return a;
+}
+OscArg Str(const std::string& s) {
+    OscArg a;
+    a.type = 's';
+    a.s = s;
+    return a;
+}
+OscArg Flt(float f) {
+    OscArg a;
+    a.f = f;
+    return a;
+}
+
+}  // namespace
+
+TEST_CASE("osc decode: /sdfvj/clock carries a leader's show time, running flag and rendered values") {
+    ClockResult r = DecodeClock([](lo_message m) {
+        lo_message_add_int32(m, 12);
+        lo_message_add_int32(m, 345678);
+        lo_message_add_int32(m, 1);
+        lo_message_add_string(m, "twist");
+        lo_message_add_float(m, -1.25f);
+        lo_message_add_string(m, "scale");
+        lo_message_add_int32(m, 2);
+    });
+    REQUIRE(r.counts.ok == 1);
+    REQUIRE(r.events.size() == 1);
+    LeaderClock c;
+    std::string why;
+    REQUIRE(ParseLeaderClock(r.events[0].args, &c, &why));
+    CHECK(c.seconds == Approx(12.345678).margin(1e-9));
+    CHECK(c.running);
+    REQUIRE(c.values.size() == 2);
+    CHECK(c.values[0] == std::make_pair(std::string("twist"), -1.25f));
+    CHECK(c.values[1] == std::make_pair(std::string("scale"), 2.0f));
+    // Stopped, no values, the largest time; T/F and 64-bit ints are ints too.
+    r = DecodeClock([](lo_message m) {
+        lo_message_add_int64(m, kLeaderClockMaxSeconds);
+        lo_message_add_int32(m, 999999);
+        lo_message_add_false(m);
+    });
+    REQUIRE(r.events.size() == 1);
+    REQUIRE(ParseLeaderClock(r.events[0].args, &c, &why));
+    CHECK_FALSE(c.running);
+    CHECK(c.values.empty());
+    CHECK(c.seconds == Approx(kLeaderClockMaxSeconds + 0.999999).margin(1e-6));
+    // The mapping leaves it to the show clock: nothing moves, nothing is rejected.
+    ParamState p = MakeParamState(test::MidiSceneDecls());
+    MappingState ms;
+    MappingActions acts;
+    ApplyEvent(Mapping{}, ms, r.events[0], p, &acts);
+    CHECK(acts.messages.empty());
+    CHECK(p.target == MakeParamState(test::MidiSceneDecls()).target);
+}
+
+TEST_CASE("osc decode: /sdfvj/clock with wrong types, NaN or out-of-range values is a counted bad message") {
+    // Over the wire: each is counted as a wrong message and never queued.
+    const std::vector<std::function<void(lo_message)>> bad = {
+        [](lo_message m) { lo_message_add_float(m, 1.5f), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_double(m, 1.5), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_int32(m, 1), lo_message_add_int32(m, 0); },
+        [](lo_message) {},
+        [](lo_message m) { lo_message_add_string(m, "12"), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_int32(m, -1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_int32(m, kLeaderClockMaxSeconds + 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_int64(m, int64_t(1) << 40), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_int32(m, 1), lo_message_add_int32(m, 1000000), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_int32(m, 1), lo_message_add_int32(m, -5), lo_message_add_int32(m, 1); },
+        [](lo_message m) { lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 2); },
+        [](lo_message m) {   // a value with no name
+            lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1), lo_message_add_string(m, "twist");
+        },
+        [](lo_message m) {
+            lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1);
+            lo_message_add_float(m, 1.0f), lo_message_add_float(m, 1.0f);
+        },
+        [](lo_message m) {
+            lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1);
+            lo_message_add_string(m, "twist"), lo_message_add_string(m, "1.0");
+        },
+        [](lo_message m) {
+            lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1);
+            lo_message_add_string(m, "twist"), lo_message_add_float(m, std::nanf(""));
+        },
+        [](lo_message m) {
+            lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1);
+            lo_message_add_string(m, "twist"), lo_message_add_double(m, 1e300);
+        },
+        [](lo_message m) {
+            lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1);
+            lo_message_add_string(m, ""), lo_message_add_float(m, 1.0f);
+        },
+        [](lo_message m) {
+            lo_message_add_int32(m, 1), lo_message_add_int32(m, 0), lo_message_add_int32(m, 1);
+            for (int k = 0; k < 257; ++k) lo_message_add_string(m, "p"), lo_message_add_float(m, 0.0f);
+        },
+    };
+    for (size_t k = 0; k < bad.size(); ++k) {
+        INFO("bad message " << k);
+        ClockResult r = DecodeClock(bad[k]);
+        CHECK(r.counts.wrongType == 1);
+        CHECK(r.counts.ok == 0);
+        CHECK(r.events.empty());
+    }
+    // What is said: the address, what is wrong, what was expected.
+    std::string why;
+    LeaderClock c;
+    CHECK_FALSE(ParseLeaderClock({Flt(1.5f), Int(0), Int(1)}, &c, &why));
+    CHECK(why == "/sdfvj/clock: expected int SECONDS, int MICROSECONDS, int RUNNING (iii), then NAME VALUE pairs");
+    CHECK_FALSE(ParseLeaderClock({Int(-1), Int(0), Int(1)}, &c, &why));
+    CHECK(why == "/sdfvj/clock: seconds -1 out of range, expected 0..10000000");
+    CHECK_FALSE(ParseLeaderClock({Int(1), Int(1000000), Int(1)}, &c, &why));
+    CHECK(why == "/sdfvj/clock: microseconds 1000000 out of range, expected 0..999999");
+    CHECK_FALSE(ParseLeaderClock({Int(1), Int(0), Int(7)}, &c, &why));
+    CHECK(why == "/sdfvj/clock: running 7, expected 1 (running) or 0 (stopped)");
+    CHECK_FALSE(ParseLeaderClock({Int(1), Int(0), Int(1), Str("twist"), Flt(INFINITY)}, &c, &why));
+    CHECK(why == "/sdfvj/clock: twist: value is not finite");
+    CHECK_FALSE(ParseLeaderClock({Int(1), Int(0), Int(1), Flt(2.0f), Flt(1.0f)}, &c, &why));
+    CHECK(why == "/sdfvj/clock: argument 4 is not a parameter name, expected a string of 1..64 bytes");
+    CHECK_FALSE(ParseLeaderClock({Int(1), Int(0), Int(1), Str("twist"), Str("x")}, &c, &why));
+    CHECK(why == "/sdfvj/clock: twist: expected a float value");
+}
+
+TEST_CASE("osc decode: /sdfvj/effects takes one effect list, and the mapping asks for that whole set") {
+    lo_message m = lo_message_new();
+    lo_message_add_string(m, "ao,fog");
+    size_t len = 0;
+    void* buf = lo_message_serialise(m, "/sdfvj/effects", nullptr, &len);
+    std::vector<ControlEvent> out;
+    OscDecodeCounts c;
+    DecodeOscPacket(static_cast<uint8_t*>(buf), len, 0.0, &out, &c);
+    free(buf);
+    lo_message_free(m);
+    REQUIRE(out.size() == 1);
+    ParamState p = MakeParamState(test::MidiSceneDecls());
+    MappingState ms;
+    MappingActions acts;
+    ApplyEvent(Mapping{}, ms, out[0], p, &acts);
+    // One toggle that clears first (live's ApplyActions parses it as an effect list).
+    REQUIRE(acts.effectToggles.size() == 1);
+    CHECK(acts.effectToggles[0] == std::make_pair(std::string("none,ao,fog"), true));
+    m = lo_message_new();
+    lo_message_add_int32(m, 1);
+    buf = lo_message_serialise(m, "/sdfvj/effects", nullptr, &len);
+    OscDecodeCounts c2;
+    DecodeOscPacket(static_cast<uint8_t*>(buf), len, 0.0, nullptr, &c2);
+    free(buf);
+    lo_message_free(m);
+    CHECK(c2.wrongType == 1);
 }

@@ -30,12 +30,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A line of the param log as the test saw it: when (seconds since the master started) and the
-// show time it holds.
-struct Seen {
-    double at = 0.0, show = 0.0;
-};
-
 void Send(RtMidiOut& out, const std::vector<uint8_t>& bytes, size_t from, size_t n) {
     std::vector<unsigned char> m(bytes.begin() + from, bytes.begin() + from + n);
     out.sendMessage(&m);
@@ -82,25 +76,7 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
     };
 
     const Clock::time_point t0 = Clock::now();
-    auto since = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-    std::atomic<bool> done{false};
-    std::vector<Seen> seen;
-    std::thread watcher([&] {   // each new line of the log, with when it was seen (read from where it was)
-        std::ifstream in(params, std::ios::binary);
-        in.seekg(0, std::ios::end);
-        std::string partial;
-        while (!done) {
-            std::string chunk(1 << 16, '\0');
-            in.clear();
-            in.read(chunk.data(), (std::streamsize)chunk.size());
-            chunk.resize((size_t)in.gcount());
-            const double at = since();
-            partial += chunk;
-            for (size_t nl; (nl = partial.find('\n')) != std::string::npos; partial.erase(0, nl + 1))
-                seen.push_back({at, std::atof(partial.c_str())});
-            if (chunk.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
-    });
+    LogWatcher watcher(params, t0);   // each new line of the log, with when it was seen
     // Quarter frames: piece k of a group of 8 goes out at the group's start + k/4 frame; the
     // group's pieces carry the label of the frame it starts on.
     auto run = [&](double from, double until, double timecodeAtFrom) {
@@ -119,8 +95,7 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
     Send(out, full, 0, full.size());
     run(4.5, 5.5, 3602.0);
     std::this_thread::sleep_until(t0 + std::chrono::milliseconds(7000));
-    done = true;
-    watcher.join();
+    const std::vector<SeenLine> seen = watcher.Stop();
     kill(pid, SIGTERM);
     WaitExit(pid, 20);
     const std::string text = ReadText(log);
@@ -138,7 +113,7 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
     std::vector<double> errors;
     int checked[5] = {0, 0, 0, 0, 0};
     for (size_t i = 1; i < seen.size(); ++i) {
-        const Seen& s = seen[i];
+        const SeenLine& s = seen[i];
         if (!settled(s.at)) continue;
         const double gap = s.at - seen[i - 1].at;
         const double err = s.show - master(s.at);

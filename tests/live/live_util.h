@@ -3,7 +3,10 @@
 #pragma once
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <sstream>
@@ -59,6 +62,45 @@ inline bool PollFor(double seconds, const std::function<bool()>& until) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
 }
+
+// Watches a --log-params log from its end: each line appended after it started, with when the
+// test saw it (seconds since `t0`) and the show time it holds. A master's time at `at` is then
+// at most one render frame later than the frame's own (the line is written as the frame draws).
+struct SeenLine {
+    double at = 0.0, show = 0.0;
+};
+class LogWatcher {
+public:
+    LogWatcher(const std::string& path, std::chrono::steady_clock::time_point t0)
+        : thread_([this, path, t0] {
+              std::ifstream in(path, std::ios::binary);
+              in.seekg(0, std::ios::end);
+              std::string partial;
+              while (!done_) {
+                  std::string chunk(1 << 16, '\0');
+                  in.clear();
+                  in.read(chunk.data(), (std::streamsize)chunk.size());
+                  chunk.resize((size_t)in.gcount());
+                  const double at = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                  partial += chunk;
+                  for (size_t nl; (nl = partial.find('\n')) != std::string::npos; partial.erase(0, nl + 1))
+                      seen_.push_back({at, std::atof(partial.c_str())});
+                  if (chunk.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+              }
+          }) {}
+    ~LogWatcher() { Stop(); }
+    // The lines seen; the watcher stops.
+    std::vector<SeenLine> Stop() {
+        done_ = true;
+        if (thread_.joinable()) thread_.join();
+        return seen_;
+    }
+
+private:
+    std::atomic<bool> done_{false};
+    std::vector<SeenLine> seen_;
+    std::thread thread_;   // last: starts once the members it uses exist
+};
 
 // How often `text` occurs in the file at `path` now.
 inline size_t CountInFile(const std::string& path, const std::string& text) {
