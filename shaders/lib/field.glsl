@@ -17,12 +17,14 @@
 //   and e, a lower bound of the distance to every other shape (the other cells' centres are
 //   at least 1 away along x or z, or farther: fieldExcluded). Each shape lies within
 //   FIELD_RADIUS * size of its cell's vertical axis and below fieldTop(). It returns
-//   f = min(T, e - 1.25 * blend). Then:
+//   f = min(T, c), c = max(e - 1.25 * blend, p.y - fieldTop() - blend / 4). Then (the second
+//   term of c is a bound of F by itself, every shape being below fieldTop, and is what lets a
+//   ray above the field step by its height, not by the cell gap):
 //   - where F < e - 1.25 blend: the nearest shape is within F + blend/4 < e - blend, so it is
 //     one of the four, and any shape left out is >= blend farther than it, so it changes no
 //     smooth minimum: T = F and f = F (exact, the surface and everything within
 //     1 - FIELD_RADIUS * size - 1.25 blend of it: 0.2 at the scenes' defaults, 0.11 at worst);
-//   - elsewhere f <= e - 1.25 blend <= F: still a bound, and never <= 0 (e >= 1 - radius);
+//   - elsewhere f <= c <= F: still a bound, and never <= 0 (e >= 1 - radius);
 //   - e is continuous (along x the cut moves from one cell to the next where both candidate
 //     columns are 1 away), so f is continuous and 1-Lipschitz: sceneLipschitz() stays 1, and
 //     normals, AO probes (h <= 0.16, inside the exact zone but at the largest knobs) and
@@ -127,11 +129,10 @@ float fieldGridDistance(float u, float v, float nx, float nz) {
 
 // A lower bound of the distance from p to every shape outside the 2x2 cells (i0, j0) ..
 // (i0 + 1, j0 + 1): the nearer of the gaps along x and z, or the distance to the whole grid,
-// or the height above the tallest shape, less the shapes' radius. Continuous in p.
-float fieldExcluded(vec3 p, float u, float v, float i0, float j0, float nx, float nz, float size, float wave) {
+// less the shapes' radius. Continuous in p.
+float fieldExcluded(float u, float v, float i0, float j0, float nx, float nz, float size) {
     float gap = min(fieldAxisGap(u, i0, nx), fieldAxisGap(v, j0, nz));
-    float horizontal = max(gap, fieldGridDistance(u, v, nx, nz)) - FIELD_RADIUS * max(size, 0.05f);
-    return max(horizontal, p.y - fieldTop(size, wave));
+    return max(gap, fieldGridDistance(u, v, nx, nz)) - FIELD_RADIUS * max(size, 0.05f);
 }
 
 // The field of nx x nz shapes at p: four shapes evaluated, exact within the blend radius.
@@ -149,7 +150,8 @@ vec4 fieldMap(vec3 p, float nx, float nz, float size, float blend, float wave, f
     n = fieldCell(n, p, i0 + di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
     n = fieldCell(n, p, i0 + 1.0f - di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
     vec4 m = fieldBlend(n, blend);
-    m.w = min(m.w, fieldExcluded(p, u, v, i0, j0, nx, nz, size, wave) - 1.25f * max(blend, 0.0f));
+    float k = max(blend, 0.0f);
+    m.w = min(m.w, max(fieldExcluded(u, v, i0, j0, nx, nz, size) - 1.25f * k, p.y - fieldTop(size, wave) - 0.25f * k));
     return m;
 }
 
@@ -171,6 +173,13 @@ vec4 fieldBound(float nx, float nz, float size, float wave, float extra) {
     float hx = 0.5f * (nx - 1.0f) + r;
     float hz = 0.5f * (nz - 1.0f) + r;
     return vec4(0.0f, 0.5f * top, 0.0f, sqrt(hx * hx + hz * hz + 0.25f * top * top) + extra);
+}
+
+// The corner (+x, top, +z) of a box around every shape of the field (symmetric in x and z),
+// widened by `side` in x and z and by `up` at the top.
+vec3 fieldBoxMax(float nx, float nz, float size, float wave, float side, float up) {
+    float r = FIELD_RADIUS * max(size, 0.05f);
+    return vec3(0.5f * (nx - 1.0f) + r + side, fieldTop(size, wave) + up, 0.5f * (nz - 1.0f) + r + side);
 }
 
 #endif

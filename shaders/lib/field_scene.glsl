@@ -7,6 +7,7 @@
 // Bounding volume for the renderer (render.glsl BOUNDS): the shapes and the floor apart.
 #define SCENE_BOUND 1
 #define SCENE_GROUND 1
+#define SCENE_BOX 1
 
 // The floor y = 0, a dark grid under the shapes.
 vec4 mapGround(vec3 p) {
@@ -19,10 +20,16 @@ vec4 map(vec3 p) {
     return fOpUnionSmoothColor(mapGround(p), shapes, u_floorBlend);
 }
 
-// A sphere around every shape; past it plus the floor blend the smooth union leaves the floor
-// exact (the renderer's contract for SCENE_GROUND). The blend lowers the shapes' field by at
-// most blend / 4, which the sphere's extra covers too.
-vec4 sceneBound() { return fieldBound(FIELD_NX, FIELD_NZ, u_size, u_wave, 0.25f * max(u_blend, 0.0f) + max(u_floorBlend, 0.0f) + 0.02f); }
+// A sphere and a box around every shape; past them plus the floor blend the smooth union
+// leaves the floor exact (the renderer's contract for SCENE_GROUND). The blend lowers the
+// shapes' field by at most blend / 4, which the margin covers too; so does it above the box,
+// where the field is at least the height above the shapes less blend / 4 + floorBlend / 4.
+// Beside the grid fieldMap's cut-off may read up to 1.25 blend under the shapes' distance,
+// so the box's sides stand a further blend out (the floor's fillet there follows the cut-off).
+float fieldMargin() { return 0.25f * max(u_blend, 0.0f) + max(u_floorBlend, 0.0f) + 0.02f; }
+vec4 sceneBound() { return fieldBound(FIELD_NX, FIELD_NZ, u_size, u_wave, fieldMargin()); }
+vec3 sceneBoxMax() { return fieldBoxMax(FIELD_NX, FIELD_NZ, u_size, u_wave, fieldMargin() + max(u_blend, 0.0f), fieldMargin()); }
+vec3 sceneBoxMin() { return sceneBoxMax() * vec3(-1.0f, 0.0f, -1.0f) - vec3(0.0f, fieldMargin(), 0.0f); }
 
 // Exact shapes, rotations, the two-nearest polynomial blend, the continuous cut-off and the
 // floor's smooth union all keep |grad| <= 1 (lib/field.glsl).

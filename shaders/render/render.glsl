@@ -35,6 +35,13 @@
 // analytically (no creeping along the floor at the horizon), a shadow ray marches only where
 // the sphere can still darken its penumbra, and the probes (normals, AO, shadows) sample the
 // ground alone where the objects cannot be nearer.
+//   #define SCENE_BOX 1 and `vec3 sceneBoxMin()`, `vec3 sceneBoxMax()` (with SCENE_BOUND): an
+//     axis-aligned box with the same contract as the sphere (the renderer uses whichever is
+//     nearer to the point, and marches where the ray is inside both), and above whose top
+//     map(p).w >= p.y - sceneBoxMax().y (blends included). A flat field of shapes fits a box
+//     far tighter than a sphere: its primary rays march only inside the box, the floor in front
+//     of it is met analytically, and a shadow ray stops where its height above the box keeps
+//     the penumbra term at 1 (under a high light: most of its shadow rays).
 #ifndef SDF_RENDER_RENDER_GLSL
 #define SDF_RENDER_RENDER_GLSL
 
@@ -78,17 +85,35 @@
 #define SCENE_GROUND 0
 #endif
 #define USE_BOUND (BOUNDS && SCENE_BOUND)
+#ifndef SCENE_BOX
+#define SCENE_BOX 0
+#endif
 #define USE_GROUND (BOUNDS && SCENE_BOUND && SCENE_GROUND)
+#define USE_BOX (BOUNDS && SCENE_BOUND && SCENE_BOX)
 
 #include "render/uniforms.glsl"
 
-// map(), or the ground alone where it is nearer than the objects' bounding sphere (then the
+#if USE_BOUND
+// Distance from p to the scene's bounding volume (<= 0 inside): the sphere, and the box where
+// the scene declares one (both hold the objects, so the farther of the two is still a bound).
+float boundDistance(vec3 p) {
+    vec4 b = sceneBound();
+    float d = length(p - vec3(b.x, b.y, b.z)) - b.w;
+#if USE_BOX
+    vec3 lo = sceneBoxMin();
+    vec3 hi = sceneBoxMax();
+    d = max(d, length(max(max(lo - p, p - hi), vec3(0.0f))));
+#endif
+    return d;
+}
+#endif
+
+// map(), or the ground alone where it is nearer than the objects' bounding volume (then the
 // objects cannot be the nearest surface, so the result is still a distance bound).
 vec4 mapNear(vec3 p) {
 #if USE_GROUND
     vec4 g = mapGround(p);
-    vec4 b = sceneBound();
-    if (g.w < length(p - vec3(b.x, b.y, b.z)) - b.w) return g;
+    if (g.w < boundDistance(p)) return g;
 #endif
     return map(p);
 }
@@ -104,6 +129,17 @@ vec2 sphereInterval(vec3 ro, vec3 rd, vec4 s) {
     if (disc < 0.0f) return vec2(1e30f, -1e30f);
     float q = sqrt(disc);
     return vec2(-b - q, -b + q);
+}
+
+// Where a ray is inside the box lo..hi: (t_enter, t_exit), empty (x > y) when it misses.
+vec2 boxInterval(vec3 ro, vec3 rd, vec3 lo, vec3 hi) {
+    vec3 inv = vec3(1.0f / (abs(rd.x) > 1e-20f ? rd.x : 1e-20f), 1.0f / (abs(rd.y) > 1e-20f ? rd.y : 1e-20f),
+                    1.0f / (abs(rd.z) > 1e-20f ? rd.z : 1e-20f));
+    vec3 t0 = (lo - ro) * inv;
+    vec3 t1 = (hi - ro) * inv;
+    vec3 tn = min(t0, t1);
+    vec3 tf = max(t0, t1);
+    return vec2(max(max(tn.x, tn.y), tn.z), min(min(tf.x, tf.y), tf.z));
 }
 
 // Where a soft-shadow ray can still be darkened by whatever lies in the sphere s: outside the
@@ -213,6 +249,11 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
     vec2 inside = sphereInterval(ro, rd, sceneBound());
     float a = max(inside.x, tmin);
     float b = min(min(inside.y, tGround), u_maxDist);
+#if USE_BOX
+    vec2 box = boxInterval(ro, rd, sceneBoxMin(), sceneBoxMax());
+    a = max(a, box.x);
+    b = min(b, box.y);
+#endif
     float steps = 0.0f;
     if (a <= b) {
         Hit h = marchRange(ro, rd, a, b);
@@ -233,6 +274,13 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
 // part of it where the objects can darken the penumbra (k is the hardness; hard shadows pass
 // a huge k, which leaves just the sphere). Returns (from, to), empty if from > to.
 vec2 shadowRange(vec3 ro, vec3 rd, float tmin, float tmax, float k) {
+#if USE_BOX
+    // Above the box a sample's penumbra term is at least k * s * (height above it) / t, which
+    // stays >= 1 from t = k s (top - ro.y) / (k s rd.y - 1) on (s: the step scale the shadow
+    // applies to map()); the ray's stretch past that changes nothing.
+    float ks = k * sceneStepScale();
+    if (ks * rd.y > 1.0f) tmax = min(tmax, ks * (sceneBoxMax().y - ro.y) / (ks * rd.y - 1.0f));
+#endif
 #if USE_BOUND
 #if SCENE_GROUND
     // An upward ray from above the ground keeps k * height / t >= k * rd.y from the ground.

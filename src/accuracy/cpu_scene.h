@@ -36,6 +36,8 @@ struct CpuScene {
     std::function<S(V3, V3)> softShadowWhole;       // shadowSoft over all of [0.01, u_maxDist]
     bool hasBound = false;                          // the scene declares a bounding sphere (SCENE_BOUND)
     std::function<V4()> sceneBound;                 // centre xyz, radius w (or 0 without one)
+    bool hasBox = false;                            // ... and a box (SCENE_BOX)
+    std::function<V3()> sceneBoxMin, sceneBoxMax;   // its corners (or 0 without one)
     std::function<S(S)> hitEpsilon;
     std::function<V3(V3, S)> normalCentral, normalForward, normalTetra;  // p, eps
     std::function<V3(V3, S)> surfaceNormal;         // p, t (central, u_normalEps * max(1, t))

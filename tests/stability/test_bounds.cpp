@@ -159,3 +159,115 @@ TEST_CASE("stability: the bounded soft shadow matches the whole-ray soft shadow 
     // whole-ray march feels a little out there: up to 0.03 measured.
     CHECK(worst < 0.05);
 }
+
+// The field scenes' box (SCENE_BOX: render.glsl marches only inside it, meets the floor in front
+// of it analytically, samples the floor alone beside it and stops shadow rays above it): a
+// shortcut, never an overstep. Bounded hits at the full step agree with marching the whole field
+// at quarter-length steps, no surface lies outside the box, the field is the floor alone where
+// the floor is nearer than the box, and the bounded soft shadow equals the whole ray's.
+TEST_CASE("stability: the box bound never oversteps: hits agree with quarter-length steps over the whole field", "[stability][cpu][bounds]") {
+    int scenesWithBox = 0;
+    for (const std::string& name : accuracy::CpuSceneNames()) {
+        SceneInfo scene;
+        std::string error;
+        REQUIRE(FindScene(name, &scene, &error));
+        auto s = accuracy::MakeCpuScene64(name);
+        if (!s.hasBox) continue;
+        ++scenesWithBox;
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        int rays = 0, compared = 0, hitMismatch = 0, tMismatch = 0, outside = 0, groundOff = 0, groundPoints = 0;
+        int shadowPoints = 0, shadowed = 0;
+        double worstRel = 0, worstShadow = 0;
+        std::string first;
+        auto points = ParamPoints(scene, 4);
+        for (size_t i = 0; i < points.size(); ++i) {
+            FrameInputs in;
+            in.params = points[i];
+            in.time = 0.37 * i;
+            in.quality.maxSteps = 20000;
+            in.quality.hitEps = 1e-7f;
+            in.quality.shadowSteps = 4096;
+            accuracy::ApplyFrame(s, scene, in, 16, 9);
+            const glm::dvec3 lo = s.sceneBoxMin(), hi = s.sceneBoxMax();
+            auto boxDistance = [&](glm::dvec3 p) { return glm::length(glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0))); };
+            auto inBox = [&](double a, double b) { return a + (b - a) * u(rng); };
+            std::vector<std::pair<glm::dvec3, glm::dvec3>> rs;
+            for (int y = 0; y < 9; ++y)
+                for (int x = 0; x < 16; ++x) rs.push_back({*s.camPos, s.cameraRay(glm::dvec2(x + 0.5, y + 0.5))});
+            for (int k = 0; k < 60; ++k) {
+                // from around and above the box at random points inside it (near its faces half the time)
+                glm::dvec3 target(inBox(lo.x, hi.x), inBox(0.0, hi.y), inBox(lo.z, hi.z));
+                if (k % 2) target.x = k % 4 == 1 ? lo.x + 0.02 : hi.x - 0.02;
+                glm::dvec3 from(inBox(2 * lo.x, 2 * hi.x), inBox(0.05, 3 * hi.y + 1.0), inBox(2 * lo.z, 2 * hi.z));
+                if (glm::length(target - from) < 1e-3) continue;
+                rs.push_back({from, glm::normalize(target - from)});
+            }
+            const double stepFactor = *s.stepFactor;
+            for (auto& [ro, rd] : rs) {
+                ++rays;
+                auto a = s.march(ro, rd, 0.0);
+                *s.stepFactor = 0.25 * stepFactor;
+                auto w = s.marchWhole(ro, rd, 0.0);
+                *s.stepFactor = stepFactor;
+                if (w.hit) {
+                    glm::dvec3 p = ro + rd * w.t;
+                    if (p.y > 1e-3 && boxDistance(p) > 0) ++outside;
+                }
+                if (a.steps >= *s.maxSteps || w.steps >= *s.maxSteps) continue;
+                ++compared;
+                char m[256];
+                if (a.hit != w.hit) {
+                    ++hitMismatch;
+                    std::snprintf(m, sizeof m, "%s at knob point %zu: bounded %s at t=%.5f, quarter steps %s at t=%.5f",
+                                  name.c_str(), i, a.hit ? "hit" : "missed", a.t, w.hit ? "hit" : "missed", w.t);
+                    if (first.empty()) first = m;
+                    continue;
+                }
+                if (!a.hit) continue;
+                double rel = std::abs(a.t - w.t) / std::max(1.0, w.t);
+                worstRel = std::max(worstRel, rel);
+                if (rel > 1e-4) {
+                    ++tMismatch;
+                    std::snprintf(m, sizeof m, "%s at knob point %zu: bounded hit at t=%.5f, quarter steps at t=%.5f",
+                                  name.c_str(), i, a.t, w.t);
+                    if (first.empty()) first = m;
+                }
+                // the soft shadow from the hit (off the surface along its normal) and from the floor
+                // below it, inside the sphere (outside it the sphere's penumbra cone starts the
+                // shadow ray later, so its samples fall elsewhere: not the box's doing)
+                glm::dvec3 p = ro + rd * a.t;
+                glm::dvec3 n = s.surfaceNormal(p, a.t);
+                const glm::dvec3 l = glm::normalize(*s.lightDir);
+                const glm::dvec4 sphere = s.sceneBound();
+                for (glm::dvec3 q : {p + n * 2e-3, glm::dvec3(p.x, 2e-3, p.z)}) {
+                    if (s.map(q).w <= 0 || glm::length(q - glm::dvec3(sphere.x, sphere.y, sphere.z)) >= sphere.w) continue;
+                    double sb = s.softShadow(q, l), sw = s.softShadowWhole(q, l);
+                    worstShadow = std::max(worstShadow, std::abs(sb - sw));
+                    shadowed += sw < 0.99;
+                    ++shadowPoints;
+                }
+            }
+            // beside the box, where the floor is nearer than the box, the field is the floor alone
+            for (int k = 0; k < 400; ++k) {
+                glm::dvec3 p(inBox(2 * lo.x, 2 * hi.x), inBox(0.0, 0.5), inBox(2 * lo.z, 2 * hi.z));
+                if (!(p.y < boxDistance(p))) continue;
+                ++groundPoints;
+                if (std::abs(s.map(p).w - p.y) > 1e-9) ++groundOff;
+            }
+        }
+        INFO(name << ": " << rays << " rays, " << compared << " compared, worst relative t difference " << worstRel
+                  << ", " << shadowPoints << " shadow points (" << shadowed << " in some shadow), worst shadow difference "
+                  << worstShadow << ", " << groundPoints << " floor points beside the box, " << groundOff << " off"
+                  << (first.empty() ? "" : "; first difference: " + first));
+        CHECK(compared > rays * 9 / 10);
+        CHECK(outside == 0);
+        CHECK(hitMismatch == 0);
+        CHECK(tMismatch == 0);
+        CHECK(groundPoints > 1000);
+        CHECK(groundOff == 0);
+        CHECK(shadowed > shadowPoints / 20);
+        CHECK(worstShadow < 1e-3);
+    }
+    CHECK(scenesWithBox >= 2);   // field50 and field150 declare one
+}
