@@ -6,8 +6,9 @@
 #   scripts/gpu.sh remote ARGS..  there (the device tool runs it in the repo root, carrying .gl and
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
-#   scripts/gpu.sh measure [reload|frames]  there: every figure docs/ quotes into $OUT; `reload`
-#                                 (issue 12) and `frames` (4K, accuracy, effects, scaling) each fit a call
+#   scripts/gpu.sh measure [reload|frames|field]  there: every figure docs/ quotes into $OUT; `reload`
+#                                 (issue 12), `frames` (4K, accuracy, effects, scaling) and `field`
+#                                 (issue 13: the fields' box bound on/off, their accuracy) each fit a call
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -32,8 +33,8 @@ case "${1:-}" in
     du -sh .gl .devbuild
     ;;
   measure)
-    # `measure reload` (issue 12) and `measure frames` (issue 13) each fit one device call;
-    # `measure` alone runs both.
+    # `measure reload` (issue 12), `measure frames` and `measure field` (issue 13) each fit one
+    # device call; `measure` alone runs them all.
     out="${OUT:?set OUT to the folder for the results}"
     part="${2:-all}"
     run() { bash "$0" remote "$@"; }
@@ -84,6 +85,22 @@ case "${1:-}" in
     timeout 60 bash "$0" remote bench effects --scene field150 --size 1920x1080 --path compute --csv "$out/effects_field150.csv" \
       > "$out/effects_field150.txt" 2>&1 || true
     fi
+    if [ "$part" = field ] || [ "$part" = all ]; then
+    # The field scenes' box bound (issue 13, SCENE_BOX in render.glsl) on and off in one interleaved
+    # run: a copy of shaders/ adds field150_nobox, the same scene with only its bounding sphere;
+    # then the fields' accuracy rows (geometry against the CPU double reference).
+    nobox="$(mktemp -d)"
+    cp -r shaders presets mappings "$nobox/"
+    sed '/^#define SCENE_BOX 1$/d' shaders/lib/field_scene.glsl > "$nobox/shaders/lib/field_scene_nobox.glsl"
+    sed -e 's#lib/field_scene.glsl#lib/field_scene_nobox.glsl#' -e 's/"NAME": "field150"/"NAME": "field150_nobox"/' \
+      shaders/scenes/field150.glsl > "$nobox/shaders/scenes/field150_nobox.glsl"
+    SDFVJ_ROOT_OVERRIDE="$nobox" timeout 80 bash "$0" remote bench --scenes character field150 field150_nobox \
+      --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 15 --warmup 3 --markdown "$out/field_box.md" \
+      --csv "$out/field_box.csv" > "$out/field_box.txt" 2>&1 || true
+    rm -rf "$nobox"
+    timeout 120 bash "$0" remote bench accuracy --scene character,field150 --size 1920x1080 --ref-size 960x540 --path compute \
+      --frames 15 --warmup 5 --out "$out/accuracy_fields" --csv "$out/accuracy_fields.csv" > "$out/accuracy_fields.txt" 2>&1 || true
+    fi
     ;;
   remote)
     shift
@@ -91,7 +108,7 @@ case "${1:-}" in
     ldconfig
     export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
     export LD_LIBRARY_PATH="$PWD/.devbuild/lib:${LD_LIBRARY_PATH:-}"
-    export SDFVJ_ROOT="$PWD"
+    export SDFVJ_ROOT="${SDFVJ_ROOT_OVERRIDE:-$PWD}"
     nvidia-smi --query-gpu=name,driver_version --format=csv,noheader || true
     exec ./.devbuild/sdfvj-headless "$@"
     ;;
