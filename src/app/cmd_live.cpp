@@ -23,6 +23,7 @@
 
 #include "app/live_app.h"
 #include "app/live_support.h"
+#include "audio/wav.h"
 
 namespace sdfvj {
 
@@ -70,6 +71,7 @@ bool LiveSession::Start(std::string* error) {
     if (!o_.audio.empty()) {   // no server: one line, and the show goes on without audio
         AudioInputDesc audio;
         if (o_.audio != "in") audio.connect = o_.audio;
+        if (!o_.record.empty()) audio.recordWav = TakeWavPath(o_.record);   // render --replay feeds ISF audio inputs from it
         std::string status;
         audio_ = AudioInput::Open(audio, &status);
         if (!status.empty()) std::fprintf(stderr, "%s\n", status.c_str());

@@ -219,48 +219,14 @@ int RunRender(const RenderOptions& o) {
     int w = 0, h = 0;
     if (!ParseSize(o.size, &w, &h, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
     if (o.fps <= 0 || o.fps > 1000) { std::fprintf(stderr, "sdfvj render: --fps must be in (0, 1000]\n"); return 2; }
-    // ISF (src/isf): --scene x.fs is a generator instead of a raymarched scene; --post filters the
-    // frame. --param NAME=VALUE goes to the ISF input of that name, else to the scene.
-    const bool isfScene = IsIsfPath(o.show.scene);
-    // The post chain: --post, else the preset's "post" (read here only to know its inputs).
-    std::string postList = o.show.post;
-    if (postList.empty() && !o.show.preset.empty() && !isfScene) {
-        ShowOptions peek = o.show;
-        peek.params.clear();
-        Show peeked;
-        std::string ignored;   // the real PrepareShow below reports it
-        if (PrepareShow(peek, &peeked, &ignored)) postList = peeked.post;
-    }
-    const std::vector<std::string> postPaths = SplitIsfList(postList);
-    std::vector<std::string> isfPaths = postPaths;
-    if (isfScene) isfPaths.insert(isfPaths.begin(), ResolveIsfPath(o.show.scene));
-    std::vector<ParamDecl> isfDecls;
-    ShowOptions showOptions = o.show;
-    std::vector<std::pair<std::string, float>> isfValues;
-    if (!isfPaths.empty()) {
-        if (!IsfListParams(isfPaths, &isfDecls, &error)) { std::fprintf(stderr, "%s\n", error.c_str()); return 2; }
-        std::vector<std::string> isfOverrides;
-        SplitIsfOverrides(isfDecls, &showOptions.params, &isfOverrides);
-        if (!ApplyIsfParamOverrides(isfDecls, isfOverrides, &isfValues, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
-        if (isfScene && (!showOptions.params.empty() || !o.show.preset.empty() || !o.replay.empty())) {
-            std::fprintf(stderr, "sdfvj render: --scene %s is an ISF generator: --param takes its inputs only, and "
-                                 "--preset/--replay are for raymarched scenes (docs/isf.md)\n", o.show.scene.c_str());
-            return 2;
-        }
-    }
+    // The show: a raymarched scene, or an ISF/Shadertoy generator (--scene x.fs, or a preset whose
+    // scene is one: PrepareShow makes it the post chain's first stage). --post, else the preset's
+    // "post", filters the frame; every ISF input is a show parameter like a scene input (defaults,
+    // preset, --param, then the take, mapping and automation each frame).
     Show show;
-    if (!isfScene && !PrepareShow(showOptions, &show, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
-    // The preset's values for the post chain's inputs, where --param did not set them.
-    for (const auto& [name, value] : show.params) {
-        if (std::none_of(show.postDecls.begin(), show.postDecls.end(), [&](const ParamDecl& d) { return d.name == name; }))
-            continue;
-        const auto given = [&](const std::pair<std::string, float>& v) { return v.first == name; };
-        const bool overridden = std::any_of(o.show.params.begin(), o.show.params.end(),
-                                            [&](const std::string& kv) { return kv.rfind(name + "=", 0) == 0; });
-        auto it = std::find_if(isfValues.begin(), isfValues.end(), given);
-        if (it == isfValues.end()) isfValues.emplace_back(name, value);
-        else if (!overridden) it->second = value;
-    }
+    if (!PrepareShow(o.show, &show, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
+    const bool isfScene = show.isfScene;
+    const std::vector<std::string> isfPaths = SplitIsfList(show.post);   // the generator first
 
     // Replay: a take drives the parameters through the mapping, exactly as live input does.
     std::unique_ptr<ReplayDriver> replay;
@@ -357,7 +323,9 @@ int RunRender(const RenderOptions& o) {
             isfIn.time = in.time;
             isfIn.timeDelta = i > 0 ? dt : 0.0;   // DATE stays fixed: replays render the same bytes
             isfIn.frame = i;
-            isfIn.params = isfValues;
+            isfIn.params = in.params;   // the ISF host takes its own inputs' names (clamped there)
+            // ISF audio/audioFFT inputs: the WAV recorded beside the take, at this frame's time.
+            if (replay) replay->AudioAt(in.time, &isfIn.audioWaveform, &isfIn.audioSpectrum);
             if (!isfScene) fr.Draw(*show.program, show.scene, in);
             const unsigned sceneTexture = isfScene ? 0u : cues.Frame(fr, in, w, h).Texture();
             const unsigned out = isf.Render(sceneTexture, w, h, isfIn);

@@ -4,6 +4,7 @@
 // take modules); the headless build's MakeReplayDriver says so in one line.
 #pragma once
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,12 @@ public:
         std::function<float(double)> weight;   // seconds since the switch -> 0..1 of the new frame
     };
     virtual ShowSwitch TakeShowSwitch() { return {}; }
+
+    // The audio recorded beside the take (TAKE.wav, docs/audio.md) at `time`: the waveform and
+    // spectrum for ISF audio/audioFFT inputs, valid until the next call. False: the take has none.
+    virtual bool AudioAt(double /*time*/, std::span<const float>* /*wave*/, std::span<const float>* /*spectrum*/) {
+        return false;
+    }
 };
 
 // `takePath` may be empty: then only the preset's automation runs (a scripted preset renders

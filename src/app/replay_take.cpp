@@ -6,6 +6,7 @@
 
 #include "app/live_support.h"
 #include "app/replay_driver.h"
+#include "audio/wav.h"
 #include "control/control.h"
 #include "automation/automation.h"
 #include "take/take.h"
@@ -30,7 +31,7 @@ bool LoadShowMapping(const Show& show, const std::string& option, Mapping* mappi
         return false;
     }
     std::string problems;
-    if (!ValidateMapping(*mapping, show.scene.params, &problems))
+    if (!ValidateMapping(*mapping, ShowDecls(show), &problems))   // post and ISF scene inputs too
         std::fprintf(stderr, "%s (entries for other scenes are ignored)\n", problems.c_str());
     return true;
 }
@@ -67,6 +68,7 @@ public:
     std::string scenePath;          // the scene on screen
     ShowSwitch pending;
     int frame = 0;
+    std::unique_ptr<AudioReplay> audio;   // TAKE.wav, when the show recorded its audio
 
     double Duration() const override { return take.duration; }
     void Advance(double time, double dt, std::vector<std::pair<std::string, float>>* out) override {
@@ -97,6 +99,13 @@ public:
     }
     float Bpm() const override { return (float)automation.tempo.bpm; }
     ShowSwitch TakeShowSwitch() override { return std::move(pending); }
+    bool AudioAt(double time, std::span<const float>* wave, std::span<const float>* spectrum) override {
+        if (!audio) return false;
+        const AudioSpectrum& s = audio->At(time);
+        *wave = s.waveform;
+        *spectrum = s.spectrum;
+        return true;
+    }
 
     // A cue that switches presets, as `live` applies it (ApplyPresetFile): the preset starts from
     // the command line's options, its scripts and cue list start over at this beat, the values
@@ -179,6 +188,22 @@ std::unique_ptr<ReplayDriver> MakeReplayDriver(const Show& show, const std::stri
         }
         for (const std::string& w : d->take.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         d->cursor = std::make_unique<ReplayCursor>(d->take);
+        // The audio `live --record --audio` wrote beside the take; a damaged one is one line and
+        // the replay goes on without audio (ISF audio inputs read silence, as without a WAV).
+        const std::string wavPath = TakeWavPath(path);
+        std::error_code ec;
+        if (fs::exists(wavPath, ec)) {
+            WavAudio wav;
+            std::string why;
+            if (ReadWav(wavPath, &wav, &why)) {
+                d->audio = std::make_unique<AudioReplay>(std::move(wav));
+                std::vector<std::pair<double, int64_t>> anchors;   // where each frame of the show was in the WAV
+                AudioFeatures f;
+                for (const ControlEvent& e : d->take.events)
+                    if (ReadAudioFeatureEvent(e, &f) && f.wavSample >= 0) anchors.emplace_back(e.time, f.wavSample);
+                d->audio->SetAnchors(std::move(anchors));
+            } else std::fprintf(stderr, "sdfvj render: %s — rendering without the take's audio\n", why.c_str());
+        }
     }
     if (!LoadShowMapping(show, mappingPath, &d->mapping, error)) return nullptr;
     d->params = ShowParamState(show);

@@ -107,6 +107,7 @@ struct AudioInputDesc {
     std::string connect;       // output port to connect from ("system:capture_1"); "" = none
     float onsetThreshold = 0;  // passed to AudioAnalyzerDesc
     size_t ringSamples = 0;    // ring capacity, rounded up to a power of two; 0 = 65536
+    std::string recordWav;     // also write the analysed audio to this WAV (wav.h); "" = don't
 };
 
 // A JACK client with one mono input port. Owns the client (RAII); the process callback pushes
@@ -123,7 +124,7 @@ public:
 
     // Render thread: the latest features the analysis thread published (onset/beat: any since
     // the last call) and a copy of its spectrum and waveform for Textures(). Never waits for the
-    // analysis. `now` is unused (the analysis runs on the audio's own clock).
+    // analysis. `now` (the take's clock) only places the recorded WAV's first sample on it.
     AudioFeatures Poll(double now);
     const AudioSpectrum& Textures() const { return textures_; }   // as of the last Poll()
 
@@ -132,6 +133,9 @@ public:
     float BinHz() const { return float(rate_) / float(2 * kAudioBins); }
     uint64_t Overruns() const;         // samples dropped because Poll() fell behind
     bool ServerGone() const;           // the server shut down; Poll() then sees no new audio
+    // desc.recordWav: samples written so far, and the writer's first error ("" if none).
+    uint64_t RecordedSamples() const;
+    std::string RecordError() const;
 
     struct Impl;
 

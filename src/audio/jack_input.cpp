@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "audio/audio.h"
+#include "audio/wav.h"
 
 namespace sdfvj {
 
@@ -35,12 +36,14 @@ struct AudioInput::Impl {
     std::atomic<bool> gone{false};
 
     std::unique_ptr<AudioAnalyzer> analyzer;   // analysis thread only (after Open)
+    std::unique_ptr<WavRecorder> wav;          // desc.recordWav: what the analysis reads, as it reads it
     std::thread worker;
     std::atomic<bool> stop{false};
     std::mutex mutex;                          // guards the three below
     AudioFeatures published;                   // onset/beat: any since the last Poll
     AudioSpectrum spectrum;
     bool fresh = false;
+    uint64_t recorded = 0;                     // samples in the WAV when `published` was computed
 
     void AnalysisLoop() {
         std::vector<float> scratch(4096);
@@ -54,6 +57,7 @@ struct AudioInput::Impl {
                     r += n;
                     read.store(r, std::memory_order_release);
                     analyzer->Process(scratch.data(), n);
+                    if (wav) wav->Append(scratch.data(), n);
                 }
                 AudioFeatures f = analyzer->TakeFeatures();
                 std::lock_guard<std::mutex> lock(mutex);
@@ -61,6 +65,7 @@ struct AudioInput::Impl {
                 f.beat = f.beat || (fresh && published.beat);
                 published = f;
                 spectrum = analyzer->Spectrum();
+                recorded = wav ? wav->Appended() : 0;
                 fresh = true;
             }
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -84,10 +89,15 @@ struct AudioInput::Impl {
     ~Impl() {
         stop = true;
         if (worker.joinable()) worker.join();
-        if (client) {
-            jack_deactivate(client);
-            jack_client_close(client);
+        if (client) jack_deactivate(client);
+        if (wav) {   // the audio the analysis had not reached yet belongs to the show too
+            const uint64_t w = written.load(std::memory_order_acquire);
+            std::vector<float> rest;
+            for (uint64_t r = read.load(); r < w; ++r) rest.push_back(ring[r & mask]);
+            wav->Append(rest.data(), rest.size());
+            wav->Close();
         }
+        if (client) jack_client_close(client);
     }
 };
 
@@ -144,6 +154,16 @@ std::unique_ptr<AudioInput> AudioInput::Open(const AudioInputDesc& desc, std::st
     }
     // Made here (FFTW plans on the opening thread), used only by the analysis thread from now on.
     impl->analyzer = std::make_unique<AudioAnalyzer>(AudioAnalyzerDesc{rate, desc.onsetThreshold, 0});
+    if (!desc.recordWav.empty()) {   // a WAV that cannot be written is a line; the show goes on
+        auto wav = std::make_unique<WavRecorder>();
+        std::string error;
+        if (wav->Open(desc.recordWav, rate, &error)) {
+            impl->wav = std::move(wav);
+            *status += "; recording it to " + desc.recordWav;
+        } else {
+            *status += "; not recording the audio: " + error;
+        }
+    }
     Impl* raw = impl.get();
     impl->worker = std::thread([raw] { raw->AnalysisLoop(); });
     return std::unique_ptr<AudioInput>(new AudioInput(std::move(impl), rate));
@@ -153,21 +173,29 @@ AudioInput::AudioInput(std::unique_ptr<Impl> impl, int sampleRate) : impl_(std::
 
 AudioInput::~AudioInput() = default;   // Impl joins the analysis thread, then closes the client
 
-AudioFeatures AudioInput::Poll(double /*now*/) {
+AudioFeatures AudioInput::Poll(double now) {
     Impl& s = *impl_;
     std::lock_guard<std::mutex> lock(s.mutex);
     if (!s.fresh) {
         AudioFeatures f = s.published;
         f.onset = f.beat = false;   // already reported
+        if (s.wav) f.wavSample = int64_t(s.recorded);
         return f;
     }
     s.fresh = false;
     textures_ = s.spectrum;
-    return s.published;
+    AudioFeatures f = s.published;
+    if (s.wav) {   // the spectrum on screen at `now` ends at this sample of the WAV
+        s.wav->NoteClock(now, s.recorded);
+        f.wavSample = int64_t(s.recorded);
+    }
+    return f;
 }
 
 std::string AudioInput::PortName() const { return jack_port_name(impl_->port); }
 uint64_t AudioInput::Overruns() const { return impl_->overruns.load(); }
 bool AudioInput::ServerGone() const { return impl_->gone.load(); }
+uint64_t AudioInput::RecordedSamples() const { return impl_->wav ? impl_->wav->Appended() : 0; }
+std::string AudioInput::RecordError() const { return impl_->wav ? impl_->wav->Error() : ""; }
 
 }  // namespace sdfvj

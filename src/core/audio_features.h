@@ -11,6 +11,7 @@
 //
 // Header only, standard library only: control (mapping), take and audio all read it.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "core/control_event.h"
@@ -33,6 +34,10 @@ struct AudioFeatures {
     bool beat = false;       // a beat (aubio tempo tracker) since the previous frame
     float bpm = 0.0f;        // detected tempo; 0 = none yet
     float beatPhase = 0.0f;  // 0..1 from the last detected beat at bpm (0 while bpm is 0)
+    // While the show records its audio (TAKE.wav, src/audio/wav.h): the WAV's sample count when
+    // these features (and the spectrum on screen) were computed, so a replay reads the same
+    // 1024 samples at this event's time. -1: not recording.
+    int64_t wavSample = -1;
 
     // A feature as a control position 0..1 (Tempo: bpm 60..200 -> 0..1).
     float Value(AudioFeature f) const {
@@ -77,7 +82,8 @@ inline bool ParseAudioFeatureName(const std::string& name, AudioFeature* out) {
 }
 
 // The event layout: "/sdfvj/audio" with nine floats: level, levelDb, bass, mid, high, onset (0/1),
-// beat (0/1), bpm, beatPhase. Floats survive a take round trip bit for bit.
+// beat (0/1), bpm, beatPhase; then, while the audio is recorded, an int32: wavSample. Floats
+// survive a take round trip bit for bit.
 inline ControlEvent AudioFeatureEvent(const AudioFeatures& f, double time) {
     ControlEvent e;
     e.time = time;
@@ -89,6 +95,12 @@ inline ControlEvent AudioFeatureEvent(const AudioFeatures& f, double time) {
         OscArg a;
         a.type = 'f';
         a.f = x;
+        e.args.push_back(a);
+    }
+    if (f.wavSample >= 0 && f.wavSample <= INT32_MAX) {
+        OscArg a;
+        a.type = 'i';
+        a.i = int32_t(f.wavSample);
         e.args.push_back(a);
     }
     return e;
@@ -112,6 +124,7 @@ inline bool ReadAudioFeatureEvent(const ControlEvent& e, AudioFeatures* out) {
     out->beat = v[6] >= 0.5f;
     out->bpm = v[7];
     out->beatPhase = v[8];
+    out->wavSample = e.args.size() > 9 && e.args[9].type == 'i' && e.args[9].i >= 0 ? e.args[9].i : -1;
     return true;
 }
 

@@ -118,6 +118,11 @@ struct IsfFrameInputs {
     std::span<const float> audioWaveform, audioSpectrum;
 };
 
+// The row an audio/audioFFT input reads: `values` as they are, or with MAX (maxSamples) below
+// their count, MAX texels each the mean of its share of the values (a spectrum's peak stays in
+// the texel covering its bin). The texture is that many texels wide (IMG_SIZE says so).
+std::vector<float> IsfAudioRow(std::span<const float> values, int maxSamples);
+
 // One ISF file with its program, buffers and imported images. Owns GL objects: create, use and
 // destroy it on the render thread with the context current.
 class IsfEffect {

@@ -1,5 +1,6 @@
 // ISF JSON header: every field type- and range-checked, each error with the line it is on.
 #include <algorithm>
+#include <limits>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -202,18 +203,25 @@ struct Checker {
                                                     std::to_string(d.values.size()) + " VALUES, expected one label per value");
             }
         }
+        if (d.type == IsfInputType::Float && (!hadMin || !hadMax)) {
+            // A bound not given is 0 (MIN) or 1 (MAX), widened so the other bound and the default
+            // fit: {"MAX": 10} is 0..10, {"MIN": 2} is 2..3 (DEFAULT 2), {"DEFAULT": 5} is 0..5,
+            // {"MAX": -1} is -2..-1. A bound the file gives is kept as written: values are
+            // clamped to it on every path (--param, presets, OSC, mappings, the shader's uniform).
+            const float inf = std::numeric_limits<float>::infinity();
+            if (!hadDefault) d.defaultValue[0] = std::clamp(0.0f, hadMin ? d.minValue[0] : -inf, hadMax ? d.maxValue[0] : inf);
+            if (!hadMin) d.minValue[0] = std::min({0.0f, d.defaultValue[0], d.maxValue[0]});
+            if (!hadMin && d.minValue[0] >= d.maxValue[0]) d.minValue[0] = d.maxValue[0] - 1.0f;
+            if (!hadMax) d.maxValue[0] = std::max({1.0f, d.defaultValue[0], d.minValue[0]});
+            if (!hadMax && d.maxValue[0] <= d.minValue[0]) d.maxValue[0] = d.minValue[0] + 1.0f;
+        }
         for (size_t i = 0; i < n; ++i) {
-            if (d.type == IsfInputType::Float && !hadMin && !hadMax && (d.defaultValue[0] < 0 || d.defaultValue[0] > 1)) {
-                // No range given: one around the default, so the default is reachable.
-                d.minValue[0] = std::min(0.0f, d.defaultValue[0]);
-                d.maxValue[0] = std::max(1.0f, d.defaultValue[0]);
-            }
             if (d.minValue[i] > d.maxValue[i]) return Fail(at + "/MIN", who + " has MIN > MAX, expected MIN <= MAX");
             if (d.defaultValue[i] < d.minValue[i] || d.defaultValue[i] > d.maxValue[i])
                 return Fail(at + "/DEFAULT", who + " has DEFAULT outside [MIN, MAX], expected a default inside its range");
         }
         if (d.type == IsfInputType::Audio || d.type == IsfInputType::AudioFFT)
-            Notice(at + "/TYPE", who + " is " + type + ": 512 values a frame from the audio input (MAX is not followed); silent without one");
+            Notice(at + "/TYPE", who + " is " + type + ": 512 values a frame (MAX: at most that many) from --audio or the take's WAV; silent without one");
         *out = std::move(d);
         return true;
     }

@@ -123,8 +123,7 @@ struct IsfEffect::State {
     IsfFile file;
     std::vector<ParamDecl> params;
     unsigned program = 0, vao = 0, sampler = 0, black = 0, silence = 0;
-    unsigned audioTex[2] = {0, 0};                  // waveform, spectrum (IsfFrameInputs audio*)
-    int audioSize[2] = {0, 0};
+    std::map<std::string, std::pair<unsigned, int>> audioTex;   // audio/audioFFT input -> texture, width
     std::map<std::string, int> locations;
     std::map<std::string, Buffer> buffers;          // by TARGET; "" is the output
     std::map<std::string, unsigned> imports;        // IMPORTED name -> texture
@@ -163,8 +162,24 @@ IsfEffect::~IsfEffect() {
     if (s_->sampler) glDeleteSamplers(1, &s_->sampler);
     if (s_->black) glDeleteTextures(1, &s_->black);
     if (s_->silence) glDeleteTextures(1, &s_->silence);
-    for (unsigned t : s_->audioTex)
-        if (t) glDeleteTextures(1, &t);
+    for (auto& [n, t] : s_->audioTex)
+        if (t.first) glDeleteTextures(1, &t.first);
+}
+
+std::vector<float> IsfAudioRow(std::span<const float> values, int maxSamples) {
+    const size_t n = values.size();
+    if (maxSamples <= 0 || size_t(maxSamples) >= n) return std::vector<float>(values.begin(), values.end());
+    // MAX below the native count: texel i is the mean of values [i*n/m, (i+1)*n/m), so a peak in
+    // the spectrum stays in the texel covering it and the waveform keeps its whole window.
+    const size_t m = size_t(maxSamples);
+    std::vector<float> out(m, 0.0f);
+    for (size_t i = 0; i < m; ++i) {
+        const size_t b = i * n / m, e = std::max(b + 1, (i + 1) * n / m);
+        double sum = 0.0;
+        for (size_t k = b; k < e; ++k) sum += std::isfinite(values[k]) ? values[k] : 0.0f;
+        out[i] = float(sum / double(e - b));
+    }
+    return out;
 }
 
 namespace {
@@ -286,11 +301,17 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
     glDisable(GL_CULL_FACE);
     // The frame's sound, uploaded once for all passes (only when the file has audio inputs).
     unsigned wave = s.silence, fft = s.black;
-    const bool hasAudio = std::any_of(f.inputs.begin(), f.inputs.end(), [](const IsfInput& i) {
-        return i.type == IsfInputType::Audio || i.type == IsfInputType::AudioFFT;
-    });
-    if (hasAudio && !in.audioWaveform.empty()) wave = UploadAudioRow(&s.audioTex[0], &s.audioSize[0], in.audioWaveform, true);
-    if (hasAudio && !in.audioSpectrum.empty()) fft = UploadAudioRow(&s.audioTex[1], &s.audioSize[1], in.audioSpectrum, false);
+    // One texture per input: its MAX (sample count) may be below the native 512 (IsfAudioRow).
+    std::map<std::string, unsigned> audioOf;
+    for (const IsfInput& i : f.inputs) {
+        if (i.type != IsfInputType::Audio && i.type != IsfInputType::AudioFFT) continue;
+        const bool isWave = i.type == IsfInputType::Audio;
+        const std::span<const float> values = isWave ? in.audioWaveform : in.audioSpectrum;
+        if (values.empty()) continue;   // silence: the shared 1x1 textures
+        auto& [tex, width] = s.audioTex[i.name];
+        const std::vector<float> row = IsfAudioRow(values, i.maxSamples);
+        audioOf[i.name] = UploadAudioRow(&tex, &width, row, isWave);
+    }
     unsigned output = input;
     for (size_t pi = 0; pi < f.passes.size(); ++pi) {
         const IsfPass& pass = f.passes[pi];
@@ -331,7 +352,8 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
                 const int l = s.Location(i.name);
                 if (i.type == IsfInputType::Image) { s.BindImage(i.name, input ? input : s.black); continue; }
                 if (i.type == IsfInputType::Audio || i.type == IsfInputType::AudioFFT) {
-                    s.BindImage(i.name, i.type == IsfInputType::Audio ? wave : fft);
+                    auto it = audioOf.find(i.name);
+                    s.BindImage(i.name, it != audioOf.end() ? it->second : i.type == IsfInputType::Audio ? wave : fft);
                     continue;
                 }
                 if (l < 0) continue;

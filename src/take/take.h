@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/control_event.h"
+#include "core/durable_file.h"
 
 namespace sdfvj {
 
@@ -106,7 +107,6 @@ public:
     std::string Error() const;  // last I/O error ("take.mid: write failed: ..."), empty if none
 
 private:
-    void WriterLoop();
     void WritePending(int64_t endTick);  // endTick < 0: End-of-Track at the last event
     void SetError(const std::string& e);
 
@@ -122,10 +122,7 @@ private:
     std::mutex io_;          // one writer of the file at a time
     uint64_t eotOffset_ = 0; // file offset of the End-of-Track event (overwritten next write)
 
-    std::thread writer_;
-    std::mutex wakeMutex_;
-    std::condition_variable wake_;
-    bool stop_ = false;  // guarded by wakeMutex_
+    PeriodicFlush flusher_;  // WritePending(-1) every flushInterval
 
     std::atomic<bool> open_{false};  // Record() keeps events only while open
     std::atomic<size_t> recorded_{0};

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "core/durable_file.h"
 #include "take/smf_bytes.h"
 #include "take/take.h"
 
@@ -22,18 +23,6 @@ namespace sdfvj {
 
 static constexpr uint64_t kTrackLengthOffset = 18;  // after "MThd" + 6-byte header + "MTrk"
 static constexpr uint64_t kTrackDataOffset = 22;
-
-static bool WriteAll(int fd, const uint8_t* p, size_t n, uint64_t offset) {
-    while (n > 0) {
-        const ssize_t w = ::pwrite(fd, p, n, off_t(offset));
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return false;
-        p += w;
-        n -= size_t(w);
-        offset += uint64_t(w);
-    }
-    return true;
-}
 
 TakeRecorder::~TakeRecorder() { Close(); }
 
@@ -54,7 +43,7 @@ bool TakeRecorder::Open(const std::string& path, const TakeRecorderDesc& desc, s
     smf::PutU32(&head, uint32_t(prologue.size() + 4));
     head.insert(head.end(), prologue.begin(), prologue.end());
     smf::PutEndOfTrack(&head, 0);
-    if (!WriteAll(fd, head.data(), head.size(), 0)) {
+    if (!PwriteAll(fd, head.data(), head.size(), 0)) {
         if (error) *error = path + ": write failed: " + std::strerror(errno);
         ::close(fd);
         return false;
@@ -73,9 +62,8 @@ bool TakeRecorder::Open(const std::string& path, const TakeRecorderDesc& desc, s
     }
     recorded_ = 0;
     dropped_ = 0;
-    stop_ = false;
     open_ = true;
-    writer_ = std::thread([this] { WriterLoop(); });
+    flusher_.Start(desc_.flushInterval, [this] { WritePending(-1); });
     return true;
 }
 
@@ -103,12 +91,7 @@ void TakeRecorder::Close() { Close(-1.0e300); }
 void TakeRecorder::Close(double endTime) {
     if (fd_ < 0) return;
     open_ = false;
-    {
-        std::lock_guard<std::mutex> lock(wakeMutex_);
-        stop_ = true;
-    }
-    wake_.notify_all();
-    if (writer_.joinable()) writer_.join();
+    flusher_.Stop();
     const int64_t endTick = endTime < -1.0e299 ? -1 : smf::SecondsToTicks(endTime - desc_.timeOrigin);
     WritePending(endTick);
     ::close(fd_);
@@ -125,18 +108,6 @@ void TakeRecorder::SetError(const std::string& e) {
     if (error_.empty()) error_ = e;
 }
 
-void TakeRecorder::WriterLoop() {
-    const auto interval = std::chrono::duration<double>(desc_.flushInterval);
-    std::unique_lock<std::mutex> lock(wakeMutex_);
-    while (!stop_) {
-        wake_.wait_for(lock, interval, [this] { return stop_; });
-        if (stop_) break;
-        lock.unlock();
-        WritePending(-1);
-        lock.lock();
-    }
-}
-
 void TakeRecorder::WritePending(int64_t endTick) {
     std::lock_guard<std::mutex> io(io_);
     std::vector<uint8_t> bytes;
@@ -150,7 +121,7 @@ void TakeRecorder::WritePending(int64_t endTick) {
     const size_t eventBytes = bytes.size();
     smf::PutEndOfTrack(&bytes, endTick < 0 ? 0 : std::max<int64_t>(0, endTick - lastTick));
     // 1. events + End-of-Track over the old End-of-Track; 2. sync; 3. length that covers them.
-    if (!WriteAll(fd_, bytes.data(), bytes.size(), eotOffset_)) {
+    if (!PwriteAll(fd_, bytes.data(), bytes.size(), eotOffset_)) {
         SetError(path_ + ": write failed: " + std::strerror(errno) + "; these events are lost, later writes are tried");
         return;
     }
@@ -158,7 +129,7 @@ void TakeRecorder::WritePending(int64_t endTick) {
     const uint64_t trackLength = eotOffset_ + bytes.size() - kTrackDataOffset;
     std::vector<uint8_t> length;
     smf::PutU32(&length, uint32_t(trackLength));
-    if (!WriteAll(fd_, length.data(), length.size(), kTrackLengthOffset)) {
+    if (!PwriteAll(fd_, length.data(), length.size(), kTrackLengthOffset)) {
         SetError(path_ + ": write failed: " + std::strerror(errno));
         return;
     }
