@@ -83,6 +83,11 @@ struct Round {
     double loadMs = 0;         // ... its load + first use there
 };
 
+// SDFVJ_GL_DEBUG=1: the driver's debug messages (recompiles "based on GL state", say) to stderr.
+void GLAPIENTRY PrintGlMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message, const void*) {
+    std::fprintf(stderr, "GL debug (type 0x%x, severity 0x%x): %s\n", type, severity, message);
+}
+
 int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h, const std::string& cacheLine) {
     const auto start = Clock::now();
     HeadlessContext gl;
@@ -90,6 +95,10 @@ int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h
     if (!gl.Create(&error)) return Fail(error);
     const double contextMs = MsSince(start);
     const auto opened = Clock::now();
+    if (const char* dbg = std::getenv("SDFVJ_GL_DEBUG"); dbg && std::string(dbg) == "1") {
+        glEnable(GL_DEBUG_OUTPUT);
+        glDebugMessageCallback(PrintGlMessage, nullptr);
+    }
     RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
                                                                                       : ProbeRenderPath(scene, nullptr);
     // `--modes` naming warm: a loader thread (shared context) loads the cached binary and uses it
@@ -117,6 +126,14 @@ int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h
     if (!fr.Resize(w, h, &error)) return Fail(error);
     FrameInputs in;
     for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+    // SDFVJ_BENCH_PRIME_HERE=1 (diagnosis): the loader's 1x1 priming use, on the render context,
+    // timed on its own before the first real draw.
+    double primeHereMs = -1;
+    if (const char* here = std::getenv("SDFVJ_BENCH_PRIME_HERE"); here && std::string(here) == "1") {
+        const auto t = Clock::now();
+        PrimeProgram(live.Current()->Id(), path, false);
+        primeHereMs = MsSince(t);
+    }
     const auto drawAt = Clock::now();
     fr.Draw(*live.Current(), live.Scene(), in);
     glFinish();
@@ -133,6 +150,7 @@ int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h
                 p.Origin().usedBeforeHandOver ? ("loaded and used once on the loader thread first (" +
                                                   std::to_string((int)(p.Origin().loadMs + 0.5)) + " ms)").c_str()
                                               : "no loader");
+    if (primeHereMs >= 0) std::printf("a 1x1 priming use on the render context before it: %.1f ms\n", primeHereMs);
     live.Wait();
     return 0;
 }

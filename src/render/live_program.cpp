@@ -34,8 +34,10 @@ bool LiveProgram::ProcessCompileDefault() {
 bool LiveProgram::LoaderDefault() {
     const char* env = std::getenv("SDFVJ_LOADER");
     if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
-    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
-    return ProcessCompileDefault();
+    // Off unless asked for: on the H200 the driver finishes a loaded program once per CONTEXT
+    // (a use on the loader's shared context does not spare the render context's first use, and the
+    // loader's own finishing delays save -> screen by 120-570 ms): docs/performance.md.
+    return env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0);
 }
 
 void LiveProgram::CancelBuilds() {

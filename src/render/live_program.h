@@ -58,7 +58,8 @@ public:
     static bool ProcessCompileDefault();
     // Whether binaries (the compile process's, the program cache's) should be loaded and used once
     // on a loader thread before they go on screen (PendingProgram::SetLoader): where the compile
-    // process is used (ProcessCompileDefault()), unless SDFVJ_LOADER=0; SDFVJ_LOADER=1 anywhere.
+    // process is used: only with SDFVJ_LOADER=1 (measured on the H200: NVIDIA finishes a loaded
+    // program per context, so the loader's use does not spare the render context's; off by default).
     static bool LoaderDefault();
 
 private:
