@@ -17,7 +17,10 @@ BUILD=${SDFVJ_ASAN_BUILD:-build-asan}
 JOBS=${SDFVJ_JOBS:-$(nproc)}
 
 start=$(date +%s)
+# -O1 -g1 (line tables: ASan/UBSan stacks keep file:line) builds in half the time of -O2 -g,
+# which matters on CI's two cores; assertions stay off as in the main build.
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSDFVJ_SANITIZE=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DSDFVJ_TEST_MODULES="render;control;take;scene;live" >/dev/null
 # Every test_* executable of those folders; `sdfvj` itself comes in as their dependency.
 mapfile -t targets < <(cmake --build "$BUILD" --target help | sed -n 's/^\.\.\. \(test_[A-Za-z0-9_]*\).*/\1/p')

@@ -192,6 +192,7 @@ private:
     SceneInfo SceneWithPost() const;
     void ReloadPost(const std::vector<std::string>& changed);
     bool DrawPost(unsigned texture, int w, int h, double now);
+    void PresentRenderer(int rw, int rh, double now);   // renderer_'s frame to the window, through the post chain
     void PrepareFieldMorph();
     bool FadeMorphsFields();
     bool DrawFieldFade(double now, int rw, int rh);

@@ -76,11 +76,7 @@ bool LiveSession::DrawFieldFade(double now, int rw, int rh) {
     } else {
         fieldMorph_.Draw(renderer_, in_, fade_.params, Ease(fade_.easing, t));
     }
-    if (DrawPost(renderer_.Texture(), rw, rh, now)) return true;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBlitFramebuffer(0, 0, rw, rh, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, rw == fbw_ && rh == fbh_ ? GL_NEAREST : GL_LINEAR);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    PresentRenderer(rw, rh, now);
     return true;
 }
 

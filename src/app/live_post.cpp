@@ -58,6 +58,16 @@ void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
     for (const std::string& e : errors) state_.report.Say(e + " — the last good post effect stays");
 }
 
+// renderer_'s rw x rh frame to the window: through the post chain when there is one, else a blit
+// (scaled when the render scale is not 1).
+void LiveSession::PresentRenderer(int rw, int rh, double now) {
+    if (DrawPost(renderer_.Texture(), rw, rh, now)) return;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, rw, rh, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, rw == fbw_ && rh == fbh_ ? GL_NEAREST : GL_LINEAR);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 // Runs the chain over `texture` (w x h) and draws its output to the window; false without one.
 bool LiveSession::DrawPost(unsigned texture, int w, int h, double now) {
     if (!post_ || post_->Empty()) return false;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "isf/isf.h"
+#include "render/gl_stages.h"
 
 namespace sdfvj {
 
@@ -57,28 +58,19 @@ unsigned OnePixelTexture(const uint8_t rgba[4]) {
     return t;
 }
 
-unsigned CompileStage(GLenum kind, const ShaderSource& src, std::string* log) {
-    unsigned s = glCreateShader(kind);
-    const char* text = src.text.c_str();
-    glShaderSource(s, 1, &text, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (ok) return s;
-    GLint len = 0;
-    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-    std::string raw(size_t(std::max(len, 1)), '\0');
-    glGetShaderInfoLog(s, len, nullptr, raw.data());
-    *log += MapCompileLog(raw.c_str(), src);
-    glDeleteShader(s);
-    return 0;
+// One stage, its log's lines mapped back to the .fs/.vs; 0 on failure.
+unsigned IsfStage(GLenum kind, const ShaderSource& src, std::string* log) {
+    std::string raw;
+    unsigned s = CompileStage(kind, src.text.c_str(), &raw);
+    if (!s) *log += MapCompileLog(raw.c_str(), src);
+    return s;
 }
 
 // Links the two stages; 0 with file:line messages in `error` on failure.
 unsigned BuildProgram(const IsfSources& src, const std::string& path, std::string* error) {
     std::string log;
-    unsigned vs = CompileStage(GL_VERTEX_SHADER, src.vertex, &log);
-    unsigned fs = CompileStage(GL_FRAGMENT_SHADER, src.fragment, &log);
+    unsigned vs = IsfStage(GL_VERTEX_SHADER, src.vertex, &log);
+    unsigned fs = IsfStage(GL_FRAGMENT_SHADER, src.fragment, &log);
     if (!vs || !fs) {
         if (vs) glDeleteShader(vs);
         if (fs) glDeleteShader(fs);
@@ -86,21 +78,9 @@ unsigned BuildProgram(const IsfSources& src, const std::string& path, std::strin
         while (!error->empty() && error->back() == '\n') error->pop_back();
         return 0;
     }
-    unsigned p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (ok) return p;
-    GLint len = 0;
-    glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
-    std::string raw(size_t(std::max(len, 1)), '\0');
-    glGetProgramInfoLog(p, len, nullptr, raw.data());
-    glDeleteProgram(p);
-    *error = path + ":1: the shader does not link: " + std::string(raw.c_str());
+    std::string raw;
+    if (unsigned p = LinkStages({vs, fs}, &raw)) return p;
+    *error = path + ":1: the shader does not link: " + raw;
     while (!error->empty() && error->back() == '\n') error->pop_back();
     return 0;
 }

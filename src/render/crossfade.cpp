@@ -1,6 +1,7 @@
 // Crossfade: two rendered frames mixed into a third target (a scene change that morphs).
 #include <epoxy/gl.h>
 
+#include "render/gl_stages.h"
 #include "render/render.h"
 
 namespace sdfvj {
@@ -25,22 +26,6 @@ uniform float u_mix;
 void main() { color = mix(texture(u_from, uv), texture(u_to, uv), u_mix); }
 )";
 
-unsigned Stage(unsigned kind, const char* text, std::string* error) {
-    unsigned s = glCreateShader(kind);
-    glShaderSource(s, 1, &text, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = {0};
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        *error = std::string("crossfade shader: ") + log;
-        glDeleteShader(s);
-        return 0;
-    }
-    return s;
-}
-
 }  // namespace
 
 Crossfade::~Crossfade() {
@@ -50,23 +35,13 @@ Crossfade::~Crossfade() {
 
 bool Crossfade::Init(std::string* error) {
     if (program_) return true;
-    unsigned vs = Stage(GL_VERTEX_SHADER, kVertex, error);
-    unsigned fs = vs ? Stage(GL_FRAGMENT_SHADER, kFragment, error) : 0;
-    if (!vs || !fs) {
-        if (vs) glDeleteShader(vs);
-        return false;
-    }
-    unsigned p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        *error = "crossfade program does not link";
-        glDeleteProgram(p);
+    std::string log;
+    unsigned vs = CompileStage(GL_VERTEX_SHADER, kVertex, &log);
+    unsigned fs = vs ? CompileStage(GL_FRAGMENT_SHADER, kFragment, &log) : 0;
+    unsigned p = vs && fs ? LinkStages({vs, fs}, &log) : 0;
+    if (!p) {
+        if (vs && !fs) glDeleteShader(vs);
+        *error = "crossfade program: " + log;
         return false;
     }
     program_ = p;

@@ -291,7 +291,11 @@ TEST_CASE("midi clock: start, 24 pulses a beat and stop through JACK reach the q
     MidiRig r("no-controller-here", vname);
     auto out = ConnectTo(vname);
     REQUIRE(out);
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    // JACK connects asynchronously (slowly on a loaded CI machine): resend a harmless CC until
+    // one arrives, let the resent ones land, then count from there.
+    REQUIRE(WaitFor([&] { Send(*out, {0xB0, 1, 0}); return r.queue.Pushed() > 0; }, 3.0));
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    const size_t base = r.queue.Pushed();
     Send(*out, {0xFA});
     const int pulses = 48;   // two beats at 120 bpm
     for (int i = 0; i < pulses; ++i) {
@@ -299,7 +303,8 @@ TEST_CASE("midi clock: start, 24 pulses a beat and stop through JACK reach the q
         std::this_thread::sleep_for(std::chrono::microseconds(20833));
     }
     Send(*out, {0xFC});
-    REQUIRE(WaitFor([&] { return r.queue.Pushed() >= (size_t)pulses + 2; }, 3.0));
+    INFO("events pushed since the handshake: " << r.queue.Pushed() - base);
+    REQUIRE(WaitFor([&] { return r.queue.Pushed() >= base + pulses + 2; }, 3.0));
     TempoState tempo;
     tempo.bpm = 60.0;
     MidiClockFollower clock;

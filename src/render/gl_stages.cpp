@@ -1,0 +1,40 @@
+#include "render/gl_stages.h"
+
+#include <epoxy/gl.h>
+
+namespace sdfvj {
+
+unsigned CompileStage(unsigned kind, const char* text, std::string* rawLog) {
+    unsigned s = glCreateShader(kind);
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (ok) return s;
+    GLint len = 0;
+    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+    std::string buf(len > 1 ? (size_t)len : 1, '\0');
+    glGetShaderInfoLog(s, (GLsizei)buf.size(), nullptr, buf.data());
+    *rawLog += buf.c_str();
+    glDeleteShader(s);
+    return 0;
+}
+
+unsigned LinkStages(std::initializer_list<unsigned> stages, std::string* rawLog) {
+    unsigned p = glCreateProgram();
+    for (unsigned s : stages) glAttachShader(p, s);
+    glLinkProgram(p);
+    for (unsigned s : stages) glDeleteShader(s);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (ok) return p;
+    GLint len = 0;
+    glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
+    std::string buf(len > 1 ? (size_t)len : 1, '\0');
+    glGetProgramInfoLog(p, (GLsizei)buf.size(), nullptr, buf.data());
+    *rawLog = buf.c_str();
+    glDeleteProgram(p);
+    return 0;
+}
+
+}  // namespace sdfvj
