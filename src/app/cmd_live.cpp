@@ -19,6 +19,7 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <iterator>
 #include <memory>
 
 #include "app/live_app.h"
@@ -118,7 +119,9 @@ bool LiveSession::Frame() {
     StepSmoothing(state_.params, dt);
     Guard("follow", [&] {   // a --forward leader heard: its values; a leader: this frame to the followers
         FollowLeaderValues(sync_, state_.params);
-        ForwardFrame(forward_, state_, now, LiveSyncRunning(sync_));
+        float beat = BeatPhase(state_, now), bpm = (float)state_.automation.tempo.bpm;
+        LeaderTempo(sync_, &beat, &bpm);   // a follower forwards (and draws) its leader's tempo
+        ForwardFrame(forward_, state_, now, LiveSyncRunning(sync_), beat, bpm);
     });
     Guard("log", [&] { LogParams(now); });
     Guard("draw", [&] { Draw(now); });
@@ -137,9 +140,18 @@ std::vector<ControlEvent> LiveSession::PollInput(double now) {
     }
     if (audio_) queue_.Push(AudioFeatureEvent(audio_->Poll(now), now));   // mapping and recorder, like a knob
     std::vector<ControlEvent> events = queue_.DrainUntil(now);
-    ObserveEvents(ui_, events);   // the overlay's monitor, and learn when it is armed
+    // The overlay's monitor, learn when it is armed, and the recorder: a leader's clock frames
+    // (one a frame) are the show clock's only (SyncShowClock).
+    if (std::any_of(events.begin(), events.end(), IsLeaderClock)) {
+        std::vector<ControlEvent> seen;
+        std::copy_if(events.begin(), events.end(), std::back_inserter(seen), [](const ControlEvent& e) { return !IsLeaderClock(e); });
+        ObserveEvents(ui_, seen);
+    } else {
+        ObserveEvents(ui_, events);
+    }
     if (recorder_.IsOpen())
-        for (const ControlEvent& e : events) recorder_.Record(e);
+        for (const ControlEvent& e : events)
+            if (!IsLeaderClock(e)) recorder_.Record(e);
     return events;
 }
 
@@ -200,7 +212,9 @@ void LiveSession::StartFadeIfSceneChanged(double now) {
 // the overlay's last line.
 void LiveSession::UpdateProgram() {
     UpdatePost();
-    if (live_.Current()) FollowScene(state_, SceneWithPost());
+    // The scene's header alone unless a post chain adds inputs: no SceneInfo copy per frame.
+    if (live_.Current() && postDecls_.empty()) FollowScene(state_, live_.Scene());
+    else if (live_.Current()) FollowScene(state_, SceneWithPost());
     if (state_.sendFeedback && state_.pendingTargets.empty()) {
         input_.SendFeedback(state_.params, state_.currentPreset);
         state_.sendFeedback = false;
@@ -277,6 +291,7 @@ void LiveSession::DrawScene(double now) {
     in_.frame = frame_++;
     in_.beat = BeatPhase(state_, now);
     in_.bpm = (float)state_.automation.tempo.bpm;
+    LeaderTempo(sync_, &in_.beat, &in_.bpm);
     if (DrawFieldFade(now, rw, rh)) return;
     renderer_.Draw(*live_.Current(), live_.Scene(), in_);
     const double t = fade_.program ? (now - fade_.start) / fade_.seconds : 1.0;
@@ -290,10 +305,8 @@ void LiveSession::DrawScene(double now) {
         if (post) DrawPost(postInput_.Texture(), rw, rh, now);
     } else {
         fade_ = Fade{};   // done: the old program may go
-        if (DrawPost(renderer_.Texture(), rw, rh, now)) return;
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer_.Framebuffer());
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        glBlitFramebuffer(0, 0, rw, rh, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, rw == fbw_ && rh == fbh_ ? GL_NEAREST : GL_LINEAR);
+        PresentRenderer(rw, rh, now);
+        return;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -128,7 +128,7 @@ void ForwardAfterActions(LiveForward& f, const LiveState& state, double now) {
     for (size_t i = 0; i < p.decls.size(); ++i) SendFloat(f, "/sdfvj/raw/" + p.decls[i].name, p.target[i]);
 }
 
-void ForwardFrame(LiveForward& f, const LiveState& state, double show, bool running) {
+void ForwardFrame(LiveForward& f, const LiveState& state, double show, bool running, float beat, float bpm) {
     if (!IsForwarding(f)) return;
     const double t = std::clamp(show, 0.0, double(kLeaderClockMaxSeconds));
     int32_t seconds = int32_t(std::floor(t));
@@ -139,15 +139,23 @@ void ForwardFrame(LiveForward& f, const LiveState& state, double show, bool runn
     lo_message_add_int32(m, std::min(seconds, kLeaderClockMaxSeconds));
     lo_message_add_int32(m, micros);
     lo_message_add_int32(m, running ? 1 : 0);
-    for (size_t i = 0; i < p.decls.size() && i < 256; ++i) {
+    for (size_t i = 0; i < p.decls.size() && i < 254; ++i) {
         lo_message_add_string(m, p.decls[i].name.c_str());
         lo_message_add_float(m, p.value[i]);
     }
+    // The tempo this frame renders with (u_beat, u_bpm): a follower draws the leader's beat, not
+    // its own tap or clock. '@' cannot start a parameter name, so no scene input takes these.
+    lo_message_add_string(m, kLeaderBeatName);
+    lo_message_add_float(m, beat);
+    lo_message_add_string(m, kLeaderBpmName);
+    lo_message_add_float(m, bpm);
     for (lo_address a : f.targets->addresses) lo_send_message(a, "/sdfvj/clock", m);
     lo_message_free(m);
     ++f.sent;
     ++f.frames;
 }
+
+bool IsLeaderClock(const ControlEvent& e) { return e.source == EventSource::Osc && e.address == "/sdfvj/clock"; }
 
 void DropPresetStatesOnStage(std::vector<ControlEvent>* events, const std::string& currentPreset) {
     if (currentPreset.empty()) return;

@@ -17,7 +17,8 @@
 //   /sdfvj/clock iii[sf...]           every frame: the show time (seconds, microseconds), running
 //                                     1/0, and the values the frame renders (after automation and
 //                                     smoothing); a follower locks its show clock to it and shows
-//                                     these values (live_sync.h), so both --log-params agree
+//                                     these values (live_sync.h), so both --log-params agree;
+//                                     last "@beat" u_beat and "@bpm" u_bpm
 // and once a second the whole state, for a follower started late or a lost packet:
 //   /sdfvj/preset ss FILE "state"     the preset on stage; a follower already on it ignores it
 //                                     (DropPresetStatesOnStage), any other applies it
@@ -59,9 +60,12 @@ void ForwardBeforeControl(LiveForward& f, const LiveState& state);
 // Sends this frame's moved targets, preset switch and effect toggles; the whole state when
 // stateInterval has passed since the last one.
 void ForwardAfterActions(LiveForward& f, const LiveState& state, double now);
-// After smoothing: /sdfvj/clock with the show time, whether the show clock runs (LiveSyncRunning)
-// and every parameter's value as this frame renders it.
-void ForwardFrame(LiveForward& f, const LiveState& state, double show, bool running);
+// After smoothing: /sdfvj/clock with the show time, whether the show clock runs (LiveSyncRunning),
+// every parameter's value as this frame renders it, then "@beat" BEAT (u_beat) and "@bpm" BPM.
+void ForwardFrame(LiveForward& f, const LiveState& state, double show, bool running, float beat, float bpm);
+// The leader's clock frames are for the show clock only: the overlay's monitor and a follower's
+// --record leave them out (a leader sends one every frame).
+bool IsLeaderClock(const ControlEvent& e);
 
 // Follower side: a leader's once-a-second preset state ("/sdfvj/preset ss FILE state") for the
 // preset already on stage is dropped, so it does not start that preset over every second. Every

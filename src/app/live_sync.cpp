@@ -129,4 +129,14 @@ void FollowLeaderValues(const LiveSync& s, ParamState& params) {
     }
 }
 
+bool LeaderTempo(const LiveSync& s, float* beat, float* bpm) {
+    if (!Heard(s.leader)) return false;
+    bool found = false;
+    for (const auto& [name, v] : s.leaderValues) {
+        if (name == kLeaderBeatName) *beat = std::clamp(v, 0.0f, 1.0f), found = true;
+        if (name == kLeaderBpmName) *bpm = std::clamp(v, 1.0f, 999.0f), found = true;
+    }
+    return found;
+}
+
 }  // namespace sdfvj

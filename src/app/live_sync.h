@@ -58,5 +58,8 @@ bool LiveSyncRunning(const LiveSync& s);
 // After smoothing: while the leader is heard (locked or holding), its last frame's values replace
 // this frame's, by name (clamped to this scene's ranges; names this scene lacks are skipped).
 void FollowLeaderValues(const LiveSync& s, ParamState& params);
+// While the leader is heard: the u_beat and u_bpm its last frame rendered with (true); else false
+// and *beat, *bpm untouched (this show's own tempo).
+bool LeaderTempo(const LiveSync& s, float* beat, float* bpm);
 
 }  // namespace sdfvj

@@ -230,6 +230,9 @@ bool DecodeOscMessage(const char* path, const char* types, const void* const* ar
 // the values that frame rendered as NAME VALUE pairs (at most 256; names 1..64 bytes, finite
 // float or int values). Anything else is false with *why ("/sdfvj/clock: ..., expected ...").
 constexpr int32_t kLeaderClockMaxSeconds = 10000000;   // 115 days
+// The tempo pairs a leader appends ('@' starts no parameter name): u_beat's phase and u_bpm.
+constexpr const char* kLeaderBeatName = "@beat";
+constexpr const char* kLeaderBpmName = "@bpm";
 struct LeaderClock {
     double seconds = 0.0;
     bool running = true;

@@ -189,6 +189,9 @@ bool DecodeOscMessage(const char* path, const char* types, const void* const* ar
         } else if (ad.rfind("/sdfvj/effect/", 0) == 0) {
             if (ad.size() <= 14) return fail(ad + ": no effect name in the address");
             if (!numeric()) return fail(ad + ": expected one int argument, got '" + std::string(types ? types : "") + "'");
+        } else if (ad.rfind("/sdfvj/env/", 0) == 0) {   // a scripted preset's envelope: 1 fire, 0 release
+            if (ad.size() <= 11) return fail(ad + ": no envelope name in the address");
+            if (!numeric()) return fail(ad + ": expected one int argument (1 fire, 0 release), got '" + std::string(types ? types : "") + "'");
         } else if (ad == "/sdfvj/effects") {   // a leader's whole effect set, as --effects writes it
             if (e.args.size() != 1 || e.args[0].type != 's')
                 return fail(ad + ": expected one string argument (an effect list), got '" + std::string(types ? types : "") + "'");
@@ -197,7 +200,7 @@ bool DecodeOscMessage(const char* path, const char* types, const void* const* ar
             if (!ParseLeaderClock(e.args, nullptr, &w)) return fail(w);
         } else {
             return fail(ad + ": unknown address, expected /sdfvj/param/<name>, /sdfvj/raw/<name>, "
-                             "/sdfvj/preset, /sdfvj/effect/<name>, /sdfvj/effects or /sdfvj/clock");
+                             "/sdfvj/preset, /sdfvj/effect/<name>, /sdfvj/effects, /sdfvj/env/<name> or /sdfvj/clock");
         }
     }
     if (out) *out = std::move(e);

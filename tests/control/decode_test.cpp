@@ -335,3 +335,32 @@ TEST_CASE("osc decode: /sdfvj/effects takes one effect list, and the mapping ask
     lo_message_free(m);
     CHECK(c2.wrongType == 1);
 }
+
+TEST_CASE("osc decode: /sdfvj/env/NAME takes one number (1 fires, 0 releases), anything else is a counted bad message") {
+    auto decode = [](const char* address, auto add) {
+        lo_message m = lo_message_new();
+        add(m);
+        size_t len = 0;
+        void* buf = lo_message_serialise(m, address, nullptr, &len);
+        std::vector<ControlEvent> out;
+        OscDecodeCounts c;
+        DecodeOscPacket(static_cast<uint8_t*>(buf), len, 0.0, &out, &c);
+        free(buf);
+        lo_message_free(m);
+        return std::make_pair(out, c.wrongType);
+    };
+    auto [fire, bad0] = decode("/sdfvj/env/hit", [](lo_message m) { lo_message_add_int32(m, 1); });
+    REQUIRE(fire.size() == 1);
+    CHECK(fire[0].address == "/sdfvj/env/hit");
+    CHECK(fire[0].args[0].i == 1);
+    CHECK(bad0 == 0);
+    auto [none, bad1] = decode("/sdfvj/env/", [](lo_message m) { lo_message_add_int32(m, 1); });
+    CHECK(none.empty());
+    CHECK(bad1 == 1);
+    auto [text, bad2] = decode("/sdfvj/env/hit", [](lo_message m) { lo_message_add_string(m, "on"); });
+    CHECK(text.empty());
+    CHECK(bad2 == 1);
+    auto [empty, bad3] = decode("/sdfvj/env/hit", [](lo_message) {});
+    CHECK(empty.empty());
+    CHECK(bad3 == 1);
+}

@@ -347,8 +347,8 @@ TEST_CASE("live forward: the leader's frame goes out as /sdfvj/clock that the de
     b.maxValue = 2.0f;
     state.params = MakeParamState({a, b});
     state.params.value = {-1.234567f, 0.75f};
-    ForwardFrame(f, state, 3601.0000125, false);
-    ForwardFrame(f, state, 12.9999999, true);   // rounds up to the next whole second
+    ForwardFrame(f, state, 3601.0000125, false, 0.25f, 128.0f);
+    ForwardFrame(f, state, 12.9999999, true, 0.5f, 90.0f);   // rounds up to the next whole second
     for (int k = 0; k < 50 && got.events.size() + got.why.size() < 2; ++k) lo_server_recv_noblock(server, 100);
     lo_server_free(server);
     INFO(got.why.size() << " refused" << (got.why.empty() ? "" : ": " + got.why[0]));
@@ -357,11 +357,30 @@ TEST_CASE("live forward: the leader's frame goes out as /sdfvj/clock that the de
     REQUIRE(ParseLeaderClock(got.events[0].args, &c, &error));
     CHECK(c.seconds == Approx(3601.000013).margin(1e-9));
     CHECK_FALSE(c.running);
-    CHECK(c.values == std::vector<std::pair<std::string, float>>{{"twist", -1.234567f}, {"scale", 0.75f}});
+    CHECK(c.values == std::vector<std::pair<std::string, float>>{{"twist", -1.234567f}, {"scale", 0.75f}, {"@beat", 0.25f}, {"@bpm", 128.0f}});
     REQUIRE(ParseLeaderClock(got.events[1].args, &c, &error));
     CHECK(c.seconds == 13.0);
     CHECK(c.running);
     CHECK(f.frames == 2);
+    // A follower draws the leader's tempo while it hears it: u_beat and u_bpm of the frame.
+    LiveSync sync;
+    std::vector<std::string> said;
+    float beat = 0.9f, bpm = 120.0f;
+    CHECK_FALSE(LeaderTempo(sync, &beat, &bpm));
+    CHECK(beat == 0.9f);
+    std::vector<ControlEvent> events = {got.events[1]};
+    events[0].time = 1.0;
+    LiveSyncStep(sync, &events, 1.0, &said);
+    CHECK(events.empty());   // the clock frame is the show clock's only
+    CHECK(IsLeaderClock(got.events[1]));
+    CHECK_FALSE(IsLeaderClock(ControlEvent{}));
+    REQUIRE(LeaderTempo(sync, &beat, &bpm));
+    CHECK(beat == 0.5f);
+    CHECK(bpm == 90.0f);
+    // The tempo pairs are no parameter: FollowLeaderValues leaves a scene's inputs to their names.
+    ParamState p = state.params;
+    FollowLeaderValues(sync, p);
+    CHECK(p.value == std::vector<float>{-1.234567f, 0.75f});
 }
 
 TEST_CASE("live forward: both --log-params agree frame by frame, matched by show time, while twist glides") {

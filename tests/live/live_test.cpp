@@ -37,7 +37,11 @@ struct LiveRun {
         std::vector<std::string> argv = {SDFVJ_BIN, "live", "--scene", "midi", "--size", std::to_string(kW) + "x" + std::to_string(kH),
                                          "--seconds", "3", "--path", "fragment", "--effects", "none", "--osc-port", std::to_string(oscPort),
                                          "--midi", "no-such-controller", "--screenshot", shot, "--log-params", params};
-        if (std::find(extra.begin(), extra.end(), "--scene") != extra.end()) argv.erase(argv.begin() + 2, argv.begin() + 4);
+        for (const char* option : {"--scene", "--seconds"})   // given in `extra`: its default goes
+            if (std::find(extra.begin(), extra.end(), option) != extra.end()) {
+                auto at = std::find(argv.begin(), argv.end(), option);
+                argv.erase(at, at + 2);
+            }
         if (!overlay) argv.push_back("--hide-overlay");
         argv.insert(argv.end(), extra.begin(), extra.end());
         pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}});
@@ -289,4 +293,28 @@ void main() { gl_FragColor = vec4(vec3(level), 1.0); }
     REQUIRE(shot.width == kW);
     CHECK(MeanLuma(shot, 0, 0, 1, 1) == Approx(191.0).margin(2.0));
     CHECK(ReadText(run.log).find("error") == std::string::npos);
+}
+
+TEST_CASE("live envelope: oscsend /sdfvj/env/drop i 1 fires the scripted preset's envelope, 0 releases it") {
+    // bulb_breath: power = 8 + 3 env_hit - 1.5 env_drop; drop attacks in 0.5 s, decays to 0.6.
+    LiveRun run("osc-env", {"--scene", "mandelbulb", "--preset", "bulb_breath", "--seconds", "6"}, false);
+    INFO(ReadText(run.log));
+    REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    run.Osc("/sdfvj/env/drop", "i", "1");
+    std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+    run.Osc("/sdfvj/env/drop", "i", "0");
+    REQUIRE(run.Wait() == 0);
+    const std::string log = ReadText(run.log);
+    CHECK(log.find("unknown address") == std::string::npos);
+    std::vector<Frame> a = ReadParamLog(run.params);
+    REQUIRE(a.size() >= 5);
+    CHECK(a.front().second.at("power") == Approx(8.0f).margin(1e-3));
+    float lowest = 99.0f;
+    for (const Frame& f : a) lowest = std::min(lowest, f.second.at("power"));
+    // The attack's peak: power 8 - 1.5 = 6.5, then the decay to sustain 0.6 (7.1) while held.
+    CHECK(lowest < 7.0f);
+    CHECK(lowest > 6.45f);
+    // Released 1.5 s before the end, with a 1.5 s release: on its way back to 8.
+    CHECK(a.back().second.at("power") > lowest + 0.2f);
 }
