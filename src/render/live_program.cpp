@@ -8,6 +8,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "render/compile_process.h"
 
@@ -50,6 +53,7 @@ void LiveProgram::Request(const VariantKey& key) {
     auto it = cache_.find(key);
     if (it != cache_.end()) {
         CancelBuilds();
+        it->second.lastUsed = ++useClock_;
         current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
@@ -74,6 +78,7 @@ void LiveProgram::Rebuild() {
     if (it != cache_.end() && it->second.program->Source().hash == src.hash) {
         // A no-op save, or a broken save undone: the cached program is the right one again.
         CancelBuilds();
+        it->second.lastUsed = ++useClock_;
         current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
@@ -115,16 +120,39 @@ void LiveProgram::Finish() {
     std::string log;
     if (!pending_.Finish(program.get(), &log)) {
         error_ = log;
+        Trim();
         return;
     }
     error_.clear();
     Cached& slot = cache_[pendingKey_];
     slot.program = std::move(program);
     slot.scene = pendingScene_;
+    slot.lastUsed = ++useClock_;
     if (pendingKey_ == key_) {
         current_ = slot.program;
         scene_ = slot.scene;
     }
+    Evict();
+    Trim();
+}
+
+void LiveProgram::Evict() {
+    while (cache_.size() > cacheLimit_) {
+        auto oldest = cache_.end();
+        for (auto it = cache_.begin(); it != cache_.end(); ++it)
+            if (it->first != key_ && (oldest == cache_.end() || it->second.lastUsed < oldest->second.lastUsed)) oldest = it;
+        if (oldest == cache_.end()) return;
+        cache_.erase(oldest);   // a program still on screen (current_) or fading out lives on in its shared_ptr
+    }
+}
+
+void LiveProgram::Trim() {
+#if defined(__GLIBC__)
+    // A compile on llvmpipe (LLVM) or in the driver allocates and frees tens of MB; glibc keeps
+    // freed pages of every arena mapped, so a show's RSS would climb with each compile. Measured
+    // in scripts/soak.sh (docs/reliability.md).
+    malloc_trim(0);
+#endif
 }
 
 bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {

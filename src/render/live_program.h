@@ -16,6 +16,8 @@
 // compiles process-wide, so only another process keeps the render thread free.
 // Render thread only (GL).
 #pragma once
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -44,6 +46,13 @@ public:
     const VariantKey& Key() const { return key_; }
     const std::string& Error() const { return error_; }   // empty when the last build succeeded
     int CompilesStarted() const { return compiles_; }
+    // Variants kept compiled besides the one on screen, least recently used dropped first (a
+    // show that toggles effects for hours reaches many variants; each holds the driver's code,
+    // tens of MB on llvmpipe). Default kDefaultCacheLimit; at least 1.
+    static constexpr size_t kDefaultCacheLimit = 12;
+    void SetCacheLimit(size_t n) { cacheLimit_ = std::max<size_t>(n, 1); }
+    size_t CachedVariants() const { return cache_.size(); }
+    bool IsCached(const VariantKey& key) const { return cache_.count(key) != 0; }
     bool Pending() const { return pending_.Active() || quick_.Active(); }
     // Tiered compiles on or off (default: TieredCompileDefault()). Takes effect at the next build.
     void SetTiered(bool on) { tiered_ = on ? 1 : 0; }
@@ -68,11 +77,14 @@ private:
     struct Cached {
         std::shared_ptr<const Program> program;
         SceneInfo scene;
+        uint64_t lastUsed = 0;   // useClock_ when it was last asked for or built
     };
     void Rebuild();   // reassemble key_ and compile when the source hash differs
     void Finish();
     void FinishQuick();
     void CancelBuilds();
+    void Evict();     // drop least recently used variants down to cacheLimit_ (never key_)
+    void Trim();      // hand the heap a compile freed back to the system (glibc malloc_trim)
 
     VariantKey key_;
     SceneInfo scene_;                       // header of the program on screen
@@ -88,6 +100,8 @@ private:
     uint64_t pendingHash_ = 0;
     std::string error_;
     int compiles_ = 0;
+    size_t cacheLimit_ = kDefaultCacheLimit;
+    uint64_t useClock_ = 0;
 };
 
 // For reload benchmarks and tests, the edit a live coder makes: `sceneText` with its first float

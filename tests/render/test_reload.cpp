@@ -179,6 +179,38 @@ TEST_CASE("variant: switching effects compiles once, then comes from the cache",
     CHECK(std::find(active.begin(), active.end(), "u_aoSamples") != active.end());
 }
 
+TEST_CASE("variant: the cache keeps the most recently used variants and rebuilds one it dropped", "[variant]") {
+    // A show toggling effects for hours reaches many variants; each holds the driver's code.
+    ReloadRig rig("variant-lru");
+    rig.live.SetCacheLimit(2);
+    VariantKey ao = rig.key, shadows = rig.key, fog = rig.key;
+    ao.effects.ao = true;
+    shadows.effects.shadows = 1;
+    fog.effects.fog = !rig.key.effects.fog;
+    for (const VariantKey* k : {&ao, &shadows}) {
+        rig.live.Request(*k);
+        rig.Settle();
+    }
+    CHECK(rig.live.CachedVariants() == 2);
+    CHECK(!rig.live.IsCached(rig.key));      // the first, least recently used, went
+    CHECK(rig.live.IsCached(ao));
+    rig.live.Request(ao);                    // from the cache: now the most recent
+    const int compiles = rig.live.CompilesStarted();
+    rig.live.Request(fog);
+    rig.Settle();
+    CHECK(rig.live.CompilesStarted() == compiles + 1);
+    CHECK(rig.live.CachedVariants() == 2);
+    CHECK(rig.live.IsCached(ao));            // used after shadows, so shadows went
+    CHECK(!rig.live.IsCached(shadows));
+    REQUIRE(rig.live.Current() != nullptr);
+    CHECK(rig.live.Key() == fog);
+    rig.live.Request(rig.key);               // dropped: compiles again, and draws as it did
+    rig.Settle();
+    CHECK(rig.live.CompilesStarted() == compiles + 2);
+    CHECK(rig.live.Error().empty());
+    CHECK(rig.live.Key() == rig.key);
+}
+
 TEST_CASE("variant: a library save while an effect toggle compiles keeps the program on screen alive", "[variant]") {
     // Issue 10, defect 3: the reload evicted every owner of the saved file except the variant
     // asked for, so the program still on screen was deleted while the toggled variant compiled
