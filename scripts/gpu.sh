@@ -6,9 +6,10 @@
 #   scripts/gpu.sh remote ARGS..  there (the device tool runs it in the repo root, carrying .gl and
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
-#   scripts/gpu.sh measure [reload|frames|field]  there: every figure docs/ quotes into $OUT; `reload`
-#                                 (issue 12), `frames` (4K, accuracy, effects, scaling) and `field`
-#                                 (issue 13: the fields' box bound on/off, their accuracy) each fit a call
+#   scripts/gpu.sh measure [reload|frames|field|cone]  there: every figure docs/ quotes into $OUT;
+#                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
+#                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
+#                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -84,6 +85,14 @@ case "${1:-}" in
       --csv "$out/scaling_primitives.csv" > "$out/scaling_primitives.txt" 2>&1 || true
     timeout 60 bash "$0" remote bench effects --scene field150 --size 1920x1080 --path compute --csv "$out/effects_field150.csv" \
       > "$out/effects_field150.txt" 2>&1 || true
+    fi
+    if [ "$part" = cone ] || [ "$part" = all ]; then
+    # The compute path's cone pre-pass (issue 13) against every primary ray from the eye: the tiny
+    # sweep's `default` and `no cone pre-pass` rows are timed interleaved, with their geometry error.
+    for size in 1920x1080 3840x2160; do
+      timeout 140 bash "$0" remote bench accuracy --scene all --size $size --ref-size 960x540 --path compute --sweep tiny \
+        --frames 15 --warmup 5 --out "$out/cone_$size" --csv "$out/cone_$size.csv" > "$out/cone_$size.txt" 2>&1 || true
+    done
     fi
     if [ "$part" = field ] || [ "$part" = all ]; then
     # The field scenes' box bound (issue 13, SCENE_BOX in render.glsl) on and off in one interleaved

@@ -2,16 +2,33 @@
 // 8x8 groups, dispatch ceil(w/8) x ceil(h/8); writes image unit 0 (rgba8). Row 0 of the
 // image is the bottom row, as with the fragment path (fragCoord has the same meaning).
 // DEBUG_VIEW 4 and 5 (accuracy bench, NaN scans) write an rgba32f image instead.
+//
+// The cone pre-pass (render.glsl's coneStart; Quality::conePrepass): u_conePass 1 is a dispatch
+// of one invocation per 8x8 tile, ceil(w/64) x ceil(h/64) groups, that writes each tile's start
+// distance into image unit 1 (r32f, ceil(w/8) x ceil(h/8)); u_conePass 2 is the frame, every
+// primary ray starting at its tile's distance; 0 is the frame from the eye, no pre-pass.
 layout(local_size_x = 8, local_size_y = 8) in;
 #if DEBUG_VIEW >= 4
 layout(rgba32f, binding = 0) uniform writeonly image2D u_output;
 #else
 layout(rgba8, binding = 0) uniform writeonly image2D u_output;
 #endif
+layout(r32f, binding = 1) uniform image2D u_coneStart;
+uniform int u_conePass;
+const int CONE_TILE = 8;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (u_conePass == 1) {
+        ivec2 tiles = (ivec2(u_resolution) + CONE_TILE - 1) / CONE_TILE;
+        if (pixel.x >= tiles.x || pixel.y >= tiles.y) return;
+        vec2 lo = vec2(pixel * CONE_TILE) + 0.5;
+        vec2 hi = min(lo + float(CONE_TILE - 1), u_resolution - 0.5);
+        imageStore(u_coneStart, pixel, vec4(coneStart(lo, hi)));
+        return;
+    }
     if (pixel.x >= int(u_resolution.x) || pixel.y >= int(u_resolution.y)) return;
     vec2 fragCoord = vec2(gl_GlobalInvocationID.xy) + 0.5;
-    imageStore(u_output, pixel, render(fragCoord));
+    float tStart = u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
+    imageStore(u_output, pixel, renderFrom(fragCoord, tStart));
 }

@@ -37,11 +37,16 @@ std::vector<Setting> SweepSettings(const std::string& which) {
     plain.role = "plain";
     plain.naiveStep = true;
     plain.bounds = false;
+    plain.q.conePrepass = false;
     out.push_back(plain);
     // What the scene's bounding volume buys: the defaults marching the whole field everywhere.
     Setting unbounded = Make("bounds", "no bounding volume");
     unbounded.bounds = false;
     out.push_back(unbounded);
+    // What the compute path's cone pre-pass buys: the defaults with every primary ray from the eye.
+    Setting noCone = Make("cone", "no cone pre-pass");
+    noCone.q.conePrepass = false;
+    out.push_back(noCone);
     if (which == "tiny") {
         Setting s = Make("steps", "steps=32");
         s.q.maxSteps = 32;
@@ -212,6 +217,7 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
                 // The reference: the same renderer with 4096 steps (and 1024 shadow steps),
                 // everything else at the defaults; geometric truth is the CPU reference's job.
                 in.quality = Quality{};
+                in.quality.conePrepass = false;   // every ray from the eye, as a plain raymarcher
                 in.quality.maxSteps = 4096;
                 in.quality.shadowSteps = 1024;
                 in.quality.shadowK = look.shadowK;

@@ -33,6 +33,9 @@ void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
     cmd->add_option("--eps", s->quality.hitEps, "hit epsilon, relative to distance travelled")->capture_default_str();
     cmd->add_option("--step-factor", s->quality.stepFactor, "step factor (below 1 under-relaxes)")->capture_default_str();
     cmd->add_option("--max-dist", s->quality.maxDist, "far distance")->capture_default_str();
+    cmd->add_flag("--no-cone-prepass", [s](int64_t) { s->quality.conePrepass = false; },
+                  "compute path: march every primary ray from the eye, without the 8x8-tile cone pre-pass "
+                  "that starts it where its tile's cone met a surface (same image; for comparison)");
 }
 
 }  // namespace

@@ -11,6 +11,10 @@
 
 namespace sdfvj {
 
+namespace {
+constexpr int kConeTile = 8;   // main_comp.glsl's CONE_TILE
+}
+
 FrameRenderer::~FrameRenderer() { Release(); }
 
 void FrameRenderer::Release() {
@@ -18,7 +22,8 @@ void FrameRenderer::Release() {
     if (texture_) glDeleteTextures(1, &texture_);
     if (vao_) glDeleteVertexArrays(1, &vao_);
     if (query_) glDeleteQueries(1, &query_);
-    fbo_ = texture_ = vao_ = query_ = 0;
+    if (coneTexture_) glDeleteTextures(1, &coneTexture_);
+    fbo_ = texture_ = vao_ = query_ = coneTexture_ = 0;
 }
 
 bool FrameRenderer::Resize(int width, int height, std::string* error, bool floatTarget) {
@@ -44,6 +49,9 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
         Release();
         return false;
     }
+    glGenTextures(1, &coneTexture_);
+    glBindTexture(GL_TEXTURE_2D, coneTexture_);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (width + kConeTile - 1) / kConeTile, (height + kConeTile - 1) / kConeTile);
     glGenVertexArrays(1, &vao_);
     glGenQueries(1, &query_);
     width_ = width;
@@ -106,6 +114,14 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     glUseProgram(p.Id());
     if (p.Path() == RenderPath::Compute) {
         glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatTarget_ ? GL_RGBA32F : GL_RGBA8);
+        glBindImageTexture(1, coneTexture_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+        if (q.conePrepass) {   // one invocation per 8x8 tile, in 8x8 groups
+            p.Set("u_conePass", 1.0f);
+            const GLuint tilesX = (GLuint)(width_ + kConeTile - 1) / kConeTile, tilesY = (GLuint)(height_ + kConeTile - 1) / kConeTile;
+            glDispatchCompute((tilesX + 7) / 8, (tilesY + 7) / 8, 1);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        }
+        p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
         glDispatchCompute((GLuint)(width_ + 7) / 8, (GLuint)(height_ + 7) / 8, 1);
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {

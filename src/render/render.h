@@ -51,6 +51,9 @@ struct Quality {
     float shadowK = 8.0f;       // penumbra: higher is harder
     int aoSamples = 5;
     float normalEps = 1e-3f;
+    // Compute path: a low-resolution pre-pass marches one cone per 8x8 tile and every primary ray
+    // starts where its tile's cone met a surface (render.glsl coneStart; docs/performance.md).
+    bool conePrepass = true;
 };
 
 // Everything a frame sets besides the program: clock, camera, light, quality, scene parameters.
@@ -220,6 +223,7 @@ private:
     int width_ = 0, height_ = 0;
     bool floatTarget_ = false;
     unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
+    unsigned coneTexture_ = 0;   // r32f, one texel per 8x8 tile: the cone pre-pass's start distances
     double lastGpuMs_ = 0.0;
 };
 

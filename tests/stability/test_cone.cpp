@@ -1,0 +1,194 @@
+// The compute path's cone pre-pass (render.glsl coneStart, main_comp.glsl): one cone per 8x8 tile
+// tells every primary ray of the tile where it may start. It is a shortcut, not an approximation:
+// no pixel ray's surface may lie before its tile's start (CPU, double, against a converged march),
+// the image stays what the march from the eye draws, and it must save steps where it is meant to.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "gl_fixture.h"
+#include "stability_util.h"
+
+using namespace sdfvj;
+using namespace stability;
+
+namespace {
+
+constexpr int kTile = 8;   // main_comp.glsl's CONE_TILE
+
+template <typename S>
+S TileStart(accuracy::CpuScene<S>& s, int tx, int ty, int w, int h) {
+    using V2 = typename accuracy::CpuScene<S>::V2;
+    V2 lo(S(tx * kTile) + S(0.5), S(ty * kTile) + S(0.5));
+    V2 hi(std::min(lo.x + S(kTile - 1), S(w) - S(0.5)), std::min(lo.y + S(kTile - 1), S(h) - S(0.5)));
+    return s.coneStart(lo, hi);
+}
+
+// At most the first `corners` corners of the parameter box and `random` random points.
+std::vector<Params> SomePoints(const SceneInfo& scene, size_t corners, int random) {
+    auto all = ParamPoints(scene, 0);
+    if (all.size() > corners) all.resize(corners);
+    auto rnd = ParamPoints(scene, random, 19);
+    rnd.erase(rnd.begin(), rnd.begin() + (ptrdiff_t)(rnd.size() - (size_t)random));
+    all.insert(all.end(), rnd.begin(), rnd.end());
+    return all;
+}
+
+}  // namespace
+
+TEST_CASE("stability: no pixel's surface lies before its tile's cone start, and the cone saves primary steps", "[stability][cpu][cone]") {
+    // 640x360: an 8x8 tile spans the angle it does in a real frame (at a few dozen pixels a tile
+    // would be a quarter of the picture and its cone would stop at once). Every 9th tile, and in
+    // each its corners, centre and four more pixels, where a bundle's edge rays graze first.
+    const int w = 640, h = 360;
+    const int tilesX = w / kTile, tilesY = h / kTile;
+    const int probe[9][2] = {{0, 0}, {7, 0}, {0, 7}, {7, 7}, {4, 4}, {2, 5}, {6, 1}, {1, 3}, {5, 6}};
+    int scenes = 0;
+    for (const std::string& name : accuracy::CpuSceneNames()) {
+        SceneInfo scene;
+        std::string error;
+        REQUIRE(FindScene(name, &scene, &error));
+        auto s = accuracy::MakeCpuScene64(name);
+        ++scenes;
+        long pixels = 0, before = 0, hits = 0;
+        double stepsFromEye = 0, stepsFromCone = 0, worst = -1e30;
+        std::string first;
+        auto points = SomePoints(scene, 4, 2);
+        for (size_t i = 0; i < points.size(); ++i) {
+            FrameInputs in;
+            in.params = points[i];
+            in.time = 0.37 * i;
+            in.beat = 0.25f;
+            accuracy::ApplyFrame(s, scene, in, w, h);   // the shipped quality: the cone as it runs
+            for (int k = (int)i; k < tilesX * tilesY; k += 9) {
+                const int tx = k % tilesX, ty = k / tilesX;
+                const double start = TileStart(s, tx, ty, w, h);
+                for (const auto& o : probe) {
+                    const int x = tx * kTile + o[0], y = ty * kTile + o[1];
+                    ++pixels;
+                    const glm::dvec3 ro = *s.camPos, rd = s.cameraRay(glm::dvec2(x + 0.5, y + 0.5));
+                    stepsFromEye += s.march(ro, rd, 0.0).steps;
+                    stepsFromCone += s.march(ro, rd, start).steps;
+                    // the surface itself: a converged march from the eye
+                    const int steps = *s.maxSteps;
+                    const double eps = *s.hitEps;
+                    *s.maxSteps = 20000;
+                    *s.hitEps = 1e-7;
+                    auto exact = s.march(ro, rd, 0.0);
+                    *s.maxSteps = steps;
+                    *s.hitEps = eps;
+                    if (!exact.hit || exact.steps >= 20000) continue;
+                    ++hits;
+                    const double over = (start - exact.t) / std::max(1.0, exact.t);
+                    worst = std::max(worst, over);
+                    if (over > 1e-9) {
+                        ++before;
+                        if (first.empty()) {
+                            char m[200];
+                            std::snprintf(m, sizeof m, "knob point %zu pixel %d,%d: surface at t=%.6f, tile starts at %.6f", i, x, y,
+                                          exact.t, start);
+                            first = m;
+                        }
+                    }
+                }
+            }
+        }
+        const double eyeMean = stepsFromEye / double(pixels), coneMean = stepsFromCone / double(pixels);
+        INFO(name << ": " << pixels << " pixels, " << hits << " hits; primary steps a pixel " << eyeMean << " from the eye, "
+                  << coneMean << " from the cone; nearest start to a surface (relative, < 0 is before it) " << worst
+                  << (first.empty() ? "" : "; first: " + first));
+        WARN(name << ": primary steps a pixel " << eyeMean << " from the eye, " << coneMean << " from the cone");
+        CHECK(hits > 0);
+        CHECK(before == 0);   // never past a surface
+        if (s.lipschitz() > 1.0) CHECK(coneMean == eyeMean);   // an estimate (the Mandelbulb's): no cone, from the eye
+        else CHECK(coneMean < eyeMean);
+        if (name == "character" || name == "field150") CHECK(coneMean <= 0.85 * eyeMean);
+    }
+    CHECK(scenes >= 4);
+}
+
+TEST_CASE("stability: the cone pre-pass draws what the march from the eye draws (CPU float, 2/255 on 99 % of pixels)", "[stability][cpu][cone]") {
+    // CPU float frames (the GPU's arithmetic) with and without the cone, and the double build's
+    // frame from the eye: the two float frames agree within 2/255 on 99 % of pixels, and the
+    // cone's is no further from the double frame than the eye's. (The Mandelbulb, whose field is
+    // an estimate, marches from the eye: its frames are the same.)
+    const int w = 192, h = 108;
+    for (const std::string& name : accuracy::CpuSceneNames()) {
+        SceneInfo scene;
+        std::string error;
+        REQUIRE(FindScene(name, &scene, &error));
+        auto s = accuracy::MakeCpuScene32(name);
+        auto ref = accuracy::MakeCpuScene64(name);
+        FrameInputs in;
+        in.time = 1.0;
+        accuracy::ApplyFrame(s, scene, in, w, h);
+        accuracy::ApplyFrame(ref, scene, in, w, h);
+        long pixels = 0, off2 = 0, off8 = 0, eyeOffRef = 0, coneOffRef = 0;
+        float worst = 0;
+        auto diff = [](auto a, auto b) {
+            return (float)std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)});
+        };
+        for (int ty = 0; ty * kTile < h; ++ty)
+            for (int tx = 0; tx * kTile < w; ++tx) {
+                const float start = TileStart(s, tx, ty, w, h);
+                for (int y = ty * kTile; y < std::min(h, (ty + 1) * kTile); ++y)
+                    for (int x = tx * kTile; x < std::min(w, (tx + 1) * kTile); ++x) {
+                        const glm::vec2 c(x + 0.5f, y + 0.5f);
+                        const glm::vec4 a = s.render(c), b = s.renderFrom(c, start);
+                        const glm::dvec4 r = ref.render(glm::dvec2(x + 0.5, y + 0.5));
+                        const float d = diff(a, b);
+                        worst = std::max(worst, d);
+                        ++pixels;
+                        off2 += d > 2.0f / 255.0f;
+                        off8 += d > 8.0f / 255.0f;
+                        eyeOffRef += diff(glm::dvec4(a), r) > 8.0f / 255.0f;
+                        coneOffRef += diff(glm::dvec4(b), r) > 8.0f / 255.0f;
+                    }
+            }
+        INFO(name << ": " << off2 << " of " << pixels << " pixels off by more than 2/255, " << off8 << " by more than 8/255, worst "
+                  << worst * 255.0f << "/255; off the double reference by more than 8/255: " << eyeOffRef << " from the eye, "
+                  << coneOffRef << " with the cone");
+        CHECK(coneOffRef <= eyeOffRef + pixels / 200);
+        CHECK(off2 <= pixels / 100);
+        CHECK(off8 <= pixels / 200);
+        if (name == "mandelbulb") CHECK(off2 == 0);
+    }
+}
+
+TEST_CASE("stability: on the GPU compute path the cone pre-pass finds the same surfaces in fewer steps", "[stability][gpu][cone]") {
+    test::RequireGl();
+    for (const char* name : {"character", "field150", "midi"}) {
+        SceneInfo scene;
+        std::string error;
+        REQUIRE(FindScene(name, &scene, &error));
+        FloatRender geo;
+        REQUIRE(geo.Build(scene, scene.effects, RenderPath::Compute, 4, 640, 360, &error));
+        FrameInputs in;
+        in.time = 1.0;
+        in.quality.conePrepass = false;
+        const std::vector<float> eye = geo.Draw(scene, in);
+        in.quality.conePrepass = true;
+        const std::vector<float> cone = geo.Draw(scene, in);
+        REQUIRE(eye.size() == cone.size());
+        long pixels = 0, hitsAgree = 0, hitsEye = 0, tOff = 0;
+        double stepsEye = 0, stepsCone = 0;
+        for (size_t i = 0; i + 3 < eye.size(); i += 4) {
+            ++pixels;
+            stepsEye += std::floor(eye[i + 3]);
+            stepsCone += std::floor(cone[i + 3]);
+            if (eye[i] < 0) continue;
+            ++hitsEye;
+            if (cone[i] < 0) continue;
+            ++hitsAgree;
+            if (std::abs(eye[i] - cone[i]) > 0.01f * std::max(1.0f, eye[i])) ++tOff;
+        }
+        INFO(name << ": " << hitsEye << " hits from the eye, " << hitsAgree << " with the cone too, " << tOff
+                  << " of them 1 % apart; steps a pixel " << stepsEye / pixels << " from the eye, " << stepsCone / pixels << " from the cone");
+        CHECK(hitsEye > pixels / 10);
+        CHECK(hitsAgree >= hitsEye - hitsEye / 100);
+        CHECK(tOff <= hitsEye / 100);
+        CHECK(stepsCone < 0.85 * stepsEye);
+    }
+}
