@@ -151,7 +151,11 @@ void LiveProgram::Trim() {
     // A compile on llvmpipe (LLVM) or in the driver allocates and frees tens of MB; glibc keeps
     // freed pages of every arena mapped, so a show's RSS would climb with each compile. Measured
     // in scripts/soak.sh (docs/reliability.md).
-    malloc_trim(0);
+    static const bool off = [] {
+        const char* env = std::getenv("SDFVJ_MALLOC_TRIM");
+        return env && std::strcmp(env, "0") == 0;
+    }();
+    if (!off) malloc_trim(0);
 #endif
 }
 

@@ -84,7 +84,7 @@ private:
     void FinishQuick();
     void CancelBuilds();
     void Evict();     // drop least recently used variants down to cacheLimit_ (never key_)
-    void Trim();      // hand the heap a compile freed back to the system (glibc malloc_trim)
+    void Trim();      // hand the heap a compile freed back to the system (glibc malloc_trim; SDFVJ_MALLOC_TRIM=0: off)
 
     VariantKey key_;
     SceneInfo scene_;                       // header of the program on screen

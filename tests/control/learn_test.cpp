@@ -7,6 +7,9 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+
+#include <chrono>
+#include <thread>
 #include <fstream>
 #include <regex>
 
@@ -83,16 +86,21 @@ TEST_CASE("learn: an entry that would make the mapping invalid leaves the file b
 
 TEST_CASE("learn: with the OSC port held by another program, learn takes a free port and learns", "[learn]") {
     const std::string dir = FreshDir(SDFVJ_LEARN_OUT, "port-taken");
-    // Hold 9000 as a running `sdfvj live` would. If someone else already holds it, it is taken
-    // all the same.
+    // Hold 9000 as a running `sdfvj live` would. Another test of the suite (ctest -j) may hold it
+    // for a moment and let it go just before learn binds: wait until it is ours (CI saw that).
     int holder = socket(AF_INET, SOCK_DGRAM, 0);
     REQUIRE(holder >= 0);
     sockaddr_in a{};
     a.sin_family = AF_INET;
     a.sin_addr.s_addr = htonl(INADDR_ANY);
     a.sin_port = htons(9000);
-    bool held = bind(holder, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+    bool held = false;
+    for (int i = 0; i < 600 && !held; ++i) {
+        held = bind(holder, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+        if (!held) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
     INFO("bound 9000 ourselves: " << held);
+    REQUIRE(held);
     const std::string mapping = dir + "/learned.toml";
     const std::string before = "[profile]\nname = \"mine\"\n\n[[map]]\ncc = 1\ntarget = \"twist\"";   // no final newline
     { std::ofstream(mapping, std::ios::binary) << before; }

@@ -107,7 +107,7 @@ struct ScratchScene {
     }
     void Save(int round) {
         bool found = false;
-        const std::string text = NudgeFirstConstant(original, 1e-6 * (double)(1 + (nonce + (uint64_t)round) % 1000), &found);
+        const std::string text = NudgeFirstConstant(original, 1e-9 * (double)(1 + (nonce + (uint64_t)round) % 999999), &found);
         REQUIRE(found);
         std::ofstream(file.string() + ".tmp~") << text;
         fs::rename(file.string() + ".tmp~", file);
@@ -331,7 +331,7 @@ TEST_CASE("compile process: with a loader each binary is used once off the rende
     int queuedBehind = 0;
     for (int round = 1; round <= 3; ++round) {
         bool found = false;
-        const std::string busyText = NudgeFirstConstant(busySrc.text, 1e-6 * (double)(1 + (scratch.nonce + 17u * round) % 1000), &found);
+        const std::string busyText = NudgeFirstConstant(busySrc.text, 1e-9 * (double)(1 + (scratch.nonce + 17u * round) % 999999), &found);
         REQUIRE(found);
         const uint64_t busy = g_loader->Submit(busyText, RenderPath::Fragment);
         scratch.Save(round);

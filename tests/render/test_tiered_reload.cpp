@@ -77,7 +77,7 @@ struct WorkerRig {
     // Saves the scene with its first constant after the header nudged: a source no cache holds.
     void Save(int round) {
         bool found = false;
-        const std::string text = NudgeFirstConstant(original, 1e-6 * (double)(1 + (nonce + (uint64_t)round) % 1000), &found);
+        const std::string text = NudgeFirstConstant(original, 1e-9 * (double)(1 + (nonce + (uint64_t)round) % 999999), &found);
         REQUIRE(found);
         std::ofstream(sceneFile) << text;
     }
