@@ -7,6 +7,11 @@
 // of one invocation per 8x8 tile, ceil(w/64) x ceil(h/64) groups, that writes each tile's start
 // distance into image unit 1 (r32f, ceil(w/8) x ceil(h/8)); u_conePass 2 is the frame, every
 // primary ray starting at its tile's distance; 0 is the frame from the eye, no pre-pass.
+// CONE_PREPASS 0 (the quick tier of a tiered compile, QuickTierText) leaves coneStart out of the
+// program: one map() call site less to compile; its tiles then start at 0, from the eye.
+#ifndef CONE_PREPASS
+#define CONE_PREPASS 1
+#endif
 layout(local_size_x = 8, local_size_y = 8) in;
 #if DEBUG_VIEW >= 4
 layout(rgba32f, binding = 0) uniform writeonly image2D u_output;
@@ -24,7 +29,11 @@ void main() {
         if (pixel.x >= tiles.x || pixel.y >= tiles.y) return;
         vec2 lo = vec2(pixel * CONE_TILE) + 0.5;
         vec2 hi = min(lo + float(CONE_TILE - 1), u_resolution - 0.5);
+#if CONE_PREPASS
         imageStore(u_coneStart, pixel, vec4(coneStart(lo, hi)));
+#else
+        imageStore(u_coneStart, pixel, vec4(0.0));
+#endif
         return;
     }
     if (pixel.x >= int(u_resolution.x) || pixel.y >= int(u_resolution.y)) return;

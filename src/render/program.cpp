@@ -24,7 +24,8 @@ double NowMs() {
 std::string QuickTierText(const std::string& text) {
     const size_t eol = text.find('\n');
     if (text.rfind("#version", 0) != 0 || eol == std::string::npos) return text;
-    return text.substr(0, eol + 1) + "#pragma optionNV(inline none)\n" + text.substr(eol + 1);
+    // No cone pre-pass either (main_comp.glsl): its march is one more map() call site to compile.
+    return text.substr(0, eol + 1) + "#pragma optionNV(inline none)\n#define CONE_PREPASS 0\n" + text.substr(eol + 1);
 }
 
 bool Program::Build(const ShaderSource& src, RenderPath path, std::string* log) {

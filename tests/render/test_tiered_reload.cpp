@@ -183,8 +183,9 @@ TEST_CASE("reload: NudgeFirstConstant changes the first literal in a function bo
     CHECK_FALSE(found);
 }
 
-TEST_CASE("tiered: the quick tier's source has the NVIDIA hint right after #version", "[tiered]") {
+TEST_CASE("tiered: the quick tier's source has the NVIDIA hint right after #version, and no cone pre-pass", "[tiered]") {
     const std::string text = "#version 450 core\n#define X 1\n#line 1 1\nvoid main() {}\n";
-    CHECK(QuickTierText(text) == "#version 450 core\n#pragma optionNV(inline none)\n#define X 1\n#line 1 1\nvoid main() {}\n");
+    CHECK(QuickTierText(text) ==
+          "#version 450 core\n#pragma optionNV(inline none)\n#define CONE_PREPASS 0\n#define X 1\n#line 1 1\nvoid main() {}\n");
     CHECK(QuickTierText("no version line") == "no version line");
 }

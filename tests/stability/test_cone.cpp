@@ -190,5 +190,23 @@ TEST_CASE("stability: on the GPU compute path the cone pre-pass finds the same s
         CHECK(hitsAgree >= hitsEye - hitsEye / 100);
         CHECK(tOff <= hitsEye / 100);
         CHECK(stepsCone < 0.85 * stepsEye);
+
+        // The quick tier of a tiered compile leaves the cone out (one map() call site less to
+        // compile): its pre-pass writes 0 and every ray marches from the eye, as with the cone off.
+        EffectSet e = scene.effects;
+        e.debugView = 4;
+        ShaderSource src;
+        REQUIRE(AssembleProgram(scene, VariantKey{scene.path, e, RenderPath::Compute}, &src, &error));
+        PendingProgram pending;
+        pending.Begin(src, RenderPath::Compute, BuildTier::Quick);
+        Program quick;
+        std::string log;
+        REQUIRE(pending.Finish(&quick, &log));
+        in.quality.conePrepass = true;
+        geo.fr.Draw(quick, scene, in);
+        const std::vector<float> quickFrame = geo.fr.ReadPixelsFloat();
+        double stepsQuick = 0;
+        for (size_t i = 3; i < quickFrame.size(); i += 4) stepsQuick += std::floor(quickFrame[i]);
+        CHECK(stepsQuick == stepsEye);
     }
 }
