@@ -9,7 +9,8 @@
 #   scripts/gpu.sh measure [reload|frames|field|cone]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
-#                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call
+#                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
+#                                 `pending` = field + cone, what session 7 (no GPU lent) left unmeasured
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -38,6 +39,7 @@ case "${1:-}" in
     # device call; `measure` alone runs them all.
     out="${OUT:?set OUT to the folder for the results}"
     part="${2:-all}"
+    if [ "$part" = pending ]; then bash "$0" measure field && bash "$0" measure cone; exit; fi
     run() { bash "$0" remote "$@"; }
     if [ "$part" = reload ] || [ "$part" = all ]; then
     for s in midi character; do
