@@ -59,13 +59,19 @@ unsigned CompileLinkHere(const std::string& text, RenderPath path, std::string* 
 }
 
 void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
-    GLuint tex = 0, fbo = 0, vao = 0;
+    GLuint tex = 0, fbo = 0, vao = 0, cone = 0;
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
     glTexStorage2D(GL_TEXTURE_2D, 1, floatImage ? GL_RGBA32F : GL_RGBA8, 1, 1);
     glUseProgram(prog);
     if (path == RenderPath::Compute) {
         glBindImageTexture(0, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatImage ? GL_RGBA32F : GL_RGBA8);
+        // The cone pre-pass's image (main_comp.glsl, unit 1) bound as FrameRenderer binds it: a
+        // driver that finishes a program for the state of its first use sees the frame's state.
+        glGenTextures(1, &cone);
+        glBindTexture(GL_TEXTURE_2D, cone);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, 1, 1);
+        glBindImageTexture(1, cone, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
         glDispatchCompute(1, 1, 1);
     } else {
         glGenFramebuffers(1, &fbo);
@@ -81,6 +87,7 @@ void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
     if (vao) glDeleteVertexArrays(1, &vao);
     if (fbo) glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &tex);
+    if (cone) glDeleteTextures(1, &cone);
 }
 
 CompileWorker::CompileWorker(std::function<bool()> bindContext, bool handOverBinary, std::function<void()> releaseContext)
