@@ -116,6 +116,8 @@ OverlayModel LiveSession::OverlayModelNow() {
     m.currentPreset = state_.currentPreset;
     m.effects = state_.wanted.effects;
     m.statusLines = input_.StatusLines();
+    // --sync mtc / a --forward leader: locked, holding, freewheeling or stopped, kept in view.
+    if (const std::string sync = LiveSyncStatus(sync_, Now()); !sync.empty()) m.statusLines.push_back("sync: " + sync);
     m.reportLines.assign(state_.report.recent.begin(), state_.report.recent.end());
     m.shaderError = shownError_;
     if (live_.Pending()) m.compiling = DescribeEffects(state_.wanted.effects);
