@@ -10,7 +10,9 @@
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
-#                                 `pending` = field + cone, what session 7 (no GPU lent) left unmeasured
+#                                 `adopt` (issue 12: the program drawn on the context that finished it);
+#                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured
+#                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -39,7 +41,7 @@ case "${1:-}" in
     # device call; `measure` alone runs them all.
     out="${OUT:?set OUT to the folder for the results}"
     part="${2:-all}"
-    if [ "$part" = pending ]; then bash "$0" measure field && bash "$0" measure cone; exit; fi
+    if [ "$part" = pending ]; then bash "$0" measure adopt; bash "$0" measure field; bash "$0" measure cone; exit; fi
     run() { bash "$0" remote "$@"; }
     if [ "$part" = reload ] || [ "$part" = all ]; then
     for s in midi character; do
@@ -87,6 +89,15 @@ case "${1:-}" in
       --csv "$out/scaling_primitives.csv" > "$out/scaling_primitives.txt" 2>&1 || true
     timeout 60 bash "$0" remote bench effects --scene field150 --size 1920x1080 --path compute --csv "$out/effects_field150.csv" \
       > "$out/effects_field150.txt" 2>&1 || true
+    fi
+    if [ "$part" = adopt ] || [ "$part" = all ]; then
+    # Issue 12's lever: NVIDIA finishes a loaded program once per context, so the program is drawn on
+    # the context whose thread loaded and used it (adopt-process; adopt: compiled on that thread),
+    # presented on the render context; against the compile process's hand-over, untiered, interleaved.
+    for s in midi character; do
+      timeout 120 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process,adopt-process,adopt \
+        --tiered off --rounds 3 > "$out/reload_${s}_adopt.txt" 2>&1 || true
+    done
     fi
     if [ "$part" = cone ] || [ "$part" = all ]; then
     # The compute path's cone pre-pass (issue 13) against every primary ray from the eye: the tiny

@@ -124,7 +124,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     cmdReload->add_flag_callback("--warm-cache", [&] { reloadBench.driverCache = "warm"; }, "same as --driver-cache warm");
     cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary, process, warm (process + a loader thread that uses each binary once "
-                          "before the hand-over); comma-separated, rounds interleaved; --first-frame: warm = with the loader")
+                          "before the hand-over), adopt (a new shared context per save compiles and uses the program, which is then "
+                          "drawn on that context and presented on the render context); comma-separated, rounds interleaved; "
+                          "--first-frame: warm = with the loader")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();
     cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();

@@ -1,0 +1,18 @@
+#!/bin/sh
+# Issue 12's lever, on llvmpipe: a new program drawn on the context that compiled and used it
+# (`bench reload --modes adopt`) does not stall the first frame that shows it, where the
+# shared-context worker's program does. With Mesa's disk cache off llvmpipe JITs a shader once per
+# context, as NVIDIA finishes a program once per context: the worker's program is JITted again at
+# its first draw on the render context (400+ ms at 160x90), the adopted one is not. A ratio of the
+# two modes' longest frames in one interleaved run, not a time, so a slow machine does not fail it.
+bin=$1
+out=$("$bin" bench reload --scene midi --size 160x90 --path fragment --driver-cache off --modes worker,adopt --rounds 3 \
+    --no-program-cache 2>&1) || { echo "$out"; exit 1; }
+echo "$out" | sed -n '/modes side by side/,$p'
+worker=$(echo "$out" | awk -F'|' '$2 == " worker " { gsub(/ /, "", $5); print $5 }')
+adopt=$(echo "$out" | awk -F'|' '$2 == " adopt " { gsub(/ /, "", $5); print $5 }')
+awk -v w="$worker" -v a="$adopt" 'BEGIN {
+    if (w == "" || a == "") { print "bench_adopt: no side-by-side table"; exit 1 }
+    r = a / w
+    printf "longest frame during a reload: adopt %s ms / worker %s ms = %.3f (expected < 0.25)\n", a, w, r
+    exit !(r < 0.25) }'
