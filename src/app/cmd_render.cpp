@@ -324,6 +324,8 @@ int RunRender(const RenderOptions& o) {
             isfIn.timeDelta = i > 0 ? dt : 0.0;   // DATE stays fixed: replays render the same bytes
             isfIn.frame = i;
             isfIn.params = in.params;   // the ISF host takes its own inputs' names (clamped there)
+            isfIn.beat = in.beat;       // the take's / preset's tempo, as the scene gets it
+            isfIn.bpm = in.bpm;
             // ISF audio/audioFFT inputs: the WAV recorded beside the take, at this frame's time.
             if (replay) replay->AudioAt(in.time, &isfIn.audioWaveform, &isfIn.audioSpectrum);
             if (!isfScene) fr.Draw(*show.program, show.scene, in);

@@ -84,6 +84,8 @@ bool LiveSession::DrawPost(unsigned texture, int w, int h, double now) {
     in.date = {(float)(local.tm_year + 1900), (float)(local.tm_mon + 1), (float)local.tm_mday,
                (float)(local.tm_hour * 3600 + local.tm_min * 60 + local.tm_sec)};
     in.params = in_.params;
+    in.beat = in_.beat;   // the tempo the scene draws with (tap, clock, preset, audio, a leader)
+    in.bpm = in_.bpm;
     if (audio_) {   // ISF audio / audioFFT inputs
         in.audioWaveform = audio_->Textures().waveform;
         in.audioSpectrum = audio_->Textures().spectrum;

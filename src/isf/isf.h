@@ -111,6 +111,7 @@ struct IsfFrameInputs {
     int frame = 0;
     std::array<float, 4> date{2024, 1, 1, 0};   // DATE: year, month, day, seconds in the day
     std::array<float, 4> mouse{};               // Shadertoy iMouse (pixels)
+    float beat = 0.0f, bpm = 120.0f;            // the show's tempo, as scenes get it: u_beat (phase 0..1), u_bpm
     std::vector<std::pair<std::string, float>> params;   // IsfParams names -> value (clamped here)
     // Sound for `audio` / `audioFFT` inputs, e.g. src/audio's AudioSpectrum: waveform samples
     // -1..1 (read by the shader as 0.5 + 0.5 * s) and spectrum bins 0..1, one texel each in a

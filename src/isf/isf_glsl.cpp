@@ -56,6 +56,8 @@ const char* kBuiltins =
     "uniform float TIMEDELTA;\n"
     "uniform vec4 DATE;\n"
     "uniform int FRAMEINDEX;\n"
+    "uniform float u_beat;\n"   // sdfvj: the show's beat phase 0..1 and tempo, as scenes get them
+    "uniform float u_bpm;\n"
     "#define vv_FragNormCoord isf_FragNormCoord\n"
     "#define IMG_PIXEL(img, coord) texture(img, (coord) / vec2(textureSize(img, 0)))\n"
     "#define IMG_NORM_PIXEL(img, coord) texture(img, coord)\n"
@@ -127,7 +129,8 @@ bool TranslateIsf(const IsfFile& f, IsfSources* out, std::string* error) {
             "layout(location = 0) out vec4 isf_FragColor;\n"
             "uniform vec3 iResolution;\nuniform float iTime;\nuniform float iTimeDelta;\nuniform float iFrameRate;\n"
             "uniform int iFrame;\nuniform vec4 iMouse;\nuniform vec4 iDate;\nuniform vec3 iChannelResolution[4];\n"
-            "uniform sampler2D iChannel0;\nuniform sampler2D iChannel1;\nuniform sampler2D iChannel2;\nuniform sampler2D iChannel3;\n" +
+            "uniform sampler2D iChannel0;\nuniform sampler2D iChannel1;\nuniform sampler2D iChannel2;\nuniform sampler2D iChannel3;\n"
+            "uniform float u_beat;\nuniform float u_bpm;\n" +
             LineDirective(f.bodyLine, 1) + body + "\n" + LineDirective(1, 0) +
             "void main() {\n"
             "    vec4 c = vec4(0.0, 0.0, 0.0, 1.0);\n"

@@ -47,7 +47,7 @@ constexpr size_t kMaxText = 4096;
 
 // Names the preamble declares: an input of the same name would not compile.
 const char* const kReserved[] = {"PASSINDEX", "RENDERSIZE", "TIME", "TIMEDELTA", "DATE", "FRAMEINDEX",
-                                 "isf_FragNormCoord", "isf_FragColor", "main"};
+                                 "u_beat", "u_bpm", "isf_FragNormCoord", "isf_FragColor", "main"};
 
 bool IsIdentifier(const std::string& s) {
     return !s.empty() && s.size() <= kMaxName && !std::isdigit((unsigned char)s[0]) &&

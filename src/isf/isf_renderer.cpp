@@ -318,6 +318,8 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
             set1f("iFrameRate", in.timeDelta > 0 ? float(1.0 / in.timeDelta) : 60.0f);
             set1i("iFrame", in.frame);
             set4f("iMouse", in.mouse);
+            set1f("u_beat", in.beat);
+            set1f("u_bpm", in.bpm);
             set4f("iDate", in.date);
             s.BindImage("iChannel0", input ? input : s.black);
             for (const char* ch : {"iChannel1", "iChannel2", "iChannel3"}) s.BindImage(ch, s.black);
@@ -328,6 +330,8 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
             set1f("TIMEDELTA", (float)in.timeDelta);
             set4f("DATE", in.date);
             set1i("FRAMEINDEX", in.frame);
+            set1f("u_beat", in.beat);
+            set1f("u_bpm", in.bpm);
             for (const IsfInput& i : f.inputs) {
                 const int l = s.Location(i.name);
                 if (i.type == IsfInputType::Image) { s.BindImage(i.name, input ? input : s.black); continue; }

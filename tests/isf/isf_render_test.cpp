@@ -42,6 +42,26 @@ TEST_CASE("isf render: built-ins TIME, TIMEDELTA, FRAMEINDEX, RENDERSIZE, DATE, 
     CHECK(Near(img.At(40, 31, 0), int(255 * 0.5 / 32 + 0.5), 1));
 }
 
+TEST_CASE("isf render: the show's tempo reaches ISF and Shadertoy files as u_beat and u_bpm, as it reaches scenes", "[isf][gl]") {
+    RequireGl();
+    for (const char* file : {"tempo.fs", "tempo_shadertoy.fs"}) {
+        INFO(file);
+        IsfEffect e;
+        LoadOrFail(e, TestFile(file));
+        IsfFrameInputs in;
+        in.beat = 0.25f;
+        in.bpm = 120.0f;
+        Img img = ReadBack(e.Render(0, 16, 8, in), 16, 8);
+        CHECK(Near(img.At(8, 4, 0), 64, 1));    // 0.25 * 255
+        CHECK(Near(img.At(8, 4, 1), 128, 1));   // 120 / 240 * 255
+        in.beat = 0.75f;
+        in.bpm = 180.0f;
+        img = ReadBack(e.Render(0, 16, 8, in), 16, 8);
+        CHECK(Near(img.At(8, 4, 0), 191, 1));
+        CHECK(Near(img.At(8, 4, 1), 191, 1));
+    }
+}
+
 TEST_CASE("isf render: every input type reaches its uniform, audio reads silence", "[isf][gl]") {
     RequireGl();
     IsfEffect e;
