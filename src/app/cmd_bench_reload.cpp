@@ -22,6 +22,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "app/bench_adopt.h"
 #include "app/commands.h"
 #include "render/compile_process.h"
 #include "render/compile_worker.h"
@@ -154,154 +155,6 @@ int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h
     live.Wait();
     return 0;
 }
-
-// `--modes adopt` (issue 12's next lever, measured here first): the program is drawn on the
-// context that finished it. Each save gets a new context that shares objects with the render
-// context; a CompileWorker on it compiles, links and uses the program once (PrimeProgram), then
-// ends, leaving the context free; from then on the render thread draws the scene with that
-// context current, into a texture of the share group, and presents it on its own context (a
-// fence, then a blit), as `live` would present on its window. A driver that finishes a program
-// once per context (NVIDIA at first use, llvmpipe's JIT with its disk cache off) has then already
-// finished it where it is drawn. `--modes adopt-process`: the compile process compiles (no
-// driver lock of ours is held: NVIDIA serializes compiles process-wide) and the new context's
-// thread loads its binary and uses it once; then the same hand-over.
-struct AdoptRun {
-    CompileProcess* process = nullptr;    // adopt-process: compiles there, loads on the new context
-    uint64_t processTicket = 0;
-    HeadlessContext* main = nullptr;                         // the render (window) context
-    std::vector<std::unique_ptr<HeadlessContext>> contexts;  // one per program, kept to the end
-    std::vector<std::unique_ptr<FrameRenderer>> renderers;   // each made on its context
-    std::vector<HeadlessContext*> rendererContext;
-    HeadlessContext* ctx = nullptr;       // where the program on screen was finished and is drawn
-    FrameRenderer* fr = nullptr;
-    std::unique_ptr<Program> program;
-    SceneInfo scene;
-    std::unique_ptr<CompileWorker> worker;
-    HeadlessContext* workerCtx = nullptr;
-    uint64_t ticket = 0;
-    ShaderSource pendingSrc;
-    SceneInfo pendingScene;
-    double pendingSince = 0;
-    GLuint presentTex = 0, presentFbo = 0, readFbo = 0, readTex = 0;   // on `main`
-    int w = 0, h = 0;
-
-    ~AdoptRun() {
-        if (worker) worker.reset();
-        for (size_t i = 0; i < renderers.size(); ++i) {   // container objects belong to their context
-            rendererContext[i]->MakeCurrent();
-            renderers[i].reset();
-        }
-        if (main) {
-            main->MakeCurrent();
-            if (readFbo) glDeleteFramebuffers(1, &readFbo);
-            if (presentFbo) glDeleteFramebuffers(1, &presentFbo);
-            if (presentTex) glDeleteTextures(1, &presentTex);
-        }
-        program.reset();
-    }
-    bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) {
-        main = &gl;
-        w = width;
-        h = height;
-        ShaderSource src;
-        if (!LoadScene(scenePath, &scene, error) || !AssembleProgram(scene, VariantKey{scenePath, scene.effects, path}, &src, error))
-            return false;
-        program = std::make_unique<Program>();
-        if (!program->Build(src, path, error)) return false;
-        if (!UseContext(&gl, error)) return false;
-        glGenTextures(1, &presentTex);
-        glBindTexture(GL_TEXTURE_2D, presentTex);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-        glGenFramebuffers(1, &presentFbo);
-        glBindFramebuffer(GL_FRAMEBUFFER, presentFbo);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, presentTex, 0);
-        return true;
-    }
-    // A renderer on `c` (made current), the one the next frames draw with.
-    bool UseContext(HeadlessContext* c, std::string* error) {
-        if (!c->MakeCurrent()) { *error = "cannot make the program's context current"; return false; }
-        renderers.push_back(std::make_unique<FrameRenderer>());
-        rendererContext.push_back(c);
-        if (!renderers.back()->Resize(w, h, error)) return false;
-        ctx = c;
-        fr = renderers.back().get();
-        return true;
-    }
-    // The reload step: a save starts a compile on a new context; a finished one goes on screen.
-    // Returns true when the program on screen changed. Runs with `main` current.
-    bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) {
-        if (!changed.empty()) {
-            SceneInfo sc;
-            ShaderSource src;
-            if (LoadScene(scenePath, &sc, error) && AssembleProgram(sc, VariantKey{scenePath, sc.effects, path}, &src, error)) {
-                worker.reset();   // a newer save supersedes a compile still running
-                if (processTicket) process->Forget(processTicket);
-                processTicket = 0;
-                pendingSrc = src;
-                pendingScene = sc;
-                if (process && process->Usable()) processTicket = process->Submit(src.text, path, false);
-                else if (!StartWorker(error)) return false;
-                if (!worker && !processTicket) return false;
-                if (worker) ticket = worker->Submit(src.text, path);
-            }
-        }
-        if (processTicket) {   // adopt-process: the binary goes to a new context's thread to load and use
-            CompileProcess::Result pr;
-            if (!process->Poll(processTicket, &pr)) return false;
-            processTicket = 0;
-            if (!StartWorker(error)) return false;
-            if (pr.linked && !pr.noBinary && !pr.died) ticket = worker->SubmitLoad(pr.format, std::move(pr.binary), path, false);
-            else if (!pr.linked && !pr.died && !pr.noBinary) { *error = pr.log; worker.reset(); return false; }
-            else ticket = worker->Submit(pendingSrc.text, path);   // the process cannot serve: compile there
-            return false;
-        }
-        CompileWorker::Result r;
-        if (!worker || !worker->Poll(ticket, &r)) return false;
-        worker.reset();   // its thread ends and lets go of the context
-        if (!r.program) {
-            *error = r.log;
-            return false;
-        }
-        if (!UseContext(workerCtx, error)) return false;
-        auto p = std::make_unique<Program>();
-        ProgramOrigin origin;
-        origin.buildMs = r.buildMs;
-        p->Adopt(r.program, path, pendingSrc, origin);
-        program = std::move(p);
-        scene = pendingScene;
-        main->MakeCurrent();
-        return true;
-    }
-    // A new context sharing objects with `main`, and a thread on it for one job.
-    bool StartWorker(std::string* error) {
-        contexts.push_back(std::make_unique<HeadlessContext>());
-        HeadlessContext* c = contexts.back().get();
-        if (!c->CreateShared(*main, error, true)) return false;
-        worker = std::make_unique<CompileWorker>([c] { return c->MakeCurrent(); }, false, [c] { c->ReleaseCurrent(); });
-        workerCtx = c;
-        return true;
-    }
-    // One frame: the scene on its program's context, then presented on `main`.
-    void Draw(const FrameInputs& in) {
-        if (ctx != main) ctx->MakeCurrent();
-        fr->Draw(*program, scene, in);
-        GLsync done = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-        glFlush();
-        if (ctx != main) main->MakeCurrent();
-        glWaitSync(done, 0, GL_TIMEOUT_IGNORED);
-        glDeleteSync(done);
-        if (readTex != fr->Texture()) {   // a framebuffer on `main` that reads the shared texture
-            if (!readFbo) glGenFramebuffers(1, &readFbo);
-            glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
-            glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, fr->Texture(), 0);
-            readTex = fr->Texture();
-        }
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, presentFbo);
-        glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    }
-};
 
 }  // namespace
 
@@ -445,8 +298,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         m.fr = std::make_unique<FrameRenderer>();
         if (!m.fr->Resize(w, h, &error)) return Fail(error);
         if (mode == 5 || mode == 6) {
-            m.adopt = std::make_unique<AdoptRun>();
-            m.adopt->process = m.process.get();
+            m.adopt = std::make_unique<AdoptRun>(m.process.get());
             if (!m.adopt->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
         }
         for (const ParamDecl& d : scene.params) m.in.params.emplace_back(d.name, d.defaultValue);
@@ -499,7 +351,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                 }
                 r.firstMs = r.optimizedMs = MsSince(saved);
                 r.firstDraw = ms - updateMs;
-                r.compileMs = m.adopt->program->Origin().buildMs;
+                r.compileMs = m.adopt->Current().Origin().buildMs;
                 r.usedBefore = true;   // used once on its context before it went on screen
                 r.ok = true;
                 break;

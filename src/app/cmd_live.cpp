@@ -119,9 +119,12 @@ bool LiveSession::Frame() {
     StepSmoothing(state_.params, dt);
     Guard("follow", [&] {   // a --forward leader heard: its values; a leader: this frame to the followers
         FollowLeaderValues(sync_, state_.params);
-        float beat = BeatPhase(state_, now), bpm = (float)state_.automation.tempo.bpm;
-        LeaderTempo(sync_, &beat, &bpm);   // a follower forwards (and draws) its leader's tempo
-        ForwardFrame(forward_, state_, now, LiveSyncRunning(sync_), beat, bpm);
+        // The tempo this frame draws with (DrawScene, the post chain) and forwards: a follower's
+        // is its leader's.
+        in_.beat = BeatPhase(state_, now);
+        in_.bpm = (float)state_.automation.tempo.bpm;
+        LeaderTempo(sync_, &in_.beat, &in_.bpm);
+        ForwardFrame(forward_, state_, now, LiveSyncRunning(sync_), in_.beat, in_.bpm);
     });
     Guard("log", [&] { LogParams(now); });
     Guard("draw", [&] { Draw(now); });
@@ -289,9 +292,6 @@ void LiveSession::DrawScene(double now) {
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;
     in_.time = now;
     in_.frame = frame_++;
-    in_.beat = BeatPhase(state_, now);
-    in_.bpm = (float)state_.automation.tempo.bpm;
-    LeaderTempo(sync_, &in_.beat, &in_.bpm);
     if (DrawFieldFade(now, rw, rh)) return;
     renderer_.Draw(*live_.Current(), live_.Scene(), in_);
     const double t = fade_.program ? (now - fade_.start) / fade_.seconds : 1.0;

@@ -8,6 +8,7 @@
 
 #include <chrono>
 
+#include "render/gl_stages.h"
 #include "render/program_cache.h"
 
 namespace sdfvj {
@@ -20,14 +21,9 @@ unsigned CompileLinkHere(const std::string& text, RenderPath path, std::string* 
         GLuint s = glCreateShader(kind);
         glShaderSource(s, 1, &src, nullptr);
         glCompileShader(s);
-        GLint ok = 0, len = 0;
+        GLint ok = 0;
         glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-        if (!ok) {
-            glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-            std::string buf(len > 1 ? len : 1, '\0');
-            glGetShaderInfoLog(s, (GLsizei)buf.size(), nullptr, buf.data());
-            *rawLog += buf.c_str();
-        }
+        if (!ok) *rawLog += ShaderLog(s);
         glAttachShader(prog, s);
         stages.push_back(s);
     };
@@ -41,13 +37,7 @@ unsigned CompileLinkHere(const std::string& text, RenderPath path, std::string* 
     if (rawLog->empty()) {
         glLinkProgram(prog);
         glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-        if (!linked) {
-            GLint len = 0;
-            glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
-            std::string buf(len > 1 ? len : 1, '\0');
-            glGetProgramInfoLog(prog, (GLsizei)buf.size(), nullptr, buf.data());
-            *rawLog = buf.c_str();
-        }
+        if (!linked) *rawLog = ProgramLog(prog);
     }
     for (GLuint s : stages) glDeleteShader(s);
     if (!linked) {

@@ -4,6 +4,22 @@
 
 namespace sdfvj {
 
+std::string ShaderLog(unsigned shader) {
+    GLint len = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+    std::string buf(len > 1 ? (size_t)len : 1, '\0');
+    glGetShaderInfoLog(shader, (GLsizei)buf.size(), nullptr, buf.data());
+    return buf.c_str();
+}
+
+std::string ProgramLog(unsigned program) {
+    GLint len = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+    std::string buf(len > 1 ? (size_t)len : 1, '\0');
+    glGetProgramInfoLog(program, (GLsizei)buf.size(), nullptr, buf.data());
+    return buf.c_str();
+}
+
 unsigned CompileStage(unsigned kind, const char* text, std::string* rawLog) {
     unsigned s = glCreateShader(kind);
     glShaderSource(s, 1, &text, nullptr);
@@ -11,11 +27,7 @@ unsigned CompileStage(unsigned kind, const char* text, std::string* rawLog) {
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
     if (ok) return s;
-    GLint len = 0;
-    glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-    std::string buf(len > 1 ? (size_t)len : 1, '\0');
-    glGetShaderInfoLog(s, (GLsizei)buf.size(), nullptr, buf.data());
-    *rawLog += buf.c_str();
+    *rawLog += ShaderLog(s);
     glDeleteShader(s);
     return 0;
 }
@@ -28,11 +40,7 @@ unsigned LinkStages(std::initializer_list<unsigned> stages, std::string* rawLog)
     GLint ok = 0;
     glGetProgramiv(p, GL_LINK_STATUS, &ok);
     if (ok) return p;
-    GLint len = 0;
-    glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
-    std::string buf(len > 1 ? (size_t)len : 1, '\0');
-    glGetProgramInfoLog(p, (GLsizei)buf.size(), nullptr, buf.data());
-    *rawLog = buf.c_str();
+    *rawLog = ProgramLog(p);
     glDeleteProgram(p);
     return 0;
 }

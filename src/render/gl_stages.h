@@ -5,6 +5,10 @@
 
 namespace sdfvj {
 
+// The driver's info log of a shader stage / a program ("" when it has none).
+std::string ShaderLog(unsigned shader);
+std::string ProgramLog(unsigned program);
+
 // Compiles one stage (GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER); on failure returns
 // 0 and appends the driver's log to *rawLog (the caller maps its lines to files).
 unsigned CompileStage(unsigned kind, const char* text, std::string* rawLog);

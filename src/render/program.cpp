@@ -3,6 +3,7 @@
 #include "render/render.h"
 #include "render/compile_process.h"
 #include "render/compile_worker.h"
+#include "render/gl_stages.h"
 #include "render/program_cache.h"
 
 #include <chrono>
@@ -368,24 +369,13 @@ bool PendingProgram::Finish(Program* into, std::string* log) {
     }
     std::string raw;
     for (unsigned s : stages_) {
-        GLint ok = 0, len = 0;
+        GLint ok = 0;
         glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-        if (!ok) {
-            glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-            std::string buf(len > 1 ? len : 1, '\0');
-            glGetShaderInfoLog(s, (GLsizei)buf.size(), nullptr, buf.data());
-            raw += buf.c_str();
-        }
+        if (!ok) raw += ShaderLog(s);
     }
     GLint linked = 0;
     glGetProgramiv(id_, GL_LINK_STATUS, &linked);
-    if (raw.empty() && !linked) {
-        GLint len = 0;
-        glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &len);
-        std::string buf(len > 1 ? len : 1, '\0');
-        glGetProgramInfoLog(id_, (GLsizei)buf.size(), nullptr, buf.data());
-        raw = buf.c_str();
-    }
+    if (raw.empty() && !linked) raw = ProgramLog(id_);
     const bool compiled = !stages_.empty();   // not from the cache
     for (unsigned s : stages_) glDeleteShader(s);
     stages_.clear();
