@@ -6,10 +6,11 @@
 #   scripts/gpu.sh remote ARGS..  there (the device tool runs it in the repo root, carrying .gl and
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
-#   scripts/gpu.sh measure [reload|frames|field|cone]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
+#                                 `lit` (issue 13: the n.l shadow skip against the shaders before it);
 #                                 `adopt` (issue 12: the program drawn on the context that finished it);
 #                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
@@ -106,6 +107,23 @@ case "${1:-}" in
       timeout 140 bash "$0" remote bench accuracy --scene all --size $size --ref-size 960x540 --path compute --sweep tiny \
         --frames 15 --warmup 5 --out "$out/cone_$size" --csv "$out/cone_$size.csv" > "$out/cone_$size.txt" 2>&1 || true
     done
+    fi
+    if [ "$part" = lit ] || [ "$part" = all ]; then
+    # Issue 13: no shadow ray for a surface turned away from the light (render.glsl facesLight; every
+    # direct term carries max(n.l, 0), so no pixel changes) against a copy of shaders/ without it;
+    # whole runs alternate (after, before, after, before), each warmed after its compiles.
+    before="$(mktemp -d)"
+    cp -r shaders presets mappings "$before/"
+    sed -i 's/if (facesLight \&\& /if (/' "$before/shaders/render/render.glsl"
+    for i in 1 2; do
+      for v in after before; do
+        root="$PWD"; [ $v = before ] && root="$before"
+        SDFVJ_ROOT_OVERRIDE="$root" timeout 70 bash "$0" remote bench --scenes midi primitives character mandelbulb field50 field150 \
+          --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 15 --warmup 3 \
+          --csv "$out/lit_${v}_$i.csv" > "$out/lit_${v}_$i.txt" 2>&1 || true
+      done
+    done
+    rm -rf "$before"
     fi
     if [ "$part" = field ] || [ "$part" = all ]; then
     # The field scenes' box bound (issue 13, SCENE_BOX in render.glsl) on and off in one interleaved

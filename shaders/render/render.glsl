@@ -370,15 +370,18 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
     vec3 v = -rd;
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
+    // Every direct term (Lambert, Blinn-Phong, Cook-Torrance) carries max(n.l, 0), so a surface
+    // turned away from the light needs no shadow ray: skipping it changes no pixel.
+    bool facesLight = dot(n, l) > 0.0f;
 #if SHADOWS == 1
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, 1e6f);
-    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
+    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
 #elif SHADOWS == 2
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
+    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
 #elif SHADOWS == 3
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if ((u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
+    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
 #endif
     float occlusion = 1.0f;
 #if AO
