@@ -28,6 +28,7 @@
 #include "render/compile_worker.h"
 #include "render/live_program.h"
 #include "render/program_cache.h"
+#include "shader/literals.h"
 #include "shader/watch.h"
 
 namespace fs = std::filesystem;
@@ -193,8 +194,12 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     // warm: the same saves every run, so the caches hold them; otherwise new ones every run.
     const uint64_t nonce = o.driverCache == "warm" ? 0 : (uint64_t)Clock::now().time_since_epoch().count() / 1000;
     bool nudged = false;
+    const bool retune = o.edit == "retune";
+    const LiftedText lifted = LiftLiterals(original);
     auto saveText = [&](int round) {
-        return NudgeFirstConstant(original, 1e-6 * (double)(1 + (nonce + (uint64_t)round * 7919) % 100000), &nudged);
+        const double delta = 1e-6 * (double)(1 + (nonce + (uint64_t)round * 7919) % 100000);
+        if (retune && !lifted.values.empty()) return RetuneFirstConstant(original, lifted.values[0] + delta, &nudged);
+        return NudgeFirstConstant(original, delta, &nudged);
     };
     saveText(0);
     GLint binaryFormats = 0;
@@ -203,7 +208,9 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::printf("driver disk caches: %s; program binary formats: %d; program cache: %s\n", cacheLine.c_str(),
                 binaryFormats, ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off");
     std::printf("each save: %s; frames paced at %s\n",
-                nudged ? "the scene's first constant nudged (a new program every run)"
+                nudged ? retune ? "the scene's first constant retuned, its value only (the literal tier shows it; a new optimized "
+                                  "program every run)"
+                                : "the scene's first constant nudged (a new program every run)"
                        : "NO constant to nudge in this scene: a comment is appended (caches may serve it)",
                 o.fps > 0 ? (std::to_string((int)o.fps) + " Hz").c_str() : "flat out");
 
@@ -292,9 +299,12 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         m.live = std::make_unique<LiveProgram>();
         if (o.tiered != "auto") m.live->SetTiered(o.tiered == "on");
         m.live->SetCompileProcess(mode == 6 ? nullptr : m.process.get());   // only the process modes use one
+        m.live->SetLiteralTier(retune);
         m.live->Request(VariantKey{sceneFile.string(), scene.effects, m.path});
         m.live->Wait();
         if (!m.live->Current()) return Fail(m.live->Error(), 1);
+        // Built (and used once) before the steady frames, as it is between saves in `live`.
+        if (retune && !m.live->WaitLiteralTier()) m.note = "the literal tier could not be built: retunes compile";
         m.fr = std::make_unique<FrameRenderer>();
         if (!m.fr->Resize(w, h, &error)) return Fail(error);
         if (mode == 5 || mode == 6) {
@@ -411,8 +421,9 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                           : PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
                                                                        : "on the render thread";
         if (!m.note.empty()) std::printf("\n%s\n", m.note.c_str());
-        std::printf("\n## %s: %s, %s path, compile %s; tiered: %s\n", m.name.c_str(), scene.name.c_str(), RenderPathName(m.path),
-                    how, live.Tiered() ? "yes (quick tier first)" : "no");
+        std::printf("\n## %s: %s, %s path, compile %s; tiered: %s%s\n", m.name.c_str(), scene.name.c_str(), RenderPathName(m.path),
+                    how, live.Tiered() ? "yes (quick tier first)" : "no",
+                    live.LiteralTierReady() ? "; literal tier: yes (a retune is drawn from uniforms at once)" : "");
         std::printf("| round | first tier on screen ms | optimized on screen ms | frames | longest frame ms | "
                     "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
                     "compile ms (its own) | used before the hand-over (load + first use ms) | from program cache |\n"

@@ -64,6 +64,8 @@ bool LiveSession::Start(std::string* error) {
         Watch(DataRoot() + "/" + dir);
     // The first program: a shader that does not compile keeps the window open with the error on
     // screen, and the next save that fixes it starts the show.
+    // A save that only retunes numbers shows in the next frame (the literal tier; SDFVJ_LITERAL_TIER=0: off).
+    live_.SetLiteralTier(true);
     if (!state_.show.isfScene) {   // an ISF generator is the post chain's first stage instead
         live_.Request(state_.wanted);
         live_.Wait();

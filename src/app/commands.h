@@ -81,6 +81,7 @@ struct ReloadBenchOptions {
     std::string tiered = "auto";                  // auto (NVIDIA) | on | off
     double fps = 60;                              // frames paced like a display; 0: flat out
     bool firstFrame = false;                      // one launch's first frame instead of reloads
+    std::string edit = "nudge";                   // nudge (a structural edit: compiles) | retune (numbers only: the literal tier)
 };
 int RunReloadBench(const ReloadBenchOptions& o);
 

@@ -129,6 +129,11 @@ int main(int argc, char** argv) {
                           "--first-frame: warm = with the loader")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();
+    cmdReload->add_option("--edit", reloadBench.edit,
+                          "what each save changes: nudge (wraps the first constant in a sum: a new program to compile) or retune "
+                          "(rewrites its value only: `live`'s literal tier shows it with no compile, the optimized program follows)")
+        ->check(CLI::IsMember({"nudge", "retune"}))
+        ->capture_default_str();
     cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();
     cmdReload->add_flag("--first-frame", reloadBench.firstFrame,
                         "time one launch instead: context -> first frame, with the program cache (run twice)");

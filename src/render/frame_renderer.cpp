@@ -101,6 +101,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     p.Set("u_aoSamples", (float)q.aoSamples);
     p.Set("u_normalEps", q.normalEps);
     p.Set("u_effectsOff", (float)in.effectsOff);
+    if (!p.Literals().empty()) p.SetFloats("u_lit", p.Literals());
     for (const ParamDecl& d : scene.params) {
         float v = d.defaultValue;
         for (const auto& [name, value] : in.params)

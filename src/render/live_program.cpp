@@ -13,6 +13,8 @@
 #endif
 
 #include "render/compile_process.h"
+#include "render/compile_worker.h"
+#include "shader/literals.h"
 
 namespace fs = std::filesystem;
 
@@ -43,6 +45,62 @@ bool LiveProgram::LoaderDefault() {
     return env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0);
 }
 
+void LiveProgram::SetLiteralTier(bool on) {
+    const char* env = std::getenv("SDFVJ_LITERAL_TIER");
+    literalTier_ = on && !(env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0));
+}
+
+CompileProcess* LiveProgram::Process() const {
+    return processSet_ ? process_ : ProcessCompileDefault() ? SharedCompileProcess() : nullptr;
+}
+
+void LiveProgram::WantLifted(const SceneInfo& scene) {
+    if (!literalTier_) return;
+    ShaderSource lifted;
+    std::string error;
+    if (!AssembleProgram(scene, key_, &lifted, &error, true)) return;
+    liftedWant_ = std::move(lifted);
+    liftedWantKey_ = key_;
+}
+
+void LiveProgram::StartLifted() {
+    if (!literalTier_ || liftedPending_.Active() || pending_.Active() || quick_.Active() || !current_ ||
+        !error_.empty() || liftedWantKey_ != key_ || liftedWant_.hash == 0 || LiteralTierReady() ||
+        std::find(liftedFailed_.begin(), liftedFailed_.end(), liftedWant_.hash) != liftedFailed_.end())
+        return;
+    liftedPendingKey_ = key_;
+    liftedPendingHash_ = liftedWant_.hash;
+    liftedPending_.SetProcess(Process());
+    if (!liftedPending_.BeginFromCache(liftedWant_, key_.path)) liftedPending_.Begin(liftedWant_, key_.path);
+}
+
+void LiveProgram::FinishLifted() {
+    auto program = std::make_shared<Program>();
+    std::string log;
+    if (!liftedPending_.Finish(program.get(), &log)) {
+        // A literal in a place that wants a constant expression, say: saves compile as before.
+        liftedFailed_.push_back(liftedPendingHash_);
+        Trim();
+        return;
+    }
+    program->MarkLiteralTier();
+    // Used once here, now, so the driver's lazy finishing at a program's first draw (NVIDIA) falls
+    // between saves rather than on the frame that shows a retuned save.
+    PrimeProgram(program->Id(), liftedPendingKey_.path, false);
+    lifted_ = std::move(program);
+    liftedKey_ = liftedPendingKey_;
+    liftedHash_ = liftedPendingHash_;
+    Trim();
+}
+
+bool LiveProgram::WaitLiteralTier() {
+    if (!literalTier_) return false;
+    Wait();
+    StartLifted();
+    if (liftedPending_.Active()) FinishLifted();
+    return LiteralTierReady();
+}
+
 void LiveProgram::CancelBuilds() {
     pending_.Cancel();
     quick_.Cancel();
@@ -57,6 +115,12 @@ void LiveProgram::Request(const VariantKey& key) {
         current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
+        if (literalTier_ && liftedWantKey_ != key) {
+            liftedPending_.Cancel();
+            SceneInfo scene;
+            std::string error;
+            if (LoadScene(key_.scenePath, &scene, &error)) WantLifted(scene);
+        }
         return;
     }
     Rebuild();
@@ -74,6 +138,7 @@ void LiveProgram::Rebuild() {
         error_ = error + " — still showing the previous shader";
         return;
     }
+    WantLifted(scene);
     auto it = cache_.find(key_);
     if (it != cache_.end() && it->second.program->Source().hash == src.hash) {
         // A no-op save, or a broken save undone: the cached program is the right one again.
@@ -88,16 +153,26 @@ void LiveProgram::Rebuild() {
     pendingScene_ = scene;
     pendingKey_ = key_;
     pendingHash_ = src.hash;
+    // Only numbers changed: the literal tier shows them now, the optimized program follows.
+    const bool retuned = LiteralTierReady();
+    if (retuned) {
+        lifted_->SetLiterals(liftedWant_.literals);
+        current_ = lifted_;
+        scene_ = scene;
+        error_.clear();
+        ++literalSwaps_;
+    }
+    liftedPending_.Cancel();   // a real build goes first
     if (pending_.BeginFromCache(src, key_.path)) {
         quick_.Cancel();
         return;   // compiled in an earlier run: Update() puts it on screen
     }
-    CompileProcess* process = processSet_ ? process_ : ProcessCompileDefault() ? SharedCompileProcess() : nullptr;
+    CompileProcess* process = Process();
     quick_.SetProcess(process);
     pending_.SetProcess(process);
     // The quick tier is queued first: on a compile worker (one job at a time) it must not wait
-    // behind the optimized build.
-    if (Tiered()) quick_.Begin(src, key_.path, BuildTier::Quick);
+    // behind the optimized build. Not needed when the literal tier is on screen.
+    if (Tiered() && !retuned) quick_.Begin(src, key_.path, BuildTier::Quick);
     else quick_.Cancel();
     pending_.Begin(src, key_.path);
     ++compiles_;
@@ -161,6 +236,7 @@ void LiveProgram::Trim() {
 
 bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     const Program* before = current_.get();
+    const int swapsBefore = literalSwaps_;
     if (!changedFiles.empty()) {
         bool affectsCurrent = false;
         for (const std::string& changed : changedFiles) {
@@ -186,7 +262,12 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     }
     if (quick_.Active() && quick_.Ready()) FinishQuick();
     if (pending_.Active() && pending_.Ready()) Finish();
-    return current_.get() != before;
+    if (liftedPending_.Active()) {
+        if (liftedPending_.Ready()) FinishLifted();
+    } else {
+        StartLifted();
+    }
+    return current_.get() != before || literalSwaps_ != swapsBefore;
 }
 
 void LiveProgram::Wait() {
@@ -227,6 +308,17 @@ std::string NudgeFirstConstant(const std::string& text, double delta, bool* foun
         return text.substr(0, i) + "(" + text.substr(i, k + 1 - i) + nudge + text.substr(k + 1);
     }
     return text;
+}
+
+std::string RetuneFirstConstant(const std::string& text, double value, bool* found) {
+    size_t begin = 0, end = 0;
+    *found = FindFirstLiftable(text, &begin, &end);
+    if (!*found) return text;
+    char number[40];
+    std::snprintf(number, sizeof number, "%.9gf", value);
+    std::string n = number;
+    if (n.find_first_of(".e") == std::string::npos) n.insert(n.size() - 1, ".0");   // still a float literal
+    return text.substr(0, begin) + n + text.substr(end);
 }
 
 }  // namespace sdfvj

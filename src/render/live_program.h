@@ -70,6 +70,19 @@ public:
     // process is used: only with SDFVJ_LOADER=1 (measured on the H200: NVIDIA finishes a loaded
     // program per context, so the loader's use does not spare the render context's; off by default).
     static bool LoaderDefault();
+    // The literal tier (off by default; `live` and `bench reload` turn it on): once the variant on
+    // screen is built, the same scene with its float literals as uniforms (literals.h) is built
+    // behind it, at the lowest priority, and used once; a later save that changes only those numbers
+    // puts it on screen in that Update() with the new values (no compile: the next frame shows
+    // them), while the optimized program of the save compiles behind it and replaces it as usual.
+    // SDFVJ_LITERAL_TIER=0 keeps it off.
+    void SetLiteralTier(bool on);
+    bool LiteralTier() const { return literalTier_; }
+    // The literal tier of the variant on screen is built (tests, the bench wait for it).
+    bool LiteralTierReady() const { return lifted_ && liftedKey_ == key_ && liftedHash_ == liftedWant_.hash; }
+    // Blocks until the literal tier of the variant on screen is built (false: it cannot be).
+    bool WaitLiteralTier();
+    int LiteralSwaps() const { return literalSwaps_; }   // saves put on screen by the literal tier
 
 private:
     // Programs are shared between the cache and the screen: evicting a cache entry (its files
@@ -85,6 +98,10 @@ private:
     void CancelBuilds();
     void Evict();     // drop least recently used variants down to cacheLimit_ (never key_)
     void Trim();      // hand the heap a compile freed back to the system (glibc malloc_trim; SDFVJ_MALLOC_TRIM=0: off)
+    void WantLifted(const SceneInfo& scene);   // assemble key_'s lifted source into liftedWant_
+    void StartLifted();                        // build liftedWant_ when nothing else compiles
+    void FinishLifted();
+    CompileProcess* Process() const;
 
     VariantKey key_;
     SceneInfo scene_;                       // header of the program on screen
@@ -102,6 +119,18 @@ private:
     int compiles_ = 0;
     size_t cacheLimit_ = kDefaultCacheLimit;
     uint64_t useClock_ = 0;
+    // The literal tier: one program, for the variant on screen.
+    bool literalTier_ = false;
+    std::shared_ptr<Program> lifted_;      // built from liftedHash_'s skeleton, for liftedKey_
+    VariantKey liftedKey_;
+    uint64_t liftedHash_ = 0;
+    ShaderSource liftedWant_;              // the skeleton of the latest source assembled for key_
+    VariantKey liftedWantKey_;
+    PendingProgram liftedPending_;
+    VariantKey liftedPendingKey_;
+    uint64_t liftedPendingHash_ = 0;
+    std::vector<uint64_t> liftedFailed_;   // skeletons the driver refused: not tried again
+    int literalSwaps_ = 0;
 };
 
 // For reload benchmarks and tests, the edit a live coder makes: `sceneText` with its first float
@@ -110,5 +139,8 @@ private:
 // constant or a comment would be optimized away before the caches' keys are taken). Returns the
 // text unchanged and `found` false when the scene has no such literal.
 std::string NudgeFirstConstant(const std::string& sceneText, double delta, bool* found);
+// The edit that only retunes a number: the first literal LiftLiterals lifts (literals.h), written
+// as `value` ("%.9gf"); the skeleton stays the same. Unchanged text and `found` false without one.
+std::string RetuneFirstConstant(const std::string& sceneText, double value, bool* found);
 
 }  // namespace sdfvj

@@ -41,6 +41,7 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const
     path_ = path;
     source_ = src;
     origin_ = origin;
+    literals_ = src.literals;
     uniforms_.clear();
     GLint count = 0;
     glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
@@ -417,6 +418,12 @@ void Program::Set(const std::string& name, float x, float y) const {
 void Program::Set(const std::string& name, float x, float y, float z) const {
     auto it = uniforms_.find(name);
     if (it != uniforms_.end() && it->second.type == GL_FLOAT_VEC3) glProgramUniform3f(id_, it->second.location, x, y, z);
+}
+
+void Program::SetFloats(const std::string& name, const std::vector<float>& values) const {
+    auto it = uniforms_.find(name + "[0]");
+    if (it == uniforms_.end() || it->second.location < 0 || it->second.type != GL_FLOAT || values.empty()) return;
+    glProgramUniform1fv(id_, it->second.location, (GLsizei)values.size(), values.data());   // past the active size: ignored
 }
 
 }  // namespace sdfvj

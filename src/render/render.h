@@ -76,6 +76,7 @@ Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch);
 struct ProgramOrigin {
     bool fromCache = false;   // loaded from the on-disk program cache (program_cache.h): nothing compiled
     bool quickTier = false;   // the quickly built first tier of a tiered compile (an optimized one follows)
+    bool literalTier = false; // the scene's literals as uniforms (LiveProgram's literal tier; quickTier too)
     bool fromProcess = false; // compiled in the compile process, loaded here as its binary
     double buildMs = 0.0;     // wall time of its compile + link (+ the worker's priming draw), on whichever thread built it
     double beginCallMs = 0.0;   // time the render thread spent in PendingProgram::Begin (driver calls that block show here)
@@ -110,12 +111,19 @@ public:
     const ProgramOrigin& Origin() const { return origin_; }
     bool FromCache() const { return origin_.fromCache; }
     bool QuickTier() const { return origin_.quickTier; }
+    void MarkLiteralTier() { origin_.quickTier = origin_.literalTier = true; }
     // Active uniform names (after the compiler dropped unused ones).
     std::vector<std::string> ActiveUniforms() const;
     // Sets a uniform only if the program declares it; converts to its declared type.
     void Set(const std::string& name, float x) const;
     void Set(const std::string& name, float x, float y) const;
     void Set(const std::string& name, float x, float y, float z) const;
+    // A float array uniform (`name` without [0]), from its first element.
+    void SetFloats(const std::string& name, const std::vector<float>& values) const;
+    // The values of u_lit[i] this program draws with (a lifted source's literals, AssembleProgram
+    // liftLiterals): its source's at first; LiveProgram's literal tier sets a retuned save's.
+    const std::vector<float>& Literals() const { return literals_; }
+    void SetLiterals(const std::vector<float>& values) { literals_ = values; }
 private:
     struct Slot { int location; unsigned type; };
     unsigned id_ = 0;
@@ -123,6 +131,7 @@ private:
     ShaderSource source_;
     ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;
+    std::vector<float> literals_;
 };
 
 // A program being compiled and linked. Where GL_KHR_parallel_shader_compile exists the driver

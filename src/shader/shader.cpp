@@ -1,5 +1,7 @@
 #include "shader/shader.h"
 
+#include "shader/literals.h"
+
 #include <charconv>
 #include <filesystem>
 #include <fstream>
@@ -41,6 +43,7 @@ struct Expander {
     std::set<std::string> included;   // each file once (files also carry guards)
     std::vector<std::string> stack;   // for cycle messages
     std::string error;
+    std::string liftPath;             // this file's float literals become u_lit[i] (LiftLiterals)
 
     int FileIndex(const std::string& path) {
         for (size_t i = 0; i < out->files.size(); ++i)
@@ -62,10 +65,17 @@ struct Expander {
         included.insert(canon);
         const int index = FileIndex(canon);
         out->text += LineDirective(1, index);
+        std::stringstream body;
+        body << in.rdbuf();
+        if (!liftPath.empty() && canon == liftPath) {
+            LiftedText lifted = LiftLiterals(body.str());
+            out->literals = std::move(lifted.values);
+            body.str(lifted.text);
+        }
         std::string line;
         int lineNo = 0;
         static const std::regex kInclude(R"(^\s*#\s*include\s*"([^"]+)\"\s*$)");
-        while (std::getline(in, line)) {
+        while (std::getline(body, line)) {
             ++lineNo;
             std::smatch m;
             if (line.find("#") != std::string::npos && std::regex_match(line, m, kInclude)) {
@@ -93,8 +103,8 @@ void main() {
 
 }  // namespace
 
-bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* error) {
-    Expander e{out, {}, {}, {}};
+bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* error, bool liftLiterals) {
+    Expander e{out, {}, {}, {}, liftLiterals ? fs::weakly_canonical(path).string() : std::string()};
     if (out->files.empty()) out->files.push_back("<generated>");
     if (!e.Expand(path, "", 0)) {
         *error = e.error;
@@ -119,7 +129,8 @@ std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
     return d;
 }
 
-bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error) {
+bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error,
+                     bool liftLiterals) {
     ShaderSource s;
     s.files.push_back("<generated>");
     s.text = "#version 450 core\n";
@@ -130,11 +141,16 @@ bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource
     s.text += LineDirective(1, 0);
     for (const ParamDecl& p : scene.params)
         s.text += "uniform float u_" + p.name + ";\n";  // bool and int params are floats too
-    if (!ExpandIncludes(scene.path, &s, error)) return false;
+    const size_t literalsAt = s.text.size();
+    if (!ExpandIncludes(scene.path, &s, error, liftLiterals)) return false;
+    if (liftLiterals) {
+        if (s.literals.empty()) s.literals.push_back(0.0f);   // declared either way: one skeleton, one program
+        s.text.insert(literalsAt, "uniform float u_lit[" + std::to_string(s.literals.size()) + "];\n");
+    }
     if (!ExpandIncludes((root / "render" / "render.glsl").string(), &s, error)) return false;
     const char* mainFile = key.path == RenderPath::Compute ? "main_comp.glsl" : "main_frag.glsl";
     if (!ExpandIncludes((root / "render" / mainFile).string(), &s, error)) return false;
-    s.hash = HashBytes(s.text);
+    s.hash = HashBytes(s.text);   // with lifted literals: the skeleton's hash, whatever their values
     *out = std::move(s);
     return true;
 }

@@ -27,15 +27,22 @@ struct ShaderSource {
     std::string text;                // the complete program source, #version first
     std::vector<std::string> files;  // index = #line source-string number; [0] is "<generated>"
     uint64_t hash = 0;               // FNV-1a of text: same hash, same program
+    std::vector<float> literals;     // AssembleProgram(..., liftLiterals): the values of u_lit[i]
 };
 
 // Expands `#include "path"` (relative to shaders/, then to the including file), each file once.
 // On failure: "file:line: what is wrong".
-bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* error);
+// liftLiterals: `path`'s own float literals (not its includes') become u_lit[i] (literals.h) and
+// their values go to out->literals.
+bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* error, bool liftLiterals = false);
 
 // Builds the program source for a variant: version, effect #defines, built-in uniforms, the
 // scene's generated parameter uniforms, the scene, render.glsl and the path's main().
-bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error);
+// liftLiterals: the scene file's float literals become `uniform float u_lit[N]` (literals.h): two
+// saves that differ only in those numbers assemble the same text (same hash), with the values in
+// out->literals (LiveProgram's literal tier draws a retuned scene with no compile).
+bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error,
+                     bool liftLiterals = false);
 
 // A program whose field morphs from scene `from` to scene `to` (seed 003's scene interpolation):
 //   map(p) = mix(map_from(p), map_to(p), u_morph),  sceneLipschitz() = mix(L_from, L_to, u_morph)

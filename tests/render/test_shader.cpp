@@ -7,6 +7,8 @@
 #include <fstream>
 
 #include "gl_fixture.h"
+#include "render/live_program.h"
+#include "shader/literals.h"
 
 using namespace sdfvj;
 using namespace sdfvj::test;
@@ -117,3 +119,75 @@ TEST_CASE("shader: parameters are clamped before they reach the shader", "[shade
     Image clamped = RenderScene("midi", none, RenderPath::Fragment, 64, 48, 1.0, {{"twist", maxTwist}});
     CHECK(CompareImages(atMax, clamped, 0).maxAbs == 0);
 }
+
+TEST_CASE("literals: a scene's float constants in function bodies become u_lit, the rest stays", "[shader][literals]") {
+    const std::string scene =
+        "/*{ \"NAME\": \"x\", \"DEFAULT\": 1.5 }*/\n"
+        "#define K 0.5f\n"
+        "const float R = 2.0f;\n"
+        "vec4 map(vec3 p) {\n"
+        "    // 9.0 in a comment\n"
+        "    const float c = 3.0;\n"
+        "    float v = p.x * 0.25f + .5 - 1e-3 + 2.5e+1f;\n"
+        "    for (int i = 0; i < 4; i++) v += float(i);\n"
+        "    return vec4(v.xxx, 1.0lf + 7.);\n"
+        "}\n";
+    const LiftedText lifted = LiftLiterals(scene);
+    REQUIRE(lifted.values.size() == 5);
+    CHECK(lifted.values == std::vector<float>{0.25f, 0.5f, 1e-3f, 25.0f, 7.0f});
+    CHECK(lifted.text.find("p.x * u_lit[0] + u_lit[1] - u_lit[2] + u_lit[3];") != std::string::npos);
+    CHECK(lifted.text.find("1.0lf + u_lit[4])") != std::string::npos);   // doubles stay
+    for (const char* kept : {"\"DEFAULT\": 1.5", "#define K 0.5f", "const float R = 2.0f;", "9.0 in a comment",
+                             "const float c = 3.0;", "i < 4; i++"})
+        CHECK(lifted.text.find(kept) != std::string::npos);
+    // Lines are kept: driver messages still name the line the performer edited.
+    CHECK(std::count(lifted.text.begin(), lifted.text.end(), '\n') == std::count(scene.begin(), scene.end(), '\n'));
+
+    // A retune keeps the skeleton; a structural edit does not.
+    bool found = false;
+    const std::string retuned = RetuneFirstConstant(scene, 0.75, &found);
+    REQUIRE(found);
+    CHECK(retuned.find("p.x * 0.75f +") != std::string::npos);
+    CHECK(LiftLiterals(retuned).text == lifted.text);
+    CHECK(LiftLiterals(retuned).values[0] == 0.75f);
+    CHECK(LiftLiterals(NudgeFirstConstant(scene, 1e-4, &found)).text != lifted.text);
+}
+
+TEST_CASE("literals: every shipped scene's lifted program compiles and draws the image its own program draws", "[shader][literals]") {
+    RequireGl();
+    FrameRenderer fr;
+    std::string error;
+    REQUIRE(fr.Resize(64, 48, &error));
+    for (const char* name : {"midi", "primitives", "character", "mandelbulb", "field50", "field150"}) {
+        INFO(name);
+        SceneInfo scene;
+        REQUIRE(FindScene(name, &scene, &error));
+        const VariantKey key{scene.path, scene.effects, RenderPath::Fragment};
+        ShaderSource plain, lifted;
+        REQUIRE(AssembleProgram(scene, key, &plain, &error));
+        REQUIRE(AssembleProgram(scene, key, &lifted, &error, true));
+        // field50/field150 keep their code in lib/field_scene.glsl (not lifted) and only global consts here.
+        const bool ownCode = std::string(name).rfind("field", 0) != 0;
+        if (ownCode) CHECK(lifted.literals.size() >= 5);
+        CHECK(lifted.text != plain.text);
+        Program a, b;
+        REQUIRE(a.Build(plain, key.path, &error));
+        INFO(error);
+        REQUIRE(b.Build(lifted, key.path, &error));
+        FrameInputs in;
+        in.time = 1.0;
+        fr.Draw(a, scene, in);
+        const Image ia{fr.Width(), fr.Height(), fr.ReadPixels()};
+        fr.Draw(b, scene, in);
+        const Image ib{fr.Width(), fr.Height(), fr.ReadPixels()};
+        const ImageDiff d = CompareImages(ia, ib, 8);
+        CHECK(d.fractionOver < 0.002);
+        if (!ownCode) continue;
+        // And the values are what it draws with: the same program with every literal zeroed differs.
+        Program& z = b;
+        z.SetLiterals(std::vector<float>(lifted.literals.size(), 0.0f));
+        fr.Draw(z, scene, in);
+        CHECK(CompareImages(ia, Image{fr.Width(), fr.Height(), fr.ReadPixels()}, 8).fractionOver > 0.01);
+    }
+}
+

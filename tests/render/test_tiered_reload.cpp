@@ -17,6 +17,7 @@
 #include "gl_fixture.h"
 #include "render/compile_worker.h"
 #include "render/live_program.h"
+#include "shader/literals.h"
 
 using namespace sdfvj;
 using namespace sdfvj::test;
@@ -40,7 +41,7 @@ struct WorkerRig {
     VariantKey key;
     uint64_t nonce;
 
-    WorkerRig(const std::string& name, const std::string& scene, bool tiered) {
+    WorkerRig(const std::string& name, const std::string& scene, bool tiered, bool literalTier = false) {
         RequireGl();
         nonce = (uint64_t)Clock::now().time_since_epoch().count();
         root = fs::temp_directory_path() / ("sdfvj-tiered-" + name + "-" + std::to_string(::getpid()));
@@ -60,6 +61,7 @@ struct WorkerRig {
         REQUIRE(worker->Ok());
         PendingProgram::SetWorker(worker.get());
         live.SetTiered(tiered);
+        live.SetLiteralTier(literalTier);
         REQUIRE(fr.Resize(64, 48, &err));
         Save(0);
         key = VariantKey{sceneFile.string(), EffectSet{}, RenderPath::Fragment};
@@ -81,6 +83,7 @@ struct WorkerRig {
         REQUIRE(found);
         std::ofstream(sceneFile) << text;
     }
+    void SaveText(const std::string& text) { std::ofstream(sceneFile) << text; }
     // One frame as live draws it: reload step, draw, wait for the pixels. Returns its wall time.
     double Frame(bool* swapped, bool saved = false) {
         const auto t0 = Clock::now();
@@ -189,3 +192,53 @@ TEST_CASE("tiered: the quick tier's source has the NVIDIA hint right after #vers
           "#version 450 core\n#pragma optionNV(inline none)\n#define CONE_PREPASS 0\n#define X 1\n#line 1 1\nvoid main() {}\n");
     CHECK(QuickTierText("no version line") == "no version line");
 }
+
+TEST_CASE("literal tier: a save that only retunes numbers is on screen in its first reload step, and the optimized program follows with the same image", "[tiered][literals]") {
+    WorkerRig rig("literals", "midi", false, true);
+    rig.SaveText(rig.original);   // the scene as shipped (the rig starts from a nudged copy)
+    rig.live.Update({rig.sceneFile.string()});
+    REQUIRE(rig.live.WaitLiteralTier());
+    bool swapped = false;
+    rig.Frame(&swapped);
+    const Image before = rig.Pixels();
+    const int compiles = rig.live.CompilesStarted();
+
+    // The sphere's colour and the box's place: numbers only, so the lifted skeleton is unchanged.
+    std::string text = rig.original;
+    for (auto [from, to] : {std::pair<std::string, std::string>{"vec4(0.95f, 0.30f, 0.12f,", "vec4(0.10f, 0.30f, 0.95f,"},
+                           {"vec3(0.75f, -0.1f, 0.0f)", "vec3(0.95f, -0.3f, 0.0f)"}}) {
+        const size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), to);
+    }
+    REQUIRE(LiftLiterals(text).text == LiftLiterals(rig.original).text);
+    rig.SaveText(text);
+    rig.Frame(&swapped, true);
+    CHECK(swapped);
+    REQUIRE(rig.live.Current() != nullptr);
+    CHECK(rig.live.Current()->Origin().literalTier);
+    CHECK(rig.live.LiteralSwaps() == 1);
+    CHECK(rig.live.Error().empty());
+    const Image retuned = rig.Pixels();
+    // A person sees the edit: a blue sphere where the orange one was.
+    CHECK(CompareImages(before, retuned, 8).fractionOver > 0.01);
+
+    rig.live.Wait();   // the optimized program of the same save
+    CHECK(rig.live.CompilesStarted() == compiles + 1);
+    rig.Frame(&swapped);
+    REQUIRE(rig.live.Current() != nullptr);
+    CHECK_FALSE(rig.live.Current()->QuickTier());
+    // Same numbers, folded by the compiler or read from uniforms: within the accuracy report's 8/255.
+    const ImageDiff d = CompareImages(retuned, rig.Pixels(), 8);
+    INFO("retuned vs optimized: max " << d.maxAbs << ", mean " << d.meanAbs << ", over 8/255 " << d.fractionOver);
+    CHECK(d.fractionOver < 0.001);
+    CHECK(d.meanAbs < 0.1);
+
+    // A structural edit (the nudge wraps a literal in a sum) is not a retune: it compiles as before.
+    rig.Save(7);
+    rig.Frame(&swapped, true);
+    CHECK(rig.live.LiteralSwaps() == 1);
+    rig.live.Wait();
+    CHECK(rig.live.Error().empty());
+}
+
