@@ -10,6 +10,7 @@
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
+#                                 `retune` (issue 12: a numbers-only save through the literal tier, and a nudge);
 #                                 `lit` (issue 13: the n.l shadow skip against the shaders before it);
 #                                 `adopt` (issue 12: the program drawn on the context that finished it);
 #                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured
@@ -107,6 +108,21 @@ case "${1:-}" in
       timeout 140 bash "$0" remote bench accuracy --scene all --size $size --ref-size 960x540 --path compute --sweep tiny \
         --frames 15 --warmup 5 --out "$out/cone_$size" --csv "$out/cone_$size.csv" > "$out/cone_$size.txt" 2>&1 || true
     done
+    fi
+    if [ "$part" = retune ] || [ "$part" = all ]; then
+    # Issue 12: a save that only retunes a number (--edit retune): the literal tier (the scene's
+    # literals as uniforms, built and used once before the saves) shows it, the optimized program
+    # follows; against the structural edit (--edit nudge) of the same mode and tiers, in one call.
+    for s in midi character; do
+      for e in retune nudge; do
+        timeout 90 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process --rounds 3 \
+          --edit $e > "$out/reload_${s}_$e.txt" 2>&1 || true
+      done
+    done
+    # What the literal tier costs per frame while it is on screen (NAME:literals), interleaved with NAME.
+    timeout 90 bash "$0" remote bench --scenes midi midi:literals primitives primitives:literals character character:literals \
+      mandelbulb mandelbulb:literals --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 15 --warmup 3 \
+      --markdown "$out/literal_tier_frames.md" --csv "$out/literal_tier_frames.csv" > "$out/literal_tier_frames.txt" 2>&1 || true
     fi
     if [ "$part" = lit ] || [ "$part" = all ]; then
     # Issue 13: no shadow ray for a surface turned away from the light (render.glsl facesLight; every

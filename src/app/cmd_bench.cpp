@@ -72,7 +72,13 @@ int RunBench(const BenchOptions& o) {
     std::vector<Cell> cells;
     for (const std::string& name : scenes) {
         SceneInfo scene;
-        if (!FindScene(name, &scene, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
+        // NAME:literals times the literal tier's program (live's first tier of a save that only retunes
+        // numbers: the scene's float literals read from uniforms) beside NAME's own.
+        const std::string kLiterals = ":literals";
+        const bool lift = name.size() > kLiterals.size() && name.compare(name.size() - kLiterals.size(), kLiterals.size(), kLiterals) == 0;
+        const std::string sceneName = lift ? name.substr(0, name.size() - kLiterals.size()) : name;
+        if (!FindScene(sceneName, &scene, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
+        if (lift) scene.name += kLiterals;
         FrameInputs in;
         for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
         in.time = 1.0;
@@ -80,7 +86,7 @@ int RunBench(const BenchOptions& o) {
             for (RenderPath p : paths) {
                 ShaderSource src;
                 auto prog = std::make_unique<Program>();
-                if (!AssembleProgram(scene, VariantKey{scene.path, tests[t].effects, p}, &src, &error) ||
+                if (!AssembleProgram(scene, VariantKey{scene.path, tests[t].effects, p}, &src, &error, lift) ||
                     !prog->Build(src, p, &error)) {
                     std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str());
                     return 1;

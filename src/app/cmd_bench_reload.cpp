@@ -305,6 +305,9 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (!m.live->Current()) return Fail(m.live->Error(), 1);
         // Built (and used once) before the steady frames, as it is between saves in `live`.
         if (retune && !m.live->WaitLiteralTier()) m.note = "the literal tier could not be built: retunes compile";
+        else if (retune)
+            m.note = "literal tier: compiled in " + std::to_string((int)m.live->LiteralBuildMs()) + " ms, its one use on the render thread " +
+                     std::to_string((int)m.live->LiteralPrimeMs()) + " ms (in `live` a frame that long after each structural save)";
         m.fr = std::make_unique<FrameRenderer>();
         if (!m.fr->Resize(w, h, &error)) return Fail(error);
         if (mode == 5 || mode == 6) {

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -85,8 +86,28 @@ void LiveProgram::FinishLifted() {
     }
     program->MarkLiteralTier();
     // Used once here, now, so the driver's lazy finishing at a program's first draw (NVIDIA) falls
-    // between saves rather than on the frame that shows a retuned save.
-    PrimeProgram(program->Id(), liftedPendingKey_.path, false);
+    // between saves rather than on the frame that shows a retuned save. The render context's
+    // state that the 1x1 use touches is put back (the window's framebuffer, viewport, bindings).
+    GLint viewport[4], drawFbo = 0, readFbo = 0, prog = 0, tex = 0, vao = 0;
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFbo);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+    const auto primeStart = std::chrono::steady_clock::now();
+    // Not on llvmpipe: with Mesa's disk cache on its first draw is quick anyway (11-20 ms at
+    // 320x180), and with the cache off this use would JIT on the render thread (690 ms) after
+    // every structural save instead of at the first retune.
+    if (!IsSoftwareRenderer()) PrimeProgram(program->Id(), liftedPendingKey_.path, false);
+    literalPrimeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - primeStart).count();
+    literalBuildMs_ = program->Origin().buildMs;
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)drawFbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFbo);
+    glUseProgram((GLuint)prog);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)tex);
+    glBindVertexArray((GLuint)vao);
     lifted_ = std::move(program);
     liftedKey_ = liftedPendingKey_;
     liftedHash_ = liftedPendingHash_;

@@ -83,6 +83,10 @@ public:
     // Blocks until the literal tier of the variant on screen is built (false: it cannot be).
     bool WaitLiteralTier();
     int LiteralSwaps() const { return literalSwaps_; }   // saves put on screen by the literal tier
+    // The literal tier's last build: its compile (ProgramOrigin::buildMs) and its one use on the
+    // render thread (PrimeProgram, glFinish): on NVIDIA a frame that long after a structural save.
+    double LiteralBuildMs() const { return literalBuildMs_; }
+    double LiteralPrimeMs() const { return literalPrimeMs_; }
 
 private:
     // Programs are shared between the cache and the screen: evicting a cache entry (its files
@@ -131,6 +135,7 @@ private:
     uint64_t liftedPendingHash_ = 0;
     std::vector<uint64_t> liftedFailed_;   // skeletons the driver refused: not tried again
     int literalSwaps_ = 0;
+    double literalBuildMs_ = 0.0, literalPrimeMs_ = 0.0;
 };
 
 // For reload benchmarks and tests, the edit a live coder makes: `sceneText` with its first float
