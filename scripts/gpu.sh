@@ -124,6 +124,25 @@ case "${1:-}" in
       mandelbulb mandelbulb:literals --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 15 --warmup 3 \
       --markdown "$out/literal_tier_frames.md" --csv "$out/literal_tier_frames.csv" > "$out/literal_tier_frames.txt" 2>&1 || true
     fi
+    if [ "$part" = variants ]; then
+    # Issue 13 experiments, whole bench runs alternating (base, fastmath, setup, twice): NVIDIA's
+    # `#pragma optionNV(fastmath on)` / `(fastprecision on)`; character with its skeleton (sin/cos of
+    # the walk, per frame) computed once per invocation (sceneSetup() from main) instead of per map().
+    # $SETUP_SCENE: the character with the setup split out (made here by the caller).
+    base="$(mktemp -d)"; fast="$(mktemp -d)"; setup="$(mktemp -d)"
+    for d in "$base" "$fast" "$setup"; do cp -r shaders presets mappings "$d/"; done
+    sed -i '1i #pragma optionNV(fastmath on)\n#pragma optionNV(fastprecision on)' "$fast/shaders/render/uniforms.glsl"
+    cp "${SETUP_SCENE:?}" "$setup/shaders/scenes/character.glsl"
+    sed -i 's/^void main() {$/void main() {\n#if defined(SCENE_SETUP)\n    sceneSetup();\n#endif/' "$setup/shaders/render/main_comp.glsl"
+    for i in 1 2; do
+      for v in base fast setup; do
+        eval root=\$$v
+        sc="midi primitives character mandelbulb"; [ $v = setup ] && sc=character
+        SDFVJ_ROOT_OVERRIDE="$root" timeout 70 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+          --paths compute --frames 15 --warmup 3 --csv "$out/var_${v}_$i.csv" > "$out/var_${v}_$i.txt" 2>&1 || true
+      done
+    done
+    fi
     if [ "$part" = lit ] || [ "$part" = all ]; then
     # Issue 13: no shadow ray for a surface turned away from the light (render.glsl facesLight; every
     # direct term carries max(n.l, 0), so no pixel changes) against a copy of shaders/ without it;

@@ -7,6 +7,13 @@
 #ifndef SDF_LIB_COMMON_GLSL
 #define SDF_LIB_COMMON_GLSL
 
+// Declares a scene's per-invocation state: `SCENE_STATE vec3 g_head;` (written by the scene's
+// sceneSetup(), read by map(); render.glsl: SCENE_SETUP). Private to the invocation in GLSL,
+// thread_local in C++.
+#ifndef SCENE_STATE
+#define SCENE_STATE
+#endif
+
 // Irrational constants are computed from exactly representable literals: a `f` literal
 // is rounded to float even in the double build, an expression of 3.0f is not.
 const float PI = acos(-1.0f);

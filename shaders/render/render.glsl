@@ -84,6 +84,18 @@
 #ifndef SCENE_GROUND
 #define SCENE_GROUND 0
 #endif
+// A scene whose map() repeats work that depends on uniforms only (a character's skeleton: the
+// sin/cos of its walk) may define `void sceneSetup()` and `#define SCENE_SETUP 1`: the renderer
+// calls it once per invocation (renderFrom, coneStart) before any map(), and map() reads what it
+// left in SCENE_STATE globals. The field is the same; only where it is computed moves.
+#ifndef SCENE_SETUP
+#define SCENE_SETUP 0
+#endif
+void callSceneSetup() {
+#if SCENE_SETUP
+    sceneSetup();
+#endif
+}
 #define USE_BOUND (BOUNDS && SCENE_BOUND)
 #ifndef SCENE_BOX
 #define SCENE_BOX 0
@@ -295,6 +307,7 @@ float coneDistance(vec3 p, float t, float alpha, float inv) {
 }
 
 float coneStart(vec2 lo, vec2 hi) {
+    callSceneSetup();
     // A distance *estimate* (sceneLipschitz() > 1: the Mandelbulb's) is no bound to build on: a
     // later start changes which filament a ray stops on (3.5 % of its pixels moved by > 8/255,
     // same geometry error), so those scenes march from the eye.
@@ -433,6 +446,7 @@ float ditherNoise(vec2 fragCoord) {
 
 // tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
 vec4 renderFrom(vec2 fragCoord, float tStart) {
+    callSceneSetup();
     vec3 ro = u_camPos;
     vec3 rd = cameraRay(fragCoord);
     Hit h = march(ro, rd, tStart);

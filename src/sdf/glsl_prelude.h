@@ -47,6 +47,11 @@
 #ifndef uniform
 #define uniform static
 #endif
+// A scene's per-invocation state (sceneSetup() writes it, map() reads it): a GLSL global is private
+// to its invocation, so in C++ each thread has its own (the CPU reference renders on many).
+#ifndef SCENE_STATE
+#define SCENE_STATE static thread_local
+#endif
 #ifndef SDF_GLSL_CPP
 #define SDF_GLSL_CPP 1  // shared code may test `#ifdef SDF_GLSL_CPP` (never needed so far)
 #endif

@@ -165,7 +165,7 @@ bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const Vari
     if (!ExpandIncludes((root / "render" / "uniforms.glsl").string(), &s, error)) return false;
     s.text += LineDirective(1, 0) + "uniform float u_morph;\n";
     // The scene's own names, renamed while its text is read; its bound and ground macros saved.
-    static const char* kRenamed[] = {"map", "sceneLipschitz", "sceneBound", "mapGround"};
+    static const char* kRenamed[] = {"map", "sceneLipschitz", "sceneBound", "mapGround", "sceneSetup"};
     auto include = [&](const SceneInfo& scene, const std::string& prefix) {
         s.text += LineDirective(1, 0);
         for (const ParamDecl& p : scene.params) s.text += "uniform float u_" + prefix + "_" + p.name + ";\n";
@@ -175,7 +175,7 @@ bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const Vari
         s.text += LineDirective(1, 0);
         for (const char* name : kRenamed) s.text += "#undef " + std::string(name) + "\n";
         for (const ParamDecl& p : scene.params) s.text += "#undef u_" + p.name + "\n";
-        for (const char* macro : {"BOUND", "GROUND"}) {
+        for (const char* macro : {"BOUND", "GROUND", "SETUP"}) {
             const std::string m = std::string("SCENE_") + macro, saved = "MORPH_" + prefix + "_" + macro;
             s.text += "#if defined(" + m + ") && " + m + "\n#define " + saved + " 1\n#else\n#define " + saved +
                       " 0\n#endif\n#undef " + m + "\n";
@@ -185,6 +185,11 @@ bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const Vari
     if (!include(from, "m0") || !include(to, "m1")) return false;
     s.text += LineDirective(1, 0);
     s.text +=
+        "#define SCENE_SETUP 1\n"   // each scene's per-invocation state (render.glsl SCENE_SETUP), if it has any
+        "void sceneSetup() {\n"
+        "#if MORPH_m0_SETUP\n    m0_sceneSetup();\n#endif\n"
+        "#if MORPH_m1_SETUP\n    m1_sceneSetup();\n#endif\n"
+        "}\n"
         "vec4 map(vec3 p) { return mix(m0_map(p), m1_map(p), u_morph); }\n"
         "float sceneLipschitz() { return mix(m0_sceneLipschitz(), m1_sceneLipschitz(), u_morph); }\n"
         // Off the union of the two spheres each field is its own ground (or empty), so the mix is
