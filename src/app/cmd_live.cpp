@@ -228,6 +228,17 @@ void LiveSession::UpdateProgram() {
         shownError_ = live_.Error();
         state_.report.Say(shownError_.empty() ? "shader reloaded" : shownError_);
     }
+    // The literal tier (LiveProgram::SetLiteralTier): said once per build on the terminal, and each
+    // retune on the overlay's report too.
+    const bool literalReady = live_.LiteralTierReady();
+    if (literalReady && !literalReady_)
+        std::fprintf(stderr, "sdfvj live: %s: a save that changes only numbers in its functions shows at once (literal tier)\n",
+                     DisplayPath(live_.Key().scenePath).c_str());
+    literalReady_ = literalReady;
+    if (live_.LiteralSwaps() != literalSwaps_) {
+        literalSwaps_ = live_.LiteralSwaps();
+        state_.report.Say("shader retuned: the new numbers are on screen, its optimized program compiles behind them");
+    }
 }
 
 void LiveSession::LogParams(double now) {

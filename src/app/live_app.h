@@ -218,6 +218,8 @@ private:
     std::unique_ptr<ReplayCursor> replay_;
     std::unique_ptr<FILE, int (*)(FILE*)> paramLog_{nullptr, &std::fclose};
     std::string shownError_;
+    bool literalReady_ = false;   // the literal tier's readiness and retunes, as last reported
+    int literalSwaps_ = 0;
     bool overlay_ = true, tabWasDown_ = false, shotWritten_ = false;
     // The overlay's memory (monitor, frame graph, learn) and the keys it reads.
     OverlayUi ui_;

@@ -121,6 +121,8 @@ OverlayModel LiveSession::OverlayModelNow() {
     m.reportLines.assign(state_.report.recent.begin(), state_.report.recent.end());
     m.shaderError = shownError_;
     if (live_.Pending()) m.compiling = DescribeEffects(state_.wanted.effects);
+    if (live_.Current() && live_.Current()->Origin().literalTier)
+        m.statusLines.push_back("shader: retuned numbers read from uniforms until the optimized program is in");
     m.hasProgram = live_.Current() != nullptr;
     m.recording = recorder_.IsOpen();
     m.recorded = m.recording ? recorder_.Recorded() : 0;

@@ -311,6 +311,35 @@ TEST_CASE("live_reload first shader: a scene that does not compile keeps the win
     CHECK(show.Running());
 }
 
+TEST_CASE("live_reload retune: a save that changes only numbers is on screen without a compile, then the optimized program") {
+    // Issue 12: the literal tier in the show (src/render/live_program.h SetLiteralTier).
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "reload-retune");
+    const std::string root = CopyDataRoot(dir);
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    const std::string good = ReadAll(scene);
+    LiveShow show(dir, {"--scene", "midi"}, root);
+    REQUIRE_LIVE(show, show.WaitForLog("changes only numbers in its functions shows at once (literal tier)", 1, 60));
+    const std::string from = "vec4(0.95f, 0.30f, 0.12f,", to = "vec4(0.10f, 0.30f, 0.95f,";
+    const size_t at = good.find(from);
+    REQUIRE(at != std::string::npos);
+    SaveLikeAnEditor(scene, good.substr(0, at) + to + good.substr(at + from.size()));
+    REQUIRE_LIVE(show, show.WaitForLog("shader retuned: the new numbers are on screen", 1, 30));
+    // The optimized program of the same save follows ("shader reloaded" is said only after an
+    // error, so the frames going on and no error line are what is checked).
+    const size_t frames = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(frames, 10, kDeadline));
+    CHECK(show.Running());
+    CHECK(show.Log().find("error") == std::string::npos);
+    // A structural save (a new statement) is not a retune: no second "retuned" line.
+    const size_t mapAt = good.find("vec4 map(vec3 p) {");
+    REQUIRE(mapAt != std::string::npos);
+    SaveLikeAnEditor(scene, good.substr(0, mapAt) + "vec4 map(vec3 p) {\n    p.x += 0.0f * p.y;" +
+                                good.substr(mapAt + std::string("vec4 map(vec3 p) {").size()));
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    CHECK(CountInFile(show.log, "shader retuned") == 1);
+    CHECK(show.Running());
+}
+
 TEST_CASE("live_reload scene header: an added input keeps every knob, a wrong-typed field is reported and the show goes on") {
     // Issue 10, defects 2 and 4: a LABEL that is a number killed live (nlohmann type_error), and a
     // header that gained an input reset every knob each frame (parameters rebuilt by count).
