@@ -64,8 +64,10 @@ bool LiveSession::Start(std::string* error) {
         Watch(DataRoot() + "/" + dir);
     // The first program: a shader that does not compile keeps the window open with the error on
     // screen, and the next save that fixes it starts the show.
-    // A save that only retunes numbers shows in the next frame (the literal tier; SDFVJ_LITERAL_TIER=0: off).
-    live_.SetLiteralTier(true);
+    // A save that only retunes numbers shows in the next frame (the literal tier). Its build runs
+    // beside the show: by default where the GPU compiles beside the frame, not on llvmpipe, where
+    // it would take the CPU the frames need (SDFVJ_LITERAL_TIER=1|0 forces it).
+    live_.SetLiteralTier(!softwareGl_);
     if (!state_.show.isfScene) {   // an ISF generator is the post chain's first stage instead
         live_.Request(state_.wanted);
         live_.Wait();
@@ -193,6 +195,7 @@ void LiveSession::Reload() {
         live_.Request(state_.wanted);
     }
     live_.Update(changed);
+    PrefetchReachable(Now());
     ReloadPost(changed);
     StartFadeIfSceneChanged(Now());
 }

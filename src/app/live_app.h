@@ -194,6 +194,11 @@ private:
     bool DrawPost(unsigned texture, int w, int h, double now);
     void PresentRenderer(int rw, int rh, double now);   // renderer_'s frame to the window, through the post chain
     void PrepareFieldMorph();
+    // live_prefetch.cpp: the variants the effect pads and presets reach, built ahead (LiveProgram::Prefetch).
+    void PrefetchReachable(double now);
+    VariantKey prefetchFor_;
+    double prefetchQuietSince_ = 0.0;
+    bool prefetchQueued_ = false;
     bool FadeMorphsFields();
     bool DrawFieldFade(double now, int rw, int rh);
     std::shared_ptr<const Program> shown_;   // the program the last frame showed, and its scene

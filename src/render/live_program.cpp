@@ -48,8 +48,16 @@ bool LiveProgram::LoaderDefault() {
 
 void LiveProgram::SetLiteralTier(bool on) {
     const char* env = std::getenv("SDFVJ_LITERAL_TIER");
-    literalTier_ = on && !(env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0));
+    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) on = false;
+    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) on = true;
+    literalTier_ = on;
 }
+
+namespace {
+double SteadyMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
 
 CompileProcess* LiveProgram::Process() const {
     return processSet_ ? process_ : ProcessCompileDefault() ? SharedCompileProcess() : nullptr;
@@ -64,11 +72,13 @@ void LiveProgram::WantLifted(const SceneInfo& scene) {
     liftedWantKey_ = key_;
 }
 
-void LiveProgram::StartLifted() {
+void LiveProgram::StartLifted(bool force) {
     if (!literalTier_ || liftedPending_.Active() || pending_.Active() || quick_.Active() || !current_ ||
         !error_.empty() || liftedWantKey_ != key_ || liftedWant_.hash == 0 || LiteralTierReady() ||
         std::find(liftedFailed_.begin(), liftedFailed_.end(), liftedWant_.hash) != liftedFailed_.end())
         return;
+    // Not right after a build lands: the show gets its frames (and the CPU, on llvmpipe) first.
+    if (!force && SteadyMs() - settledAt_ < kLiteralDelayMs) return;
     liftedPendingKey_ = key_;
     liftedPendingHash_ = liftedWant_.hash;
     liftedPending_.SetProcess(Process());
@@ -115,10 +125,49 @@ void LiveProgram::FinishLifted() {
     Trim();
 }
 
+void LiveProgram::Prefetch(const std::vector<VariantKey>& keys) {
+    prefetch_.clear();
+    for (const VariantKey& k : keys)
+        if (k != key_ && !cache_.count(k) && std::find(prefetch_.begin(), prefetch_.end(), k) == prefetch_.end())
+            prefetch_.push_back(k);
+}
+
+void LiveProgram::StartPrefetch() {
+    while (!prefetch_.empty() && !prefetchPending_.Active() && !pending_.Active() && !quick_.Active() &&
+           !liftedPending_.Active() && cache_.size() + 2 <= cacheLimit_) {
+        const VariantKey k = prefetch_.front();
+        prefetch_.erase(prefetch_.begin());
+        if (k == key_ || cache_.count(k)) continue;
+        SceneInfo scene;
+        ShaderSource src;
+        std::string error;
+        if (!LoadScene(k.scenePath, &scene, &error) || !AssembleProgram(scene, k, &src, &error)) continue;   // asked for, it reports
+        prefetchKey_ = k;
+        prefetchScene_ = scene;
+        prefetchPending_.SetProcess(Process());
+        if (!prefetchPending_.BeginFromCache(src, k.path)) prefetchPending_.Begin(src, k.path);
+    }
+}
+
+void LiveProgram::FinishPrefetch() {
+    auto program = std::make_unique<Program>();
+    std::string log;
+    const bool ok = prefetchPending_.Finish(program.get(), &log);   // a variant that fails reports when asked for
+    if (ok && prefetchKey_ != key_ && !cache_.count(prefetchKey_)) {
+        Cached& slot = cache_[prefetchKey_];
+        slot.program = std::move(program);
+        slot.scene = prefetchScene_;
+        slot.lastUsed = 0;   // never asked for: the first to go when the cache is full
+        ++prefetched_;
+        Evict();
+    }
+    Trim();
+}
+
 bool LiveProgram::WaitLiteralTier() {
     if (!literalTier_) return false;
     Wait();
-    StartLifted();
+    StartLifted(true);
     if (liftedPending_.Active()) FinishLifted();
     return LiteralTierReady();
 }
@@ -185,6 +234,10 @@ void LiveProgram::Rebuild() {
         ++literalSwaps_;
     }
     liftedPending_.Cancel();   // a real build goes first
+    if (prefetchPending_.Active()) {   // ... and is asked for again after it
+        prefetch_.insert(prefetch_.begin(), prefetchKey_);
+        prefetchPending_.Cancel();
+    }
     if (pending_.BeginFromCache(src, key_.path)) {
         quick_.Cancel();
         return;   // compiled in an earlier run: Update() puts it on screen
@@ -260,6 +313,10 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     const Program* before = current_.get();
     const int swapsBefore = literalSwaps_;
     if (!changedFiles.empty()) {
+        if (prefetchPending_.Active()) {   // assembled before the save: built again from the new files
+            prefetch_.insert(prefetch_.begin(), prefetchKey_);
+            prefetchPending_.Cancel();
+        }
         bool affectsCurrent = false;
         for (const std::string& changed : changedFiles) {
             std::string canon = fs::weakly_canonical(changed).string();
@@ -284,10 +341,16 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     }
     if (quick_.Active() && quick_.Ready()) FinishQuick();
     if (pending_.Active() && pending_.Ready()) Finish();
+    if (current_.get() != before || pending_.Active() || quick_.Active()) settledAt_ = SteadyMs();
     if (liftedPending_.Active()) {
         if (liftedPending_.Ready()) FinishLifted();
     } else {
         StartLifted();
+    }
+    if (prefetchPending_.Active()) {
+        if (prefetchPending_.Ready()) FinishPrefetch();
+    } else {
+        StartPrefetch();
     }
     return current_.get() != before || literalSwaps_ != swapsBefore;
 }

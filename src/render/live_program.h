@@ -75,13 +75,21 @@ public:
     // behind it, at the lowest priority, and used once; a later save that changes only those numbers
     // puts it on screen in that Update() with the new values (no compile: the next frame shows
     // them), while the optimized program of the save compiles behind it and replaces it as usual.
-    // SDFVJ_LITERAL_TIER=0 keeps it off.
+    // Its build starts 2 s after the last program landed. SDFVJ_LITERAL_TIER=0|1 overrides `on`.
     void SetLiteralTier(bool on);
     bool LiteralTier() const { return literalTier_; }
     // The literal tier of the variant on screen is built (tests, the bench wait for it).
     bool LiteralTierReady() const { return lifted_ && liftedKey_ == key_ && liftedHash_ == liftedWant_.hash; }
     // Blocks until the literal tier of the variant on screen is built (false: it cannot be).
     bool WaitLiteralTier();
+    // Variants the performer can reach next (the effect pads' toggles, the presets' variants),
+    // built ahead at the lowest priority (one at a time, when nothing else compiles) into the
+    // variant cache, so that asking for one later shows it at once. Replaces the queue; keeps
+    // room in the cache (at most its limit - 2 variants besides the one on screen); a saved file
+    // drops what it touched, as for any cached variant.
+    void Prefetch(const std::vector<VariantKey>& keys);
+    size_t PrefetchQueued() const { return prefetch_.size() + (prefetchPending_.Active() ? 1 : 0); }
+    int Prefetched() const { return prefetched_; }   // variants built ahead so far
     int LiteralSwaps() const { return literalSwaps_; }   // saves put on screen by the literal tier
     // The literal tier's last build: its compile (ProgramOrigin::buildMs) and its one use on the
     // render thread (PrimeProgram, glFinish): on NVIDIA a frame that long after a structural save.
@@ -103,8 +111,10 @@ private:
     void Evict();     // drop least recently used variants down to cacheLimit_ (never key_)
     void Trim();      // hand the heap a compile freed back to the system (glibc malloc_trim; SDFVJ_MALLOC_TRIM=0: off)
     void WantLifted(const SceneInfo& scene);   // assemble key_'s lifted source into liftedWant_
-    void StartLifted();                        // build liftedWant_ when nothing else compiles
+    void StartLifted(bool force = false);      // build liftedWant_ when nothing else compiles (and, unless forced, kLiteralDelayMs after the last change)
     void FinishLifted();
+    void StartPrefetch();
+    void FinishPrefetch();
     CompileProcess* Process() const;
 
     VariantKey key_;
@@ -135,7 +145,15 @@ private:
     uint64_t liftedPendingHash_ = 0;
     std::vector<uint64_t> liftedFailed_;   // skeletons the driver refused: not tried again
     int literalSwaps_ = 0;
+    static constexpr double kLiteralDelayMs = 2000.0;
+    double settledAt_ = 0.0;               // steady ms of the last change on screen or build in flight
     double literalBuildMs_ = 0.0, literalPrimeMs_ = 0.0;
+    // Variants built ahead (Prefetch).
+    std::vector<VariantKey> prefetch_;     // still to build, first first
+    PendingProgram prefetchPending_;
+    VariantKey prefetchKey_;
+    SceneInfo prefetchScene_;
+    int prefetched_ = 0;
 };
 
 // For reload benchmarks and tests, the edit a live coder makes: `sceneText` with its first float

@@ -48,7 +48,8 @@ struct LiveShow {
     int oscPort = 0;
 
     // `root`: a data root (SDFVJ_ROOT) with its own shaders/, presets/ and mappings/ to edit.
-    LiveShow(const std::string& folder, const std::vector<std::string>& extra, const std::string& root = "")
+    LiveShow(const std::string& folder, const std::vector<std::string>& extra, const std::string& root = "",
+             const std::vector<EnvChange>& moreEnv = {})
         : dir(folder) {
         log = dir + "/live.log";
         params = dir + "/params.txt";
@@ -60,6 +61,7 @@ struct LiveShow {
         argv.insert(argv.end(), extra.begin(), extra.end());
         std::vector<EnvChange> env = {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}};
         if (!root.empty()) env.push_back({"SDFVJ_ROOT", root});
+        env.insert(env.end(), moreEnv.begin(), moreEnv.end());
         pid = Spawn(argv, log, env);
     }
     ~LiveShow() { Stop(); }
@@ -317,7 +319,7 @@ TEST_CASE("live_reload retune: a save that changes only numbers is on screen wit
     const std::string root = CopyDataRoot(dir);
     const std::string scene = root + "/shaders/scenes/midi.glsl";
     const std::string good = ReadAll(scene);
-    LiveShow show(dir, {"--scene", "midi"}, root);
+    LiveShow show(dir, {"--scene", "midi"}, root, {{"SDFVJ_LITERAL_TIER", "1"}});   // off by default on llvmpipe
     REQUIRE_LIVE(show, show.WaitForLog("changes only numbers in its functions shows at once (literal tier)", 1, 60));
     const std::string from = "vec4(0.95f, 0.30f, 0.12f,", to = "vec4(0.10f, 0.30f, 0.95f,";
     const size_t at = good.find(from);
@@ -337,6 +339,20 @@ TEST_CASE("live_reload retune: a save that changes only numbers is on screen wit
                                 good.substr(mapAt + std::string("vec4 map(vec3 p) {").size()));
     std::this_thread::sleep_for(std::chrono::seconds(2));
     CHECK(CountInFile(show.log, "shader retuned") == 1);
+    CHECK(show.Running());
+}
+
+TEST_CASE("live_reload prefetch: once the show is quiet the pads' and presets' variants compile ahead, and the show goes on") {
+    // Issue 12's "compile the variants a preset list or effect pad can reach in the background"
+    // (off by default on llvmpipe, forced here; LiveProgram::Prefetch is tested in test_render).
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "reload-prefetch");
+    LiveShow show(dir, {"--scene", "midi"}, "", {{"SDFVJ_PREFETCH", "1"}});
+    REQUIRE_LIVE(show, show.WaitForLog("variants an effect pad or a preset reaches compile in the background", 1, 60));
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    show.Osc("/sdfvj/effect/ao", 1.0f);
+    REQUIRE_LIVE(show, show.WaitForLog("sdfvj live: effects", 1, kDeadline));
+    const size_t at = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(at, 10, kDeadline));
     CHECK(show.Running());
 }
 

@@ -242,3 +242,37 @@ TEST_CASE("literal tier: a save that only retunes numbers is on screen in its fi
     CHECK(rig.live.Error().empty());
 }
 
+
+TEST_CASE("prefetch: variants built ahead are on screen at once when asked for, and a save drops them", "[tiered][prefetch]") {
+    WorkerRig rig("prefetch", "midi", false);
+    bool swapped = false;
+    rig.Frame(&swapped);
+    const Image plain = rig.Pixels();
+    VariantKey withAo = rig.key, withShadows = rig.key;
+    withAo.effects.ao = true;
+    withShadows.effects.shadows = 2;
+    rig.live.Prefetch({withAo, withShadows, rig.key});   // the variant on screen is not built again
+    CHECK(rig.live.PrefetchQueued() == 2);
+    const auto t0 = Clock::now();
+    while (rig.live.PrefetchQueued() > 0 && MsSince(t0) < 60000) rig.Frame(&swapped);
+    REQUIRE(rig.live.PrefetchQueued() == 0);
+    CHECK(rig.live.Prefetched() == 2);
+    CHECK(rig.live.IsCached(withAo));
+    CHECK(rig.live.IsCached(withShadows));
+    CHECK(rig.live.Current()->Source().hash != 0);
+    // An effect pad hit: the variant is on screen in that call, nothing compiles.
+    const int compiles = rig.live.CompilesStarted();
+    rig.live.Request(withShadows);
+    CHECK_FALSE(rig.live.Pending());
+    CHECK(rig.live.CompilesStarted() == compiles);
+    rig.Frame(&swapped);
+    CHECK(rig.live.Key() == withShadows);
+    // A person sees the shadows: the frame is not the unshadowed one.
+    CHECK(CompareImages(plain, rig.Pixels(), 8).fractionOver > 0.005);
+    // A save of the scene drops the variants built from the old text.
+    rig.Save(5);
+    rig.Frame(&swapped, true);
+    CHECK_FALSE(rig.live.IsCached(withAo));
+    rig.live.Wait();
+    CHECK(rig.live.Error().empty());
+}

@@ -1,0 +1,72 @@
+// live_prefetch.cpp - the variants an effect pad or a preset can ask for next, built ahead of the
+// performer (LiveProgram::Prefetch): once the show has asked for nothing new for a few seconds,
+// the one-effect toggles of the variant on screen and every preset's variant are queued, at most
+// the cache's room; the first pad hit or preset switch to one of them then shows it at once.
+// On by default where the GPU compiles beside the frame (not on llvmpipe, whose compiles share the
+// CPU with the frame); SDFVJ_PREFETCH=1 or 0 forces it.
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "app/live_app.h"
+
+namespace fs = std::filesystem;
+
+namespace sdfvj {
+
+namespace {
+
+bool PrefetchWanted(bool softwareGl) {
+    const char* env = std::getenv("SDFVJ_PREFETCH");
+    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
+    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
+    return !softwareGl;
+}
+
+// The variant with one effect switched: what an effect pad reaches from `e`.
+std::vector<EffectSet> OneToggleAway(const EffectSet& e) {
+    std::vector<EffectSet> out;
+    auto add = [&](auto change) {
+        EffectSet t = e;
+        change(t);
+        out.push_back(t);
+    };
+    add([](EffectSet& t) { t.shadows = t.shadows ? 0 : 2; });
+    add([](EffectSet& t) { t.ao = !t.ao; });
+    add([](EffectSet& t) { t.specular = !t.specular; });
+    add([](EffectSet& t) { t.fog = !t.fog; });
+    add([](EffectSet& t) { t.pbr = !t.pbr; });
+    add([](EffectSet& t) { t.reflections = t.reflections ? 0 : 1; });
+    return out;
+}
+
+}  // namespace
+
+void LiveSession::PrefetchReachable(double now) {
+    static const bool wanted = PrefetchWanted(softwareGl_);
+    if (!wanted || state_.show.isfScene) return;
+    if (!(state_.wanted == prefetchFor_)) {   // something new was asked for: wait until it settles
+        prefetchFor_ = state_.wanted;
+        prefetchQuietSince_ = now;
+        prefetchQueued_ = false;
+        return;
+    }
+    if (prefetchQueued_ || now - prefetchQuietSince_ < 3.0 || live_.Pending() || !live_.Current()) return;
+    prefetchQueued_ = true;
+    std::vector<VariantKey> keys;
+    for (const EffectSet& e : OneToggleAway(state_.wanted.effects)) keys.push_back({state_.wanted.scenePath, e, state_.wanted.path});
+    for (const std::string& name : ListPresets()) {   // a preset that does not load is skipped: asked for, it says why
+        ShowOptions so = state_.options;
+        so.scene.clear();
+        so.params.clear();
+        so.preset = (fs::path(DataRoot()) / "presets" / name).string();
+        Show next;
+        std::string error;
+        if (PrepareShow(so, &next, &error) && !next.isfScene) keys.push_back({next.scene.path, next.effects, state_.wanted.path});
+    }
+    live_.Prefetch(keys);
+    std::fprintf(stderr, "sdfvj live: %zu variants an effect pad or a preset reaches compile in the background\n",
+                 live_.PrefetchQueued());
+}
+
+}  // namespace sdfvj
