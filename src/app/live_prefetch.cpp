@@ -4,8 +4,6 @@
 // the cache's room; the first pad hit or preset switch to one of them then shows it at once.
 // On by default where the GPU compiles beside the frame (not on llvmpipe, whose compiles share the
 // CPU with the frame); SDFVJ_PREFETCH=1 or 0 forces it.
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 
 #include "app/live_app.h"
@@ -15,13 +13,6 @@ namespace fs = std::filesystem;
 namespace sdfvj {
 
 namespace {
-
-bool PrefetchWanted(bool softwareGl) {
-    const char* env = std::getenv("SDFVJ_PREFETCH");
-    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
-    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
-    return !softwareGl;
-}
 
 // The variant with one effect switched: what an effect pad reaches from `e`.
 std::vector<EffectSet> OneToggleAway(const EffectSet& e) {
@@ -43,7 +34,7 @@ std::vector<EffectSet> OneToggleAway(const EffectSet& e) {
 }  // namespace
 
 void LiveSession::PrefetchReachable(double now) {
-    static const bool wanted = PrefetchWanted(softwareGl_);
+    static const bool wanted = EnvSwitch("SDFVJ_PREFETCH", !softwareGl_);
     if (!wanted || state_.show.isfScene) return;
     if (!(state_.wanted == prefetchFor_)) {   // something new was asked for: wait until it settles
         prefetchFor_ = state_.wanted;

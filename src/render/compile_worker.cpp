@@ -49,6 +49,15 @@ unsigned CompileLinkHere(const std::string& text, RenderPath path, std::string* 
 }
 
 void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
+    // The caller's state the 1x1 use touches is put back (on the render context: the window's
+    // framebuffer, viewport and bindings).
+    GLint viewport[4], drawFbo = 0, readFbo = 0, current = 0, bound = 0, boundVao = 0;
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFbo);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &boundVao);
     GLuint tex = 0, fbo = 0, vao = 0, cone = 0;
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
@@ -73,11 +82,16 @@ void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     glFinish();
-    glUseProgram(0);
     if (vao) glDeleteVertexArrays(1, &vao);
     if (fbo) glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &tex);
     if (cone) glDeleteTextures(1, &cone);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)drawFbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFbo);
+    glUseProgram((GLuint)current);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)bound);
+    glBindVertexArray((GLuint)boundVao);
 }
 
 CompileWorker::CompileWorker(std::function<bool()> bindContext, bool handOverBinary, std::function<void()> releaseContext)

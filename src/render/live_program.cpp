@@ -21,37 +21,32 @@ namespace fs = std::filesystem;
 
 namespace sdfvj {
 
-bool LiveProgram::TieredCompileDefault() {
-    const char* env = std::getenv("SDFVJ_TIERED");
+bool EnvSwitch(const char* name, bool fallback) {
+    const char* env = std::getenv(name);
     if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
     if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
-    const GLubyte* vendor = glGetString(GL_VENDOR);
-    return vendor && std::strstr((const char*)vendor, "NVIDIA") != nullptr;
+    return fallback;
 }
 
-bool LiveProgram::ProcessCompileDefault() {
-    const char* env = std::getenv("SDFVJ_COMPILE_PROCESS");
-    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
-    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
+namespace {
+bool VendorIsNvidia() {
     const GLubyte* vendor = glGetString(GL_VENDOR);
     return vendor && std::strstr((const char*)vendor, "NVIDIA") != nullptr;
 }
+}  // namespace
+
+bool LiveProgram::TieredCompileDefault() { return EnvSwitch("SDFVJ_TIERED", VendorIsNvidia()); }
+
+bool LiveProgram::ProcessCompileDefault() { return EnvSwitch("SDFVJ_COMPILE_PROCESS", VendorIsNvidia()); }
 
 bool LiveProgram::LoaderDefault() {
-    const char* env = std::getenv("SDFVJ_LOADER");
-    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
     // Off unless asked for: on the H200 the driver finishes a loaded program once per CONTEXT
     // (a use on the loader's shared context does not spare the render context's first use, and the
     // loader's own finishing delays save -> screen by 120-570 ms): docs/performance.md.
-    return env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0);
+    return EnvSwitch("SDFVJ_LOADER", false);
 }
 
-void LiveProgram::SetLiteralTier(bool on) {
-    const char* env = std::getenv("SDFVJ_LITERAL_TIER");
-    if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) on = false;
-    if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) on = true;
-    literalTier_ = on;
-}
+void LiveProgram::SetLiteralTier(bool on) { literalTier_ = EnvSwitch("SDFVJ_LITERAL_TIER", on); }
 
 namespace {
 double SteadyMs() {
@@ -96,15 +91,7 @@ void LiveProgram::FinishLifted() {
     }
     program->MarkLiteralTier();
     // Used once here, now, so the driver's lazy finishing at a program's first draw (NVIDIA) falls
-    // between saves rather than on the frame that shows a retuned save. The render context's
-    // state that the 1x1 use touches is put back (the window's framebuffer, viewport, bindings).
-    GLint viewport[4], drawFbo = 0, readFbo = 0, prog = 0, tex = 0, vao = 0;
-    glGetIntegerv(GL_VIEWPORT, viewport);
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFbo);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFbo);
-    glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
-    glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex);
-    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+    // between saves rather than on the frame that shows a retuned save.
     const auto primeStart = std::chrono::steady_clock::now();
     // Not on llvmpipe: with Mesa's disk cache on its first draw is quick anyway (11-20 ms at
     // 320x180), and with the cache off this use would JIT on the render thread (690 ms) after
@@ -113,12 +100,6 @@ void LiveProgram::FinishLifted() {
     if (!IsSoftwareRenderer()) PrimeProgram(program->Id(), liftedPendingKey_.path, false);
     literalPrimeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - primeStart).count();
     literalBuildMs_ = program->Origin().buildMs;
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)drawFbo);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFbo);
-    glUseProgram((GLuint)prog);
-    glBindTexture(GL_TEXTURE_2D, (GLuint)tex);
-    glBindVertexArray((GLuint)vao);
     lifted_ = std::move(program);
     liftedKey_ = liftedPendingKey_;
     liftedHash_ = liftedPendingHash_;
@@ -130,6 +111,12 @@ void LiveProgram::Prefetch(const std::vector<VariantKey>& keys) {
     for (const VariantKey& k : keys)
         if (k != key_ && !cache_.count(k) && std::find(prefetch_.begin(), prefetch_.end(), k) == prefetch_.end())
             prefetch_.push_back(k);
+}
+
+void LiveProgram::RequeuePrefetch() {
+    if (!prefetchPending_.Active()) return;
+    prefetch_.insert(prefetch_.begin(), prefetchKey_);
+    prefetchPending_.Cancel();
 }
 
 void LiveProgram::StartPrefetch() {
@@ -188,9 +175,7 @@ void LiveProgram::Request(const VariantKey& key) {
         error_.clear();
         if (literalTier_ && liftedWantKey_ != key) {
             liftedPending_.Cancel();
-            SceneInfo scene;
-            std::string error;
-            if (LoadScene(key_.scenePath, &scene, &error)) WantLifted(scene);
+            WantLifted(scene_);   // the cached variant's header: current, a save evicts it
         }
         return;
     }
@@ -234,10 +219,7 @@ void LiveProgram::Rebuild() {
         ++literalSwaps_;
     }
     liftedPending_.Cancel();   // a real build goes first
-    if (prefetchPending_.Active()) {   // ... and is asked for again after it
-        prefetch_.insert(prefetch_.begin(), prefetchKey_);
-        prefetchPending_.Cancel();
-    }
+    RequeuePrefetch();
     if (pending_.BeginFromCache(src, key_.path)) {
         quick_.Cancel();
         return;   // compiled in an earlier run: Update() puts it on screen
@@ -313,10 +295,7 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     const Program* before = current_.get();
     const int swapsBefore = literalSwaps_;
     if (!changedFiles.empty()) {
-        if (prefetchPending_.Active()) {   // assembled before the save: built again from the new files
-            prefetch_.insert(prefetch_.begin(), prefetchKey_);
-            prefetchPending_.Cancel();
-        }
+        RequeuePrefetch();   // assembled before the save: built again from the new files
         bool affectsCurrent = false;
         for (const std::string& changed : changedFiles) {
             std::string canon = fs::weakly_canonical(changed).string();

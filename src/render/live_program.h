@@ -27,6 +27,9 @@
 
 namespace sdfvj {
 
+// An on/off environment switch: NAME=1|on gives true, NAME=0|off false, anything else `fallback`.
+bool EnvSwitch(const char* name, bool fallback);
+
 class LiveProgram {
 public:
     // Switches to a variant: from the cache at once, else compiled asynchronously while the
@@ -114,6 +117,7 @@ private:
     void StartLifted(bool force = false);      // build liftedWant_ when nothing else compiles (and, unless forced, kLiteralDelayMs after the last change)
     void FinishLifted();
     void StartPrefetch();
+    void RequeuePrefetch();   // a prefetch in flight is cancelled and asked for again first
     void FinishPrefetch();
     CompileProcess* Process() const;
 
