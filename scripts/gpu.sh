@@ -6,14 +6,16 @@
 #   scripts/gpu.sh remote ARGS..  there (the device tool runs it in the repo root, carrying .gl and
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
 #                                 `retune` (issue 12: a numbers-only save through the literal tier, and a nudge);
 #                                 `lit` (issue 13: the n.l shadow skip against the shaders before it);
 #                                 `adopt` (issue 12: the program drawn on the context that finished it);
-#                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured
+#                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured;
+#                                 `ab` (issue 13: scenes now against `prepare-ab REV`'s, and the show lighting at 8K)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -37,6 +39,30 @@ case "${1:-}" in
     cp .devbuild/cmake/src/app/sdfvj-headless .devbuild/
     rm -rf .devbuild/cmake
     du -sh .gl .devbuild
+    ;;
+  prepare-ab)
+    # here: .devbuild/ab/ = shaders/, presets/, mappings/ as now, plus every scene as of git
+    # revision $2 under the name NAME_before (its NAME, and its includes of every lib/ file
+    # that changed since, renamed to the old copies lib/X_before.glsl), for `measure ab`.
+    rev="${2:?usage: scripts/gpu.sh prepare-ab REV}"
+    ab=.devbuild/ab; rm -rf "$ab"; mkdir -p "$ab"; cp -r shaders presets mappings "$ab/"
+    changed=$(git diff --name-only "$rev" -- shaders/lib | sed 's#^shaders/lib/##; s#\.glsl$##')
+    if ! git diff --quiet "$rev" -- shaders/render; then echo "shaders/render changed since $rev: not per scene" >&2; exit 1; fi
+    # a lib that includes a changed one is old too (field_scene.glsl includes field.glsl)
+    for _ in 1 2 3; do
+      for f in shaders/lib/*.glsl; do
+        l=$(basename "$f" .glsl)
+        for c in $changed; do git show "$rev:$f" 2>/dev/null | grep -q "\"lib/$c.glsl\"" && changed="$changed $l"; done
+      done
+      changed=$(echo $changed | tr ' ' '\n' | sort -u)
+    done
+    rename() { local e=(-e ''); for l in $changed; do e+=(-e "s#\"lib/$l.glsl\"#\"lib/${l}_before.glsl\"#"); done; sed "${e[@]}"; }
+    for l in $changed; do git show "$rev:shaders/lib/$l.glsl" | rename > "$ab/shaders/lib/${l}_before.glsl"; done
+    for f in shaders/scenes/*.glsl; do
+      n=$(basename "$f" .glsl)
+      git show "$rev:$f" | rename | sed "s/\"NAME\": \"$n\"/\"NAME\": \"${n}_before\"/" > "$ab/shaders/scenes/${n}_before.glsl"
+    done
+    echo "changed libs: ${changed:-none}"
     ;;
   measure)
     # `measure reload` (issue 12), `measure frames` and `measure field` (issue 13) each fit one
@@ -142,6 +168,20 @@ case "${1:-}" in
           --paths compute --frames 15 --warmup 3 --csv "$out/var_${v}_$i.csv" > "$out/var_${v}_$i.txt" 2>&1 || true
       done
     done
+    fi
+    if [ "$part" = ab ]; then
+    # Issue 13, session 9: cheaper map() calls (mandelbulb's power 8 without trigonometry, the
+    # fields' poses by angle addition) against the scenes as of a revision, in one interleaved
+    # run (.devbuild/ab, made here by `scripts/gpu.sh prepare-ab REV`); then issue 13's heaviest
+    # target, the `show` lighting (soft shadows, AO, PBR, one reflection bounce) at 4K and at
+    # 7680x4320 (4K with 4 samples a pixel), against `full`; then the changed scenes' accuracy.
+    SDFVJ_ROOT_OVERRIDE="$PWD/.devbuild/ab" timeout 150 bash "$0" remote bench --scenes character mandelbulb mandelbulb_before \
+      field50 field50_before field150 field150_before --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 15 \
+      --warmup 3 --markdown "$out/ab.md" --csv "$out/ab.csv" > "$out/ab.txt" 2>&1 || true
+    timeout 200 bash "$0" remote bench --sizes 3840x2160 7680x4320 --tests full show --paths compute --frames 10 --warmup 3 \
+      --markdown "$out/show.md" --csv "$out/show.csv" > "$out/show.txt" 2>&1 || true
+    timeout 150 bash "$0" remote bench accuracy --scene mandelbulb,field150 --size 1920x1080 --ref-size 960x540 --path compute \
+      --frames 15 --warmup 5 --out "$out/accuracy_ab" --csv "$out/accuracy_ab.csv" > "$out/accuracy_ab.txt" 2>&1 || true
     fi
     if [ "$part" = lit ] || [ "$part" = all ]; then
     # Issue 13: no shadow ray for a surface turned away from the light (render.glsl facesLight; every

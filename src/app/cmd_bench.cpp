@@ -30,9 +30,16 @@ int RunBench(const BenchOptions& o) {
 
     std::vector<std::string> scenes = o.scenes.empty() ? ListScenes() : o.scenes;
     std::vector<LightingTest> tests;
-    for (const auto& t : SeedLightingTests())
-        if (o.tests.empty() || std::find(o.tests.begin(), o.tests.end(), t.name) != o.tests.end()) tests.push_back(t);
-    if (tests.empty()) { std::fprintf(stderr, "sdfvj bench: no lighting test matches, expected full, shadows_ao, shadows or none\n"); return 2; }
+    std::vector<LightingTest> known = SeedLightingTests();
+    known.push_back(ShowLightingTest());
+    for (const std::string& name : o.tests)
+        if (std::none_of(known.begin(), known.end(), [&](const LightingTest& t) { return name == t.name; })) {
+            std::fprintf(stderr, "sdfvj bench: unknown lighting test '%s', expected full, shadows_ao, shadows, none or show\n", name.c_str());
+            return 2;
+        }
+    for (const auto& t : known)
+        if ((o.tests.empty() && t.name != std::string("show")) || std::find(o.tests.begin(), o.tests.end(), t.name) != o.tests.end())
+            tests.push_back(t);
     std::vector<std::pair<int, int>> sizes;
     for (const auto& s : o.sizes) {
         int w, h;

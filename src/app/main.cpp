@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
     cmdBench->add_option("--scenes", bench.scenes, "scenes (default: all); NAME:literals times the literal tier of NAME (its float literals read from uniforms: what `live` shows first after a save that only retunes numbers)")->delimiter(',');
     cmdBench->add_option("--sizes", bench.sizes, "sizes")->capture_default_str()->delimiter(',');
-    cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: all)")->delimiter(',');
+    cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: these four); show = soft shadows, AO, specular, PBR and one reflection bounce")->delimiter(',');
     cmdBench->add_option("--paths", bench.paths, "render paths")->capture_default_str()->delimiter(',');
     cmdBench->add_option("--frames", bench.frames, "timed frames per cell (median)")->capture_default_str();
     cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->capture_default_str();

@@ -471,4 +471,12 @@ std::vector<LightingTest> SeedLightingTests() {
     return {{"full", full}, {"shadows_ao", shadowsAo}, {"shadows", shadows}, {"none", none}};
 }
 
+LightingTest ShowLightingTest() {
+    EffectSet show;
+    show.shadows = 2;
+    show.ao = show.specular = show.pbr = true;
+    show.reflections = 1;
+    return {"show", show};
+}
+
 }  // namespace sdfvj

@@ -77,6 +77,9 @@ bool ParseNormalMethod(const std::string& name, int* method, std::string* error)
 // soft shadows + AO, soft shadows, none.
 struct LightingTest { const char* name; EffectSet effects; };
 std::vector<LightingTest> SeedLightingTests();
+// Issue 13's heaviest target: soft shadows, AO, specular, PBR and one reflection bounce
+// (`bench --tests show`; not among the seed's four, so not in a bare `bench`).
+LightingTest ShowLightingTest();
 
 // A preset: a scene with parameter values and effect overrides, optionally a mapping and a take.
 struct Preset {

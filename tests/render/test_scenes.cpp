@@ -2,7 +2,7 @@
 // committed reference images. Tolerance: at most 0.2% of pixels may have a channel more than 8/255
 // off, and the mean channel difference must stay under 0.5/255 — loose enough for another Mesa
 // build's float rounding, tight enough that any visible change to a scene or the lighting fails.
-// Regenerate on purpose with scripts/update_references.sh (then look at the PNGs).
+// Regenerate on purpose with SDFVJ_UPDATE_REFERENCES=1 (a section: -c NAME.png), then look at the PNGs.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
