@@ -7,7 +7,7 @@
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -15,7 +15,8 @@
 #                                 `lit` (issue 13: the n.l shadow skip against the shaders before it);
 #                                 `adopt` (issue 12: the program drawn on the context that finished it);
 #                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured;
-#                                 `ab` (issue 13: scenes now against `prepare-ab REV`'s, and the show lighting at 8K)
+#                                 `ab` (issue 13: scenes now against `prepare-ab REV`'s, and the show lighting at 8K);
+#                                 `toggle` (issue 12: effect pad hits, cold against built ahead)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -182,6 +183,14 @@ case "${1:-}" in
       --markdown "$out/show.md" --csv "$out/show.csv" > "$out/show.txt" 2>&1 || true
     timeout 150 bash "$0" remote bench accuracy --scene mandelbulb,field150 --size 1920x1080 --ref-size 960x540 --path compute \
       --frames 15 --warmup 5 --out "$out/accuracy_ab" --csv "$out/accuracy_ab.csv" > "$out/accuracy_ab.txt" 2>&1 || true
+    fi
+    if [ "$part" = toggle ] || [ "$part" = all ]; then
+    # Issue 12: effect pad hits (the six one-effect variants) cold, built ahead (live's prefetch)
+    # and built ahead + used once on the render context, rounds interleaved, driver caches off.
+    for s in midi character; do
+      timeout 240 bash "$0" remote bench reload --edit toggle --scene $s --size 1920x1080 --path compute --rounds 6 \
+        > "$out/toggle_$s.txt" 2>&1 || true
+    done
     fi
     if [ "$part" = lit ] || [ "$part" = all ]; then
     # Issue 13: no shadow ray for a surface turned away from the light (render.glsl facesLight; every

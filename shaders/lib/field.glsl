@@ -40,9 +40,6 @@ const float FIELD_UNIT = 1.17f;      // shape dimensions below are in units of s
 const float FIELD_RADIUS = 0.45f;    // every shape within this * size of its cell's axis (XZ): 0.38 * 1.17
 const float FIELD_MAX_SIZE = 1.0f;
 const float FIELD_MAX_BLEND = 0.35f; // 1 - 0.45 - 1.25 * 0.35 = 0.11 > 0 at the largest size
-const float FIELD_WAVE_STEP = 0.55f; // the wave's phase step from one cell to the next along i + j
-const float FIELD_TURN_I = 0.9f;     // a shape's fixed turn per cell along i
-const float FIELD_TURN_J = 0.4f;     // and along j
 
 // Albedo of a cell: a six-colour palette walked along the diagonal.
 vec3 fieldColor(float i, float j) {
@@ -57,98 +54,34 @@ vec3 fieldColor(float i, float j) {
 
 // Height of the wave under cell (i, j): 0 .. wave, travelling along the diagonal.
 float fieldLift(float i, float j, float wave, float phase) {
-    return wave * (0.5f + 0.5f * sin(phase - FIELD_WAVE_STEP * (i + j)));
+    return wave * (0.5f + 0.5f * sin(phase - 0.55f * (i + j)));
 }
 
 // Highest point of any shape: the capsule's top at lift = wave.
 float fieldTop(float size, float wave) { return 0.95f * FIELD_UNIT * max(size, 0.05f) + max(wave, 0.0f); }
 
-// Where cell (i, j)'s shape stands besides its position: its lift and (cos, sin) of its turn.
-struct FieldPose {
-    float lift;
-    vec2 turn;
-};
-
-// The turn of cell (i, j): spin in alternate directions on a chequerboard, plus a fixed angle.
-float fieldTurn(float i, float j, float spin) {
-    return spin * (mod(i + j, 2.0f) < 0.5f ? 1.0f : -1.0f) + FIELD_TURN_I * i + FIELD_TURN_J * j;
-}
-
-// The pose of one cell straight from its formulas (fieldMapAll; fieldBlockPoses gives the same
-// for a 2x2 block with two sin/cos pairs in all).
-FieldPose fieldPose(float i, float j, float wave, float phase, float spin) {
-    float t = fieldTurn(i, j, spin);
-    return FieldPose(fieldLift(i, j, wave, phase), vec2(cos(t), sin(t)));
-}
-
-// pRotateY(q, turn) with the turn's (cos, sin).
-vec3 fieldTurnY(vec3 q, vec2 cs) { return vec3(cs.x * q.x - cs.y * q.z, q.y, cs.y * q.x + cs.x * q.z); }
-
 // The shape of cell (i, j), q relative to the cell's centre on the floor: its distance, exact;
 // every shape lies within FIELD_RADIUS * size of the cell's vertical axis, at y >= lift >= 0.
-float fieldShape(vec3 q, float i, float j, float size, FieldPose pose) {
+float fieldShape(vec3 q, float i, float j, float size, float wave, float phase, float spin) {
     float s = max(size, 0.05f) * FIELD_UNIT;
-    float lift = pose.lift;
+    float lift = fieldLift(i, j, wave, phase);
+    float turn = spin * (mod(i + j, 2.0f) < 0.5f ? 1.0f : -1.0f) + 0.9f * i + 0.4f * j;
     float kind = mod(i + 3.0f * j + floor(0.5f * i), 4.0f);
     float d;
     if (kind < 0.5f) {
         d = fSphere(pTranslate(q, vec3(0.0f, 0.36f * s + lift, 0.0f)), 0.36f * s);   // r 0.36
     } else if (kind < 1.5f) {
-        vec3 b = fieldTurnY(pTranslate(q, vec3(0.0f, 0.30f * s + lift, 0.0f)), pose.turn);
+        vec3 b = pRotateY(pTranslate(q, vec3(0.0f, 0.30f * s + lift, 0.0f)), turn);
         d = fRoundBox(b, vec3(0.26f, 0.30f, 0.26f) * s, 0.06f * s);                 // corner 0.368
     } else if (kind < 2.5f) {
-        vec3 t = fieldTurnY(pTranslate(q, vec3(0.0f, 0.38f * s + lift, 0.0f)), pose.turn);
+        vec3 t = pRotateY(pTranslate(q, vec3(0.0f, 0.38f * s + lift, 0.0f)), turn);
         d = fTorus(pRotateX(t, 0.5f * PI), 0.11f * s, 0.27f * s);                   // outer 0.38
     } else {
         vec3 a = vec3(0.0f, 0.2f * s + lift, 0.0f);
-        vec3 tip = vec3(0.165f * pose.turn.x, 0.525f, 0.165f * pose.turn.y) * s;    // 0.55 long, tilted
+        vec3 tip = vec3(0.165f * cos(turn), 0.525f, 0.165f * sin(turn)) * s;        // 0.55 long, tilted
         d = fCapsule(q, a, a + tip, 0.2f * s);                                      // 0.165 + 0.2
     }
     return d;
-}
-
-// Complex product: the sum of two angles given as (cos, sin).
-vec2 fieldAngleAdd(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
-
-// The poses of the 2x2 cells (i0 + a, j0 + b): lifts by a + b (the wave runs along i + j), turns
-// by corner. Two sin/cos pairs and angle additions instead of three trigonometric calls per
-// cell (on the GPU the field's map() cost was mostly those); the same values to rounding
-// (tests/sdf: against fieldMapAll, which takes fieldPose per cell).
-struct FieldBlock {
-    vec3 lift;                       // a + b = 0, 1, 2
-    vec2 turn00, turn10, turn01, turn11;
-};
-
-FieldBlock fieldBlockPoses(float i0, float j0, float wave, float phase, float spin) {
-    // (cos, sin) of one and two wave steps, of the turn steps along i, j and both
-    const vec2 k055 = vec2(cos(FIELD_WAVE_STEP), sin(FIELD_WAVE_STEP));
-    const vec2 k110 = vec2(cos(2.0f * FIELD_WAVE_STEP), sin(2.0f * FIELD_WAVE_STEP));
-    const vec2 k090 = vec2(cos(FIELD_TURN_I), sin(FIELD_TURN_I));
-    const vec2 k040 = vec2(cos(FIELD_TURN_J), sin(FIELD_TURN_J));
-    const vec2 k130 = vec2(cos(FIELD_TURN_I + FIELD_TURN_J), sin(FIELD_TURN_I + FIELD_TURN_J));
-    float x = phase - FIELD_WAVE_STEP * (i0 + j0);
-    vec2 w = vec2(cos(x), sin(x));
-    // sin(x - c) = sin x cos c - cos x sin c
-    vec3 sines = vec3(w.y, w.y * k055.x - w.x * k055.y, w.y * k110.x - w.x * k110.y);
-    FieldBlock k;
-    k.lift = wave * (0.5f + 0.5f * sines);
-    float base = fieldTurn(i0, j0, spin);   // corner (0, 0); its diagonal neighbour spins the same way
-    vec2 t = vec2(cos(base), sin(base));
-    // the other two spin the other way: base - 2 sigma spin + a step along i or j (sigma = +-1, corner
-    // (0, 0)'s direction; sin/cos of 2 spin are the same for every pixel)
-    float sigma = mod(i0 + j0, 2.0f) < 0.5f ? 1.0f : -1.0f;
-    vec2 u = fieldAngleAdd(t, vec2(cos(2.0f * spin), -sigma * sin(2.0f * spin)));
-    k.turn00 = t;
-    k.turn11 = fieldAngleAdd(t, k130);
-    k.turn10 = fieldAngleAdd(u, k090);
-    k.turn01 = fieldAngleAdd(u, k040);
-    return k;
-}
-
-FieldPose fieldBlockPose(FieldBlock k, float a, float b) {
-    float lift = a + b < 0.5f ? k.lift.x : (a + b < 1.5f ? k.lift.y : k.lift.z);
-    vec2 turn = a < 0.5f ? (b < 0.5f ? k.turn00 : k.turn01) : (b < 0.5f ? k.turn10 : k.turn11);
-    return FieldPose(lift, turn);
 }
 
 // The two nearest of a set of shapes: (i, j, 0, distance) each; colours are looked up last.
@@ -165,11 +98,12 @@ FieldPair fieldInsert(FieldPair n, vec4 m) {
 
 // Inserts cell (i, j)'s shape at p into the pair. Skips the shape (exactly) when the cylinder
 // around it is no nearer than the pair's second, and cells outside the nx x nz grid.
-FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, float size, FieldPose pose) {
+FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, float size, float wave, float phase,
+                    float spin) {
     if (i < -0.5f || j < -0.5f || i > nx - 0.5f || j > nz - 0.5f) return n;
     vec3 q = p - vec3(i - 0.5f * (nx - 1.0f), 0.0f, j - 0.5f * (nz - 1.0f));
     if (length(vec2(q.x, q.z)) - FIELD_RADIUS * max(size, 0.05f) >= n.next.w) return n;
-    return fieldInsert(n, vec4(i, j, 0.0f, fieldShape(q, i, j, size, pose)));
+    return fieldInsert(n, vec4(i, j, 0.0f, fieldShape(q, i, j, size, wave, phase, spin)));
 }
 
 // The pair's blend with its colours.
@@ -210,12 +144,11 @@ vec4 fieldMap(vec3 p, float nx, float nz, float size, float blend, float wave, f
     // nearest centre first, so the cylinder test skips more of the others
     float di = u - i0 < 0.5f ? 0.0f : 1.0f;
     float dj = v - j0 < 0.5f ? 0.0f : 1.0f;
-    FieldBlock poses = fieldBlockPoses(i0, j0, wave, phase, spin);
     FieldPair n = FieldPair(vec4(0.0f, 0.0f, 0.0f, 1e9f), vec4(0.0f, 0.0f, 0.0f, 1e9f));
-    n = fieldCell(n, p, i0 + di, j0 + dj, nx, nz, size, fieldBlockPose(poses, di, dj));
-    n = fieldCell(n, p, i0 + 1.0f - di, j0 + dj, nx, nz, size, fieldBlockPose(poses, 1.0f - di, dj));
-    n = fieldCell(n, p, i0 + di, j0 + 1.0f - dj, nx, nz, size, fieldBlockPose(poses, di, 1.0f - dj));
-    n = fieldCell(n, p, i0 + 1.0f - di, j0 + 1.0f - dj, nx, nz, size, fieldBlockPose(poses, 1.0f - di, 1.0f - dj));
+    n = fieldCell(n, p, i0 + di, j0 + dj, nx, nz, size, wave, phase, spin);
+    n = fieldCell(n, p, i0 + 1.0f - di, j0 + dj, nx, nz, size, wave, phase, spin);
+    n = fieldCell(n, p, i0 + di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
+    n = fieldCell(n, p, i0 + 1.0f - di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
     vec4 m = fieldBlend(n, blend);
     float k = max(blend, 0.0f);
     m.w = min(m.w, max(fieldExcluded(u, v, i0, j0, nx, nz, size) - 1.25f * k, p.y - fieldTop(size, wave) - 0.25f * k));
@@ -228,8 +161,7 @@ vec4 fieldMapAll(vec3 p, float nx, float nz, float size, float blend, float wave
     for (int j = 0; j < int(nz); j++)
         for (int i = 0; i < int(nx); i++) {
             vec3 q = p - vec3(float(i) - 0.5f * (nx - 1.0f), 0.0f, float(j) - 0.5f * (nz - 1.0f));
-            FieldPose pose = fieldPose(float(i), float(j), wave, phase, spin);
-            n = fieldInsert(n, vec4(float(i), float(j), 0.0f, fieldShape(q, float(i), float(j), size, pose)));
+            n = fieldInsert(n, vec4(float(i), float(j), 0.0f, fieldShape(q, float(i), float(j), size, wave, phase, spin)));
         }
     return fieldBlend(n, blend);
 }

@@ -176,6 +176,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     struct Cleanup { fs::path p; ~Cleanup() { std::error_code ec; fs::remove_all(p, ec); } } cleanup{root};
     const std::string cacheLine = SetDriverCaches(o.driverCache, root / "driver-cache");
     if (o.firstFrame) return FirstFrame(o, scene, w, h, cacheLine);
+    if (o.edit == "toggle") return RunToggleBench(o, scene, w, h, cacheLine);
 
     HeadlessContext gl;
     if (!gl.Create(&error)) return Fail(error);

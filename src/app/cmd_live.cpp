@@ -68,6 +68,7 @@ bool LiveSession::Start(std::string* error) {
     // beside the show: by default where the GPU compiles beside the frame, not on llvmpipe, where
     // it would take the CPU the frames need (SDFVJ_LITERAL_TIER=1|0 forces it).
     live_.SetLiteralTier(!softwareGl_);
+    live_.SetPrimePrefetched(o_.warmAhead);   // --warm-ahead: a pad hit shows its variant in one frame
     if (!state_.show.isfScene) {   // an ISF generator is the post chain's first stage instead
         live_.Request(state_.wanted);
         live_.Wait();

@@ -82,8 +82,12 @@ struct ReloadBenchOptions {
     double fps = 60;                              // frames paced like a display; 0: flat out
     bool firstFrame = false;                      // one launch's first frame instead of reloads
     std::string edit = "nudge";                   // nudge (a structural edit: compiles) | retune (numbers only: the literal tier)
+                                                  // | toggle (effect pad hits, cmd_bench_toggle.cpp)
 };
 int RunReloadBench(const ReloadBenchOptions& o);
+// --edit toggle (cmd_bench_toggle.cpp): effect pad hits, cold against built ahead; after the
+// drivers' caches are set, before any context exists.
+int RunToggleBench(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h, const std::string& cacheLine);
 
 int RunList();
 
@@ -105,6 +109,7 @@ struct LiveOptions {
     bool hideOverlay = false;           // start with the overlay hidden (as after Tab)
     double renderScale = 1.0;           // the scene renders at this fraction of the window (0.25..1)
     double frameBudgetMs = 0;           // > 0: keep frames under this (frame_budget.h)
+    bool warmAhead = false;             // variants built ahead are also finished on the render context (live_prefetch.cpp)
     std::string budgetFloor;            // never below: "scale=0.5,steps=64,shadow_steps=16,ao=2"
     std::string sync;                   // "mtc": the show clock follows MIDI Time Code; "clock": MIDI clock (live_sync.h)
     std::string forward;                // "HOST:PORT[,...]": re-send what the show applies as OSC (live_forward.h)

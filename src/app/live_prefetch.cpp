@@ -12,29 +12,8 @@ namespace fs = std::filesystem;
 
 namespace sdfvj {
 
-namespace {
-
-// The variant with one effect switched: what an effect pad reaches from `e`.
-std::vector<EffectSet> OneToggleAway(const EffectSet& e) {
-    std::vector<EffectSet> out;
-    auto add = [&](auto change) {
-        EffectSet t = e;
-        change(t);
-        out.push_back(t);
-    };
-    add([](EffectSet& t) { t.shadows = t.shadows ? 0 : 2; });
-    add([](EffectSet& t) { t.ao = !t.ao; });
-    add([](EffectSet& t) { t.specular = !t.specular; });
-    add([](EffectSet& t) { t.fog = !t.fog; });
-    add([](EffectSet& t) { t.pbr = !t.pbr; });
-    add([](EffectSet& t) { t.reflections = t.reflections ? 0 : 1; });
-    return out;
-}
-
-}  // namespace
-
 void LiveSession::PrefetchReachable(double now) {
-    static const bool wanted = EnvSwitch("SDFVJ_PREFETCH", !softwareGl_);
+    static const bool wanted = o_.warmAhead || EnvSwitch("SDFVJ_PREFETCH", !softwareGl_);
     if (!wanted || state_.show.isfScene) return;
     if (!(state_.wanted == prefetchFor_)) {   // something new was asked for: wait until it settles
         prefetchFor_ = state_.wanted;
@@ -45,7 +24,7 @@ void LiveSession::PrefetchReachable(double now) {
     if (prefetchQueued_ || now - prefetchQuietSince_ < 3.0 || live_.Pending() || !live_.Current()) return;
     prefetchQueued_ = true;
     std::vector<VariantKey> keys;
-    for (const EffectSet& e : OneToggleAway(state_.wanted.effects)) keys.push_back({state_.wanted.scenePath, e, state_.wanted.path});
+    for (const EffectSet& e : OneEffectToggles(state_.wanted.effects)) keys.push_back({state_.wanted.scenePath, e, state_.wanted.path});
     for (const std::string& name : ListPresets()) {   // a preset that does not load is skipped: asked for, it says why
         ShowOptions so = state_.options;
         so.scene.clear();
@@ -56,8 +35,11 @@ void LiveSession::PrefetchReachable(double now) {
         if (PrepareShow(so, &next, &error) && !next.isfScene) keys.push_back({next.scene.path, next.effects, state_.wanted.path});
     }
     live_.Prefetch(keys);
-    std::fprintf(stderr, "sdfvj live: %zu variants an effect pad or a preset reaches compile in the background\n",
-                 live_.PrefetchQueued());
+    std::fprintf(stderr, "sdfvj live: %zu variants an effect pad or a preset reaches compile in the background%s\n",
+                 live_.PrefetchQueued(),
+                 o_.warmAhead && !softwareGl_ ? "; --warm-ahead: the picture stops as each is drawn once (on NVIDIA up to "
+                                                "1.5 s a variant), then a hit shows it in one frame"
+                                              : "");
 }
 
 }  // namespace sdfvj

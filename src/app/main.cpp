@@ -131,8 +131,10 @@ int main(int argc, char** argv) {
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();
     cmdReload->add_option("--edit", reloadBench.edit,
                           "what each save changes: nudge (wraps the first constant in a sum: a new program to compile) or retune "
-                          "(rewrites its value only: `live`'s literal tier shows it with no compile, the optimized program follows)")
-        ->check(CLI::IsMember({"nudge", "retune"}))
+                          "(rewrites its value only: `live`'s literal tier shows it with no compile, the optimized program follows); "
+                          "toggle: no save, effect pad hits instead (the six one-effect variants), cold against built ahead as live "
+                          "does (prefetch), with and without a first use on the render context")
+        ->check(CLI::IsMember({"nudge", "retune", "toggle"}))
         ->capture_default_str();
     cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();
     cmdReload->add_flag("--first-frame", reloadBench.firstFrame,
@@ -180,6 +182,12 @@ int main(int argc, char** argv) {
                         "HOST:PORT[,HOST:PORT...]: re-send as OSC every parameter, preset and effect the show applies to "
                         "follower nodes (other `sdfvj live`), and the whole state once a second (docs/sync.md)");
     cmdLive->add_option("--frame-budget", live.frameBudgetMs, "keep frames under MS: about once a second the best setting of the accuracy sweep's front that fits (docs/performance.md)");
+    cmdLive->add_flag("--warm-ahead", live.warmAhead,
+                      "sound check: every variant an effect pad or a preset reaches is built ahead AND drawn once as it "
+                      "arrives, so the next hit shows it in one frame. On NVIDIA that first draw freezes the picture "
+                      "(0.6 s midi, 1.5 s character on an H200) once per variant, after 3 s with nothing asked for: "
+                      "run it before the doors open. Without it variants are still built ahead on a GPU, and a hit "
+                      "waits for that first draw instead (0.3-0.6 s)");
     cmdLive->add_option("--budget-floor", live.budgetFloor, "never below, e.g. scale=0.5,steps=64,shadow_steps=16,ao=2");
     cmdLive->add_option("--render-scale", live.renderScale,
                         "render the scene at this fraction of the window, upscaled (0.25..1; the overlay's "

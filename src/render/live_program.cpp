@@ -141,6 +141,12 @@ void LiveProgram::FinishPrefetch() {
     std::string log;
     const bool ok = prefetchPending_.Finish(program.get(), &log);   // a variant that fails reports when asked for
     if (ok && prefetchKey_ != key_ && !cache_.count(prefetchKey_)) {
+        if (primePrefetched_ && !IsSoftwareRenderer()) {
+            const auto primeStart = std::chrono::steady_clock::now();
+            PrimeProgram(program->Id(), prefetchKey_.path, false);
+            prefetchPrimeMs_ = std::max(prefetchPrimeMs_, std::chrono::duration<double, std::milli>(
+                                                             std::chrono::steady_clock::now() - primeStart).count());
+        }
         Cached& slot = cache_[prefetchKey_];
         slot.program = std::move(program);
         slot.scene = prefetchScene_;

@@ -93,6 +93,11 @@ public:
     void Prefetch(const std::vector<VariantKey>& keys);
     size_t PrefetchQueued() const { return prefetch_.size() + (prefetchPending_.Active() ? 1 : 0); }
     int Prefetched() const { return prefetched_; }   // variants built ahead so far
+    // Each variant built ahead is also used once on the render context when it arrives (as the
+    // literal tier is): NVIDIA finishes a program at its first use on each context, so that wait
+    // falls when it is built rather than on the frame that shows it. Not on llvmpipe.
+    void SetPrimePrefetched(bool on) { primePrefetched_ = on; }
+    double PrefetchPrimeMs() const { return prefetchPrimeMs_; }   // the longest such use so far
     int LiteralSwaps() const { return literalSwaps_; }   // saves put on screen by the literal tier
     // The literal tier's last build: its compile (ProgramOrigin::buildMs) and its one use on the
     // render thread (PrimeProgram, glFinish): on NVIDIA a frame that long after a structural save.
@@ -158,6 +163,8 @@ private:
     VariantKey prefetchKey_;
     SceneInfo prefetchScene_;
     int prefetched_ = 0;
+    bool primePrefetched_ = false;
+    double prefetchPrimeMs_ = 0.0;
 };
 
 // For reload benchmarks and tests, the edit a live coder makes: `sceneText` with its first float

@@ -77,6 +77,9 @@ bool ParseNormalMethod(const std::string& name, int* method, std::string* error)
 // soft shadows + AO, soft shadows, none.
 struct LightingTest { const char* name; EffectSet effects; };
 std::vector<LightingTest> SeedLightingTests();
+// The six variants an effect pad reaches from `e`: shadows (soft), AO, specular, fog, PBR and one
+// reflection bounce, each switched (what `live` builds ahead, and `bench reload --edit toggle` times).
+std::vector<EffectSet> OneEffectToggles(const EffectSet& e);
 // Issue 13's heaviest target: soft shadows, AO, specular, PBR and one reflection bounce
 // (`bench --tests show`; not among the seed's four, so not in a bare `bench`).
 LightingTest ShowLightingTest();

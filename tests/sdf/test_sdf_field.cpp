@@ -104,7 +104,7 @@ TEST_CASE("sdf field: every shape lies inside the radius and height the cut-off 
           for (double z = -0.5; z <= 0.5; z += 0.02)
             for (double y = -0.1; y <= 2.8; y += 0.02) {
               glm::dvec3 q(x, y, z);
-              if (field64::fieldShape(q, ci, cj, k.size, field64::fieldPose(ci, cj, k.wave, k.phase, k.spin)) > 0) continue;
+              if (field64::fieldShape(q, ci, cj, k.size, k.wave, k.phase, k.spin) > 0) continue;
               worstR = std::max(worstR, std::hypot(x, z) / k.size);
               worstTop = std::max(worstTop, y - field64::fieldTop(k.size, k.wave));
               lowest = std::min(lowest, y);
