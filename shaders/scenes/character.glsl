@@ -6,7 +6,7 @@
     {"NAME": "blend", "TYPE": "float", "DEFAULT": 0.06, "MIN": 0.0, "MAX": 0.25, "LABEL": "Joint blend"},
     {"NAME": "floorBlend", "TYPE": "float", "DEFAULT": 0.12, "MIN": 0.0, "MAX": 0.5, "LABEL": "Floor blend"}
   ],
-  "EFFECTS": {"SHADOWS": "improved", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true},
+  "EFFECTS": {"SHADOWS": "improved", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "tetrahedron"},
   "CAMERA": {"POSITION": [1.2, 1.5, -4.0], "TARGET": [0, 0.95, 0], "FOV": 40},
   "LIGHT": {"DIRECTION": [0.5, 0.8, -0.35], "COLOR": [1, 0.95, 0.88]},
   "MATERIAL": {"ROUGHNESS": 0.5, "METALNESS": 0.0}

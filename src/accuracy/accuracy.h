@@ -141,7 +141,7 @@ struct Setting {
     std::string knob;        // "steps", "eps_relative", "eps_fixed", "eps_pixel", "normals", ...
     std::string label;       // "steps=256"
     Quality q;
-    int normals = 0;         // NORMALS
+    int normals = -1;        // NORMALS; -1: the scene's (its header's "NORMALS", else central)
     bool marchFixed = false;
     int epsMode = 0;         // EPS_MODE
     bool naiveStep = false;  // step factor multiplied back by the scene's Lipschitz bound

@@ -55,7 +55,7 @@ std::vector<Setting> SweepSettings(const std::string& which) {
         s.epsMode = 2;
         s.q.hitEps = 1.0f;
         out.push_back(s);
-        s = Make("normals", "tetrahedron eps=1e-3");
+        s = Make("normals", "tetrahedron eps=1e-4");   // a tenth of central's offset (render.glsl)
         s.normals = 2;
         out.push_back(s);
         s = Make("fixed_step", "fixed step 0.1");
@@ -90,9 +90,11 @@ std::vector<Setting> SweepSettings(const std::string& which) {
     const char* methods[] = {"central", "forward", "tetrahedron"};
     for (int m = 0; m < 3; ++m)
         for (double e : {1e-2, 1e-3, 1e-4}) {
+            // The label is the offset sampled: the first-order methods sample at a tenth of
+            // u_normalEps (render.glsl surfaceNormal).
             Setting s = Make("normals", std::string(methods[m]) + " eps=" + Fmt("%g", e));
             s.normals = m;
-            s.q.normalEps = (float)e;
+            s.q.normalEps = (float)(m == 0 ? e : 10 * e);
             out.push_back(s);
         }
     for (int n : {8, 16, 24, 32, 40, 48, 64, 128, 256}) {
@@ -248,7 +250,7 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             in.quality = st.q;
             if (st.naiveStep) in.quality.stepFactor = (float)(st.q.stepFactor * lipschitz);
             EffectSet e = scene.effects;
-            e.normals = st.normals;
+            if (st.normals >= 0) e.normals = st.normals;
             e.marchFixed = st.marchFixed;
             const bool raw = st.naiveStep && hasRaw;
             Program* shaded = nullptr;
@@ -258,6 +260,7 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             Row r;
             r.scene = scene.name;
             r.s = st;
+            r.s.normals = e.normals;   // what was drawn: the scene's method on its default row
             std::vector<uint8_t> img = colour.ReadPixels();
             std::vector<uint8_t>* ref8 = nullptr;
             if (!hqImage(st.q, st.bounds, &ref8)) return false;

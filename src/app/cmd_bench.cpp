@@ -93,7 +93,9 @@ int RunBench(const BenchOptions& o) {
             for (RenderPath p : paths) {
                 ShaderSource src;
                 auto prog = std::make_unique<Program>();
-                if (!AssembleProgram(scene, VariantKey{scene.path, tests[t].effects, p}, &src, &error, lift) ||
+                EffectSet effects = tests[t].effects;
+                effects.normals = scene.effects.normals;   // the normal estimator is the scene's, not a lighting choice
+                if (!AssembleProgram(scene, VariantKey{scene.path, effects, p}, &src, &error, lift) ||
                     !prog->Build(src, p, &error)) {
                     std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str());
                     return 1;

@@ -129,9 +129,10 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
         const bool qualityKnob = knob == "default" || knob == "steps" || knob == "shadow_steps" || knob == "ao_samples" ||
                                  knob == "combo" || knob == "eps_relative" || knob == "step_factor";
         const Quality d;
-        if (!qualityKnob || v[5] != 0 || v[7] != 0 || v[8] != 0 || v[10] != 0 || std::fabs(v[9] - d.normalEps) > 1e-9 ||
+        // (The normals column is the scene's own method on these rows: a scene header may choose it.)
+        if (!qualityKnob || v[5] != 0 || v[7] != 0 || v[10] != 0 || std::fabs(v[9] - d.normalEps) > 1e-9 ||
             std::fabs(v[12] - d.shadowK) > 1e-6 || v[6] > 1.0 + 1e-6)
-            continue;   // other epsilon modes, normals, fixed steps, penumbrae, over-relaxation
+            continue;   // other epsilon modes, normal offsets, fixed steps, penumbrae, over-relaxation
         Q r;
         r.q.maxSteps = (int)v[3];
         r.q.hitEps = (float)v[4];

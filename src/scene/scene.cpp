@@ -211,8 +211,12 @@ struct HeaderChecker {
                 if (!v.is_number_integer() || !Number(v, at, "REFLECTIONS", 0, 8, &n))
                     return Fail(at, "REFLECTIONS must be a bounce count 0..8, expected an integer");
                 out->reflections = int(n);
+            } else if (k == "NORMALS") {
+                std::string why;
+                if (!v.is_string() || !ParseNormalMethod(v.get_ref<const std::string&>(), &out->normals, &why))
+                    return Fail(at, "NORMALS is " + Brief(v) + ", expected central, forward or tetrahedron");
             } else {
-                return Fail(at, "unknown effect '" + k + "', expected SHADOWS, AO, SPECULAR, PBR, REFLECTIONS or FOG");
+                return Fail(at, "unknown effect '" + k + "', expected SHADOWS, AO, SPECULAR, PBR, REFLECTIONS, FOG or NORMALS");
             }
         }
         return true;

@@ -86,12 +86,21 @@ TEST_CASE("scene header: the test header itself loads with every field read", "[
     CHECK(s.params[1].label == "B");
     CHECK(s.params[1].minValue == -2.0f);
     CHECK(s.effects.reflections == 1);
+    CHECK(s.effects.normals == 0);   // central unless the header says "NORMALS"
     CHECK(s.camPos == Vec3f{0, 1, -5});
     CHECK(s.fov == 45.0f);
     CHECK(s.lightDir == Vec3f{0, 1, 0});
     CHECK(s.lightColor == Vec3f{1, 0.5f, 1});
     CHECK(s.roughness == 0.25f);
     CHECK(s.metalness == 0.75f);
+}
+
+TEST_CASE("scene header: NORMALS picks the scene's normal estimator", "[scene]") {
+    const std::string path = WriteTemp("normals.glsl", With(kHeader, "\"REFLECTIONS\": 1", "\"REFLECTIONS\": 1, \"NORMALS\": \"tetrahedron\""));
+    SceneInfo s;
+    std::string error;
+    REQUIRE(LoadScene(path, &s, &error));
+    CHECK(s.effects.normals == 2);
 }
 
 TEST_CASE("scene header: LABEL 5 is an error on its line, not type_error.302", "[scene]") {
@@ -125,6 +134,10 @@ TEST_CASE("scene header: every wrong-typed field is an error on its line", "[sce
         {"REFLECTIONS fraction", "\"REFLECTIONS\": 1", "\"REFLECTIONS\": 1.5", 14, "REFLECTIONS must be a bounce count 0..8, expected"},
         {"REFLECTIONS huge", "\"REFLECTIONS\": 1", "\"REFLECTIONS\": 18446744073709551615", 14, "REFLECTIONS must be a bounce count"},
         {"REFLECTIONS negative", "\"REFLECTIONS\": 1", "\"REFLECTIONS\": -1", 14, "REFLECTIONS must be a bounce count"},
+        {"NORMALS unknown", "\"REFLECTIONS\": 1", "\"REFLECTIONS\": 1, \"NORMALS\": \"sideways\"", 14,
+         "NORMALS is 'sideways', expected central, forward or tetrahedron"},
+        {"NORMALS number", "\"REFLECTIONS\": 1", "\"REFLECTIONS\": 1, \"NORMALS\": 2", 14,
+         "NORMALS is number, expected central, forward or tetrahedron"},
         {"CAMERA number", "\"CAMERA\": {", "\"CAMERA\": 5, \"X\": {", 15, "CAMERA is number, expected an object"},
         {"POSITION string", "\"POSITION\": [0, 1, -5]", "\"POSITION\": \"up\"", 16, "CAMERA POSITION is string, expected [x, y, z]"},
         {"POSITION two", "\"POSITION\": [0, 1, -5]", "\"POSITION\": [0, 1]", 16, "CAMERA POSITION is an array of 2, expected [x, y, z]"},
