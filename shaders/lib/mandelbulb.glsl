@@ -56,8 +56,8 @@ vec4 mandelbulbPowTrig(vec3 z, float r, float n) {
     return vec4(zr * vec3(st * cos(phi), cos(theta), st * sin(phi)), pow(r, n - 1.0f));
 }
 
-// The orbit of p (eight: n is 8, taken by mandelbulbPowInt, else mandelbulbPowTrig): (distance
-// estimate, orbit trap). Far from the fractal the bounding sphere's distance is returned
+// The orbit of p (eight: n is 8, taken by mandelbulbPowInt, else mandelbulbPowTrig; boundR:
+// mandelbulbBoundingRadius(n)): (distance estimate, orbit trap). Far from the fractal the bounding sphere's distance is returned
 // instead: a valid, cheap, well-conditioned bound (the estimator over-steps badly out there).
 // One loop per step, the whole step only for n = 8 (the default and the presets) with the power
 // a constant: a branch inside the loop, or a power known only at run time, cost llvmpipe (8
@@ -71,8 +71,7 @@ vec4 mandelbulbPowTrig(vec3 z, float r, float n) {
         z = vec3(zn.x, zn.y, zn.z) + p;               \
         trap = min(trap, dot(z, z));                  \
     }
-vec2 mandelbulbOrbit(vec3 p, float n, int iterations, bool eight) {
-    float boundR = mandelbulbBoundingRadius(n);
+vec2 mandelbulbOrbit(vec3 p, float n, int iterations, bool eight, float boundR) {
     float rp = length(p);
     if (rp > boundR + 0.1f) return vec2(rp - boundR, 1.0f);
     vec3 z = p;
@@ -94,7 +93,7 @@ vec2 mandelbulbOrbit(vec3 p, float n, int iterations, bool eight) {
 // GPU warp never diverges on it.
 vec2 fMandelbulbTrap(vec3 p, float power, int iterations) {
     float n = max(power, 2.0f);
-    return mandelbulbOrbit(p, n, iterations, n == 8.0f);
+    return mandelbulbOrbit(p, n, iterations, n == 8.0f, mandelbulbBoundingRadius(n));
 }
 
 // Distance estimate only.

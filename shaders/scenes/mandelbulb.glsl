@@ -26,10 +26,22 @@ vec3 bulbPalette(float trap) {
     return c * c * (0.2f + 0.8f * saturate(trap * 2.0f));
 }
 
+// What every map() call of a pixel shares, computed once per invocation (render.glsl SCENE_SETUP):
+// the spin's cos/sin and the bounding radius (a pow).
+SCENE_STATE vec2 g_spin;
+SCENE_STATE float g_boundR;
+void sceneSetup() {
+    float a = u_time * u_spin;
+    g_spin = vec2(cos(a), sin(a));
+    g_boundR = mandelbulbBoundingRadius(max(u_power, 2.0f));
+}
+#define SCENE_SETUP 1
+
 vec4 map(vec3 p) {
-    vec3 q = pRotateY(p, u_time * u_spin);
+    vec3 q = vec3(g_spin.x * p.x - g_spin.y * p.z, p.y, g_spin.y * p.x + g_spin.x * p.z);   // pRotateY(p, u_time * u_spin)
     int iterations = int(clamp(u_iterations, 1.0f, 32.0f) + 0.5f);
-    vec2 dt = fMandelbulbTrap(q, u_power, iterations);
+    float n = max(u_power, 2.0f);
+    vec2 dt = mandelbulbOrbit(q, n, iterations, n == 8.0f, g_boundR);   // fMandelbulbTrap(q, u_power, iterations)
     return vec4(bulbPalette(dt.y), dt.x);
 }
 

@@ -408,8 +408,10 @@ TEST_CASE("live forward: both --log-params agree frame by frame, matched by show
     // stages, and crosses loopback). Matched: every value equal (both print %g). Allowed: a frame
     // the leader had replaced at most kWithin before the follower's show time (its staleness; 0
     // for j itself, however long the leader's frame took); reported: how many frames back.
-    const double kWithin = 0.020;
-    size_t compared = 0, moving = 0, unmatched = 0;
+    // A frame shown later than that (up to kLate) still has to be one of the leader's; on a loaded
+    // machine (CI's sanitizer pass on 2 cores: 8 of 933 frames 20-40 ms late once) a few may be.
+    const double kWithin = 0.020, kLate = 0.100;
+    size_t compared = 0, moving = 0, unmatched = 0, late = 0;
     std::map<size_t, size_t> back;   // leader frames back from j -> follower frames
     std::vector<double> lag;         // staleness: follower show time - when the leader replaced the frame shown
     float worst = 0;                 // |follower twist - leader twist at j|: what showing an earlier frame costs
@@ -430,7 +432,7 @@ TEST_CASE("live forward: both --log-params agree frame by frame, matched by show
         moving += std::fabs(l[j].second.at("twist") - l[j - 1].second.at("twist")) > 1e-3f;
         worst = std::max(worst, std::fabs(ff.second.at("twist") - l[j].second.at("twist")));
         size_t k = j + 1;
-        while (k-- > 0 && (k == j || l[k + 1].first >= ff.first - kWithin))
+        while (k-- > 0 && (k == j || l[k + 1].first >= ff.first - kLate))
             if (equal(ff, l[k])) break;
         INFO("follower frame at " << ff.first << " twist " << ff.second.at("twist") << "; leader frame " << j << " at "
                                   << l[j].first << " twist " << l[j].second.at("twist"));
@@ -441,6 +443,7 @@ TEST_CASE("live forward: both --log-params agree frame by frame, matched by show
         }
         ++back[j - k];
         lag.push_back(k == j ? 0.0 : ff.first - l[k + 1].first);
+        late += lag.back() > kWithin;
     }
     std::sort(lag.begin(), lag.end());
     std::vector<double> leaderGaps;
@@ -449,15 +452,17 @@ TEST_CASE("live forward: both --log-params agree frame by frame, matched by show
     REQUIRE(!lag.empty());
     std::string hist;
     for (const auto& [n, count] : back) hist += " " + std::to_string(n) + " back: " + std::to_string(count) + ",";
-    std::printf("live forward: %zu follower frames compared (%zu while twist moved), %zu unmatched; leader frame shown:%s "
+    std::printf("live forward: %zu follower frames compared (%zu while twist moved), %zu unmatched, %zu shown more than "
+                "20 ms late; leader frame shown:%s "
                 "replaced by the leader before the follower's show time by: median %.1f ms, max %.1f ms (leader frame "
                 "median %.1f ms); |twist - leader twist at "
                 "the same show time| max %.3f\n",
-                compared, moving, unmatched, hist.c_str(), 1000 * lag[lag.size() / 2], 1000 * lag.back(),
+                compared, moving, unmatched, late, hist.c_str(), 1000 * lag[lag.size() / 2], 1000 * lag.back(),
                 1000 * leaderGaps[leaderGaps.size() / 2], worst);
     CHECK(compared >= 40);
     CHECK(moving >= 10);                       // the comparison saw twist gliding, not just resting values
     CHECK(unmatched == 0);
+    CHECK(late <= compared / 50);             // at most 2 % of frames later than kWithin
     CHECK(back[0] + back[1] >= compared / 2);  // mostly the leader frame at its show time or the one before
 }
 

@@ -49,8 +49,9 @@ TEST_CASE("sdf double: mandelbulb's whole-power step equals the trigonometric st
     INFO("p=(" << p.x << "," << p.y << "," << p.z << ") n=" << n);
     worstStep = std::max(worstStep, double(glm::length(whole - trig)) / std::max(1.0, std::pow(r, n)));
     int iters = 1 + i % 12;
-    auto orbit8 = sdf64::mandelbulbOrbit(vec3(p), 8.0, iters, true);
-    auto orbitTrig = sdf64::mandelbulbOrbit(vec3(p), 8.0, iters, false);
+    const double bound8 = sdf64::mandelbulbBoundingRadius(8.0);
+    auto orbit8 = sdf64::mandelbulbOrbit(vec3(p), 8.0, iters, true, bound8);
+    auto orbitTrig = sdf64::mandelbulbOrbit(vec3(p), 8.0, iters, false, bound8);
     REQUIRE(std::isfinite(double(orbit8.x)));
     worstD = std::max(worstD, std::abs(double(orbit8.x - orbitTrig.x)) / std::max(1.0, std::abs(double(orbitTrig.x))));
     worstTrap = std::max(worstTrap, std::abs(double(orbit8.y - orbitTrig.y)));
@@ -62,7 +63,6 @@ TEST_CASE("sdf double: mandelbulb's whole-power step equals the trigonometric st
   CHECK(worstTrap < 1e-6);
   // fMandelbulbTrap takes the whole step for power 8 only
   vec3 q(0.3, 0.6, -0.4);
-  CHECK(sdf64::fMandelbulbTrap(q, 8.0, 8).x == sdf64::mandelbulbOrbit(q, 8.0, 8, true).x);
-  CHECK(sdf64::fMandelbulbTrap(q, 8.5, 8).x == sdf64::mandelbulbOrbit(q, 8.5, 8, false).x);
-  CHECK(sdf64::fMandelbulbTrap(q, 7.0, 8).x == sdf64::mandelbulbOrbit(q, 7.0, 8, false).x);
+  for (double n : {8.0, 8.5, 7.0})
+    CHECK(sdf64::fMandelbulbTrap(q, n, 8).x == sdf64::mandelbulbOrbit(q, n, 8, n == 8.0, sdf64::mandelbulbBoundingRadius(n)).x);
 }
