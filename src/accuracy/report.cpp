@@ -344,8 +344,8 @@ std::string MarkdownReport(const std::vector<Row>& rows, const SweepOptions& o, 
          "scene below.\n\n"
          "So the renderer samples the first-order estimators at a tenth of the normal offset (render.glsl "
          "surfaceNormal; a normals row's label gives the offset sampled), where they match central's error with 4 "
-         "map() calls instead of 6, and a scene may choose one in its header (EFFECTS \"NORMALS\"): character, midi "
-         "and primitives take the tetrahedron, their default rows below use it (NVIDIA H200, session 9: normal p99 "
+         "map() calls instead of 6, and a scene may choose one in its header (EFFECTS \"NORMALS\"): every shipped "
+         "scene but mandelbulb takes the tetrahedron, their default rows below use it (NVIDIA H200, session 9: normal p99 "
          "no worse than central's at 1e-3 in the same run, character's frame 11 % shorter; docs/performance.md). "
          "The fractal keeps central: its offset sets the scale of the detail it shades.\n";
     for (const std::string& sc : scenes) {
