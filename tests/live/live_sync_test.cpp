@@ -35,11 +35,18 @@ void Send(RtMidiOut& out, const std::vector<uint8_t>& bytes, size_t from, size_t
     out.sendMessage(&m);
 }
 
-}  // namespace
+// One run of the scenario below: what the show logged, and how undisturbed the run was (the
+// test's sender thread late against its 10 ms schedule, the show's longest gap between frames).
+struct MtcRun {
+    std::vector<SeenLine> seen;
+    std::string log;
+    double senderLate = 0, longestGap = 0;
+};
 
-TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, across a seek, a stop and a dropout") {
-    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "sync-mtc");
-    const std::string log = dir + "/live.log", params = dir + "/params.txt";
+MtcRun RunMtcScenario(const std::string& dir, double stopAt) {
+    MtcRun r;
+    r.log = dir + "/live.log";
+    const std::string log = r.log, params = dir + "/params.txt";
     const std::string port = "sdfvj-sync-" + std::to_string(getpid());
     const pid_t pid = Spawn({SDFVJ_BIN, "live", "--scene", "midi", "--size", "64x36", "--seconds", "16", "--path", "fragment",
                              "--effects", "none", "--osc-port", "0", "--midi", "no-such-controller", "--log-params", params,
@@ -61,6 +68,39 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
     }));
     std::this_thread::sleep_for(std::chrono::milliseconds(100));   // let JACK finish the connection
 
+    const Clock::time_point t0 = Clock::now();
+    LogWatcher watcher(params, t0);   // each new line of the log, with when it was seen
+    // Quarter frames: piece k of a group of 8 goes out at the group's start + k/4 frame; the
+    // group's pieces carry the label of the frame it starts on.
+    auto run = [&](double from, double until, double timecodeAtFrom) {
+        for (int q = 0;; ++q) {
+            const double t = from + q * 0.01;
+            if (t >= until - 1e-9) break;
+            const Clock::time_point at = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t));
+            std::this_thread::sleep_until(at);
+            r.senderLate = std::max(r.senderLate, std::chrono::duration<double>(Clock::now() - at).count());
+            const std::vector<uint8_t> group = MtcQuarterFrames(TimecodeAt(timecodeAtFrom + (q / 8) * 0.08 + 1e-6, MtcRate::Fps25));
+            Send(out, group, size_t(q % 8) * 2, 2);
+        }
+    };
+    run(0.0, 2.0, 36000.0);
+    run(2.0, 3.5, 3600.0);
+    std::this_thread::sleep_until(t0 + std::chrono::milliseconds(3500));
+    const std::vector<uint8_t> full = MtcFullFrame(TimecodeAt(stopAt, MtcRate::Fps25));
+    Send(out, full, 0, full.size());
+    run(4.5, 5.5, 3602.0);
+    std::this_thread::sleep_until(t0 + std::chrono::milliseconds(7000));
+    r.seen = watcher.Stop();
+    kill(pid, SIGTERM);
+    WaitExit(pid, 20);
+    for (size_t i = 1; i < r.seen.size(); ++i)
+        if (r.seen[i].at > 0.5 && r.seen[i].at < 6.9) r.longestGap = std::max(r.longestGap, r.seen[i].at - r.seen[i - 1].at);
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, across a seek, a stop and a dropout") {
     // The master's timeline (t: seconds since it started). 25 fps: a quarter frame every 10 ms.
     //   [0, 2)     runs from 10:00:00:00
     //   [2, 3.5)   jumps to 01:00:00:00 and runs
@@ -74,30 +114,20 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
         if (t < 4.5) return stopAt;
         return 3602.0 + (t - 4.5);   // the dropout: the show should freewheel on at speed 1
     };
-
-    const Clock::time_point t0 = Clock::now();
-    LogWatcher watcher(params, t0);   // each new line of the log, with when it was seen
-    // Quarter frames: piece k of a group of 8 goes out at the group's start + k/4 frame; the
-    // group's pieces carry the label of the frame it starts on.
-    auto run = [&](double from, double until, double timecodeAtFrom) {
-        for (int q = 0;; ++q) {
-            const double t = from + q * 0.01;
-            if (t >= until - 1e-9) break;
-            std::this_thread::sleep_until(t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t)));
-            const std::vector<uint8_t> group = MtcQuarterFrames(TimecodeAt(timecodeAtFrom + (q / 8) * 0.08 + 1e-6, MtcRate::Fps25));
-            Send(out, group, size_t(q % 8) * 2, 2);
-        }
-    };
-    run(0.0, 2.0, 36000.0);
-    run(2.0, 3.5, 3600.0);
-    std::this_thread::sleep_until(t0 + std::chrono::milliseconds(3500));
-    const std::vector<uint8_t> full = MtcFullFrame(TimecodeAt(3601.5, MtcRate::Fps25));
-    Send(out, full, 0, full.size());
-    run(4.5, 5.5, 3602.0);
-    std::this_thread::sleep_until(t0 + std::chrono::milliseconds(7000));
-    const std::vector<SeenLine> seen = watcher.Stop();
-    kill(pid, SIGTERM);
-    WaitExit(pid, 20);
+    // A run the machine disturbed (CI's 2 cores under a parallel test: the sender 250 ms late once,
+    // which the show rightly took for a dropout) says nothing about the sync: it is run again, at
+    // most twice; the third run is checked whatever its disturbance.
+    MtcRun r;
+    for (int attempt = 1; attempt <= 3; ++attempt) {
+        const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "sync-mtc-" + std::to_string(attempt));
+        r = RunMtcScenario(dir, stopAt);
+        const bool disturbed = r.senderLate > 0.05 || r.longestGap > 0.15;
+        std::printf("live sync: run %d: sender at most %.1f ms late, the show's longest frame gap %.1f ms%s\n", attempt,
+                    1000 * r.senderLate, 1000 * r.longestGap, disturbed && attempt < 3 ? ": disturbed, run again" : "");
+        if (!disturbed) break;
+    }
+    const std::vector<SeenLine>& seen = r.seen;
+    const std::string log = r.log;
     const std::string text = ReadText(log);
     INFO(text);
 
