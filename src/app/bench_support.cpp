@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <thread>
 
 #include "render/render.h"
 
@@ -67,6 +68,11 @@ bool BenchCsv::Write(const std::string& file, std::string* error) const {
         return false;
     }
     return true;
+}
+
+void PaceFrame(double frameMs, double fps) {
+    if (fps > 0 && frameMs < 1000.0 / fps)
+        std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / fps - frameMs) * 1000)));
 }
 
 }  // namespace sdfvj

@@ -29,6 +29,8 @@ struct Drift {
     // "... (+7.5 %): DRIFT over 3 %, figures of this table are not comparable"
     std::string Line() const;
 };
+// Sleeps out the rest of a display frame at `fps` after a frame that took `frameMs` (fps <= 0: none).
+void PaceFrame(double frameMs, double fps);
 // Median of `frames` timed draws (timeOnce returns one frame's ms).
 double TimeMedian(const std::function<double()>& timeOnce, int frames);
 

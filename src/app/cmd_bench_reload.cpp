@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "app/bench_adopt.h"
+#include "app/bench_support.h"
 #include "app/commands.h"
 #include "render/compile_process.h"
 #include "render/compile_worker.h"
@@ -335,8 +336,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         }
         glFinish();
         const double ms = MsSince(t0);
-        if (o.fps > 0 && ms < 1000.0 / o.fps)
-            std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / o.fps - ms) * 1000)));
+        PaceFrame(ms, o.fps);
         return ms;
     };
     for (ModeRun& m : runs) {

@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
-#include <thread>
 
 #include "app/bench_support.h"
 #include "app/commands.h"
@@ -76,8 +75,7 @@ int RunToggleBench(const ReloadBenchOptions& o, const SceneInfo& scene, int w, i
         m.fr->Draw(*m.live->Current(), m.live->Scene(), m.in);
         glFinish();
         const double ms = MsSince(t0);
-        if (o.fps > 0 && ms < 1000.0 / o.fps)
-            std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / o.fps - ms) * 1000)));
+        PaceFrame(ms, o.fps);
         return ms;
     };
     for (Way& m : ways) {
