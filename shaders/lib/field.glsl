@@ -35,6 +35,9 @@
 #include "lib/primitives.glsl"
 #include "lib/domain.glsl"
 #include "lib/combinators.glsl"
+#ifndef SDF_LOOP_ZERO
+#define SDF_LOOP_ZERO 0
+#endif
 
 const float FIELD_UNIT = 1.17f;      // shape dimensions below are in units of size * FIELD_UNIT
 const float FIELD_RADIUS = 0.45f;    // every shape within this * size of its cell's axis (XZ): 0.38 * 1.17
@@ -145,10 +148,9 @@ vec4 fieldMap(vec3 p, float nx, float nz, float size, float blend, float wave, f
     float di = u - i0 < 0.5f ? 0.0f : 1.0f;
     float dj = v - j0 < 0.5f ? 0.0f : 1.0f;
     FieldPair n = FieldPair(vec4(0.0f, 0.0f, 0.0f, 1e9f), vec4(0.0f, 0.0f, 0.0f, 1e9f));
-    n = fieldCell(n, p, i0 + di, j0 + dj, nx, nz, size, wave, phase, spin);
-    n = fieldCell(n, p, i0 + 1.0f - di, j0 + dj, nx, nz, size, wave, phase, spin);
-    n = fieldCell(n, p, i0 + di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
-    n = fieldCell(n, p, i0 + 1.0f - di, j0 + 1.0f - dj, nx, nz, size, wave, phase, spin);
+    // one call site in a rolled loop (SDF_LOOP_ZERO): fieldShape's code once, not four times
+    for (int c = SDF_LOOP_ZERO; c < 4; c++)
+        n = fieldCell(n, p, i0 + ((c & 1) == 0 ? di : 1.0f - di), j0 + (c < 2 ? dj : 1.0f - dj), nx, nz, size, wave, phase, spin);
     vec4 m = fieldBlend(n, blend);
     float k = max(blend, 0.0f);
     m.w = min(m.w, max(fieldExcluded(u, v, i0, j0, nx, nz, size) - 1.25f * k, p.y - fieldTop(size, wave) - 0.25f * k));

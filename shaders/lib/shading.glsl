@@ -17,6 +17,12 @@
 #ifndef PROBE_MAP
 #define PROBE_MAP map
 #endif
+// The normals' loops start at SDF_LOOP_ZERO, so each has one map() call site. The renderer makes it
+// a 0 the compiler cannot see (render/uniforms.glsl), so the loop stays rolled: map() inlined once,
+// not four or six times (less for the driver to compile and for the GPU's instruction cache).
+#ifndef SDF_LOOP_ZERO
+#define SDF_LOOP_ZERO 0
+#endif
 
 // 1 / (the step correction the scene asks for)
 float sceneStepScale() { return 1.0f / max(1.0f, sceneLipschitz()); }
@@ -24,12 +30,14 @@ float sceneStepScale() { return 1.0f / max(1.0f, sceneLipschitz()); }
 // ---- normals --------------------------------------------------------------------------
 // Central differences: 6 map calls, second-order accurate.
 vec3 calcNormalCentral(vec3 p, float eps) {
-    vec3 ex = vec3(eps, 0.0f, 0.0f);
-    vec3 ey = vec3(0.0f, eps, 0.0f);
-    vec3 ez = vec3(0.0f, 0.0f, eps);
-    return safeNormalize(vec3(PROBE_MAP(p + ex).w - PROBE_MAP(p - ex).w,
-                              PROBE_MAP(p + ey).w - PROBE_MAP(p - ey).w,
-                              PROBE_MAP(p + ez).w - PROBE_MAP(p - ez).w));
+    vec3 n = vec3(0.0f);
+    for (int i = SDF_LOOP_ZERO; i < 6; i++) {   // +x, -x, +y, -y, +z, -z
+        float sg = (i & 1) == 0 ? 1.0f : -1.0f;
+        vec3 e = vec3(i < 2 ? eps : 0.0f, i == 2 || i == 3 ? eps : 0.0f, i > 3 ? eps : 0.0f);
+        float d = sg * PROBE_MAP(p + sg * e).w;
+        n += vec3(i < 2 ? d : 0.0f, i == 2 || i == 3 ? d : 0.0f, i > 3 ? d : 0.0f);
+    }
+    return safeNormalize(n);
 }
 
 // Forward differences: 4 map calls, first-order accurate.
@@ -42,12 +50,12 @@ vec3 calcNormalForward(vec3 p, float eps) {
 
 // Tetrahedron: 4 map calls at the corners of a tetrahedron, second-order-ish accurate.
 vec3 calcNormalTetra(vec3 p, float eps) {
-    vec3 k0 = vec3(1.0f, -1.0f, -1.0f);
-    vec3 k1 = vec3(-1.0f, -1.0f, 1.0f);
-    vec3 k2 = vec3(-1.0f, 1.0f, -1.0f);
-    vec3 k3 = vec3(1.0f, 1.0f, 1.0f);
-    return safeNormalize(k0 * PROBE_MAP(p + k0 * eps).w + k1 * PROBE_MAP(p + k1 * eps).w +
-                         k2 * PROBE_MAP(p + k2 * eps).w + k3 * PROBE_MAP(p + k3 * eps).w);
+    vec3 n = vec3(0.0f);
+    for (int i = SDF_LOOP_ZERO; i < 4; i++) {   // (1,-1,-1), (-1,-1,1), (-1,1,-1), (1,1,1)
+        vec3 k = vec3(float(((i + 3) >> 1) & 1) * 2.0f - 1.0f, float((i >> 1) & 1) * 2.0f - 1.0f, float(i & 1) * 2.0f - 1.0f);
+        n += k * PROBE_MAP(p + k * eps).w;
+    }
+    return safeNormalize(n);
 }
 
 // ---- shadows: ro is the (offset) surface point, rd the unit direction to the light -----

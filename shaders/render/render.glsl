@@ -446,53 +446,49 @@ float ditherNoise(vec2 fragCoord) {
 }
 
 // tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
+// The primary ray and each mirror bounce run one loop body: one copy of the march, the normal and
+// the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the cost per map() call,
+// and it doubled what the driver compiles); the trip count reads a uniform, so it is not unrolled.
 vec4 renderFrom(vec2 fragCoord, float tStart) {
     callSceneSetup();
     vec3 ro = u_camPos;
     vec3 rd = cameraRay(fragCoord);
-    Hit h = march(ro, rd, tStart);
-    vec3 n = vec3(0.0f, 1.0f, 0.0f);
-    if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
-
-#if DEBUG_VIEW == 1
-    return vec4(heatmap(h.steps / max(float(u_maxSteps), 1.0f)), 1.0f);
-#elif DEBUG_VIEW == 2
-    float depth = h.hit ? 1.0f - h.t / max(u_maxDist, 1e-3f) : 0.0f;
-    return vec4(vec3(depth), 1.0f);
-#elif DEBUG_VIEW == 3
-    return vec4(h.hit ? n * 0.5f + 0.5f : vec3(0.0f), 1.0f);
-#elif DEBUG_VIEW == 4
-    float outOfSteps = 0.0f;
-#if MARCH_FIXED
-    if (!h.hit && h.steps >= float(u_maxSteps) && max(u_fixedStep, 1e-4f) * float(u_maxSteps) < u_maxDist) outOfSteps = 0.5f;
-#else
-    if (h.hit && h.steps >= float(u_maxSteps) && map(ro + rd * h.t).w >= hitEpsilon(h.t)) outOfSteps = 0.5f;
-#endif
-    vec2 oct = octEncode(n);
-    return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
-#else
-    vec3 col = shadeRay(ro, rd, h, n);
-#if REFLECTIONS > 0
+    vec3 col = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
-    for (int bounce = 0; bounce < REFLECTIONS; bounce++) {
-        if (!h.hit || (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0) break;
-        vec3 p = ro + rd * h.t;
-        throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) *
-                      (1.0f - u_roughness);
-        ro = p + n * (4.0f * hitEpsilon(h.t));
-        rd = reflect(rd, n);
-        h = march(ro, rd, 0.0f);
+    int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
+    for (int bounce = 0; bounce <= bounces; bounce++) {
+        Hit h = march(ro, rd, bounce == 0 ? tStart : 0.0f);
+        vec3 n = vec3(0.0f, 1.0f, 0.0f);
         if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
-        col += throughput * shadeRay(ro, rd, h, n);
-    }
+#if DEBUG_VIEW == 1
+        return vec4(heatmap(h.steps / max(float(u_maxSteps), 1.0f)), 1.0f);
+#elif DEBUG_VIEW == 2
+        float depth = h.hit ? 1.0f - h.t / max(u_maxDist, 1e-3f) : 0.0f;
+        return vec4(vec3(depth), 1.0f);
+#elif DEBUG_VIEW == 3
+        return vec4(h.hit ? n * 0.5f + 0.5f : vec3(0.0f), 1.0f);
+#elif DEBUG_VIEW == 4
+        float outOfSteps = 0.0f;
+#if MARCH_FIXED
+        if (!h.hit && h.steps >= float(u_maxSteps) && max(u_fixedStep, 1e-4f) * float(u_maxSteps) < u_maxDist) outOfSteps = 0.5f;
+#else
+        if (h.hit && h.steps >= float(u_maxSteps) && map(ro + rd * h.t).w >= hitEpsilon(h.t)) outOfSteps = 0.5f;
 #endif
+        vec2 oct = octEncode(n);
+        return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
+#endif
+        col += throughput * shadeRay(ro, rd, h, n);
+        if (!h.hit || bounce == bounces) break;
+        throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
+        ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));
+        rd = reflect(rd, n);
+    }
 #if DEBUG_VIEW == 5
     return vec4(col, 1.0f);
 #endif
     col = linearToSRGB(toneMapACES(col));
     col += vec3(ditherNoise(fragCoord) / 255.0f);
     return vec4(col, 1.0f);
-#endif
 }
 
 vec4 render(vec2 fragCoord) { return renderFrom(fragCoord, 0.0f); }

@@ -148,3 +148,45 @@ TEST_CASE("sdf field: field50 and field150 keep their knobs inside the field's l
     CHECK(inside > 100);
   }
 }
+
+namespace {
+// Each kind's own formula (lib/field.glsl before its shapes became one straight-line
+// expression): the reference the straight-line fieldShape is checked against.
+double fieldShapeByKind(glm::dvec3 q, double i, double j, double size, double wave, double phase, double spin) {
+  using namespace field64;
+  double s = std::max(size, 0.05) * FIELD_UNIT;
+  double lift = fieldLift(i, j, wave, phase);
+  double turn = spin * (std::fmod(i + j, 2.0) < 0.5 ? 1.0 : -1.0) + 0.9 * i + 0.4 * j;
+  double kind = std::fmod(i + 3.0 * j + std::floor(0.5 * i), 4.0);
+  if (kind < 0.5) return fSphere(pTranslate(q, glm::dvec3(0, 0.36 * s + lift, 0)), 0.36 * s);
+  if (kind < 1.5)
+    return fRoundBox(pRotateY(pTranslate(q, glm::dvec3(0, 0.30 * s + lift, 0)), turn), glm::dvec3(0.26, 0.30, 0.26) * s,
+                     0.06 * s);
+  if (kind < 2.5)
+    return fTorus(pRotateX(pRotateY(pTranslate(q, glm::dvec3(0, 0.38 * s + lift, 0)), turn), 0.5 * PI), 0.11 * s, 0.27 * s);
+  glm::dvec3 a(0, 0.2 * s + lift, 0);
+  glm::dvec3 tip = glm::dvec3(0.165 * std::cos(turn), 0.525, 0.165 * std::sin(turn)) * s;
+  return fCapsule(q, a, a + tip, 0.2 * s);
+}
+}  // namespace
+
+TEST_CASE("sdf field: the straight-line shape equals each kind's own formula", "[sdf][field]") {
+  // Cells 0..7 x 0..3 hold every kind; points around and inside each shape, at every knob case.
+  int kinds[4] = {0, 0, 0, 0};
+  double worst = 0;
+  for (const Knobs& k : knobCases())
+    for (double ci = 0; ci < 8; ++ci)
+      for (double cj = 0; cj < 4; ++cj) {
+        kinds[int(std::fmod(ci + 3.0 * cj + std::floor(0.5 * ci), 4.0))]++;
+        for (double x = -0.7; x <= 0.7; x += 0.1)
+          for (double z = -0.7; z <= 0.7; z += 0.1)
+            for (double y = -0.2; y <= 2.8; y += 0.1) {
+              glm::dvec3 q(x, y, z);
+              double a = field64::fieldShape(q, ci, cj, k.size, k.wave, k.phase, k.spin);
+              double b = fieldShapeByKind(q, ci, cj, k.size, k.wave, k.phase, k.spin);
+              worst = std::max(worst, std::abs(a - b));
+            }
+      }
+  for (int n : kinds) CHECK(n > 0);
+  CHECK(worst < 1e-6);   // the shader's constants are float literals: 5e-8 apart
+}
