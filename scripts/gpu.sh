@@ -7,7 +7,8 @@
 #                                 .devbuild): unpack the loaders, point EGL at NVIDIA's vendor file,
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -17,6 +18,7 @@
 #                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured;
 #                                 `ab` (issue 13: scenes now against `prepare-ab REV`'s, and the show lighting at 8K);
 #                                 `toggle` (issue 12: effect pad hits, cold against built ahead)
+#                                 `loops` (issues 13 and 12: all scenes twice, the show at 8K, compiles against `prepare-rev`)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -67,6 +69,11 @@ case "${1:-}" in
       git show "$rev:$f" | rename | sed "s/\"NAME\": \"$n\"/\"NAME\": \"${n}_before\"/" > "$ab/shaders/scenes/${n}_before.glsl"
     done
     echo "changed libs: ${changed:-none}"
+    ;;
+  prepare-rev)
+    rev="${2:?usage: scripts/gpu.sh prepare-rev REV}"
+    rm -rf .devbuild/rev && mkdir -p .devbuild/rev && git archive "$rev" shaders presets mappings | tar x -C .devbuild/rev
+    echo ".devbuild/rev: shaders, presets, mappings as of $(git rev-parse --short "$rev")"
     ;;
   measure)
     # `measure reload` (issue 12), `measure frames` and `measure field` (issue 13) each fit one
@@ -195,6 +202,26 @@ case "${1:-}" in
     timeout 150 bash "$0" remote bench accuracy --scene "$acc" --size 1920x1080 --ref-size 960x540 --path compute \
       --frames 15 --warmup 5 --out "$out/accuracy_ab" --csv "$out/accuracy_ab.csv" > "$out/accuracy_ab.txt" 2>&1 || true
     fi
+    if [ "$part" = loops ]; then
+    # Session 10: the frame tables after one copy of map() per loop (every scene at 1080p and 4K,
+    # twice, then the show lighting at 4K and 7680x4320), and the compiles of field150 and
+    # character against the shaders of `prepare-rev REV` (.devbuild/rev), driver caches off.
+    all="midi primitives character mandelbulb field50 field150"
+    for i in 1 2; do
+      timeout 100 bash "$0" remote bench --scenes $all --sizes 1920x1080 3840x2160 --tests full --paths compute \
+        --frames 15 --warmup 3 --markdown "$out/frames_$i.md" --csv "$out/frames_$i.csv" > "$out/frames_$i.txt" 2>&1 || true
+    done
+    timeout 120 bash "$0" remote bench --scenes $all --sizes 3840x2160 7680x4320 --tests show --paths compute \
+      --frames 8 --warmup 3 --markdown "$out/show.md" --csv "$out/show.csv" > "$out/show.txt" 2>&1 || true
+    for s in field150 character; do
+      for r in rev now; do
+        root="$PWD"; [ $r = rev ] && root="$PWD/.devbuild/rev"
+        [ -d "$root" ] || continue
+        SDFVJ_ROOT_OVERRIDE="$root" timeout 100 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute \
+          --rounds 3 --modes driver > "$out/reload_${s}_$r.txt" 2>&1 || true
+      done
+    done
+    fi
     if [ "$part" = toggle ] || [ "$part" = all ]; then
     # Issue 12: effect pad hits (the six one-effect variants) cold, built ahead (live's prefetch)
     # and built ahead + used once on the render context, rounds interleaved, driver caches off.
@@ -248,5 +275,5 @@ case "${1:-}" in
     exec ./.devbuild/sdfvj-headless "$@"
     ;;
   *)
-    sed -n '2,14p' "$0"; exit 2 ;;
+    sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 2 ;;
 esac
