@@ -250,32 +250,36 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
 }
 
 // The primary (and reflection) ray: with the scene's bound only the stretch inside the sphere
-// is marched, and the ground is met analytically.
+// is marched, and the ground is met analytically. One marchRange call site: one inlined loop.
 Hit march(vec3 ro, vec3 rd, float tmin) {
 #if USE_BOUND
     float tGround = 2.0f * u_maxDist + 1.0f;   // no ground in front
+    float a = tmin, b = u_maxDist;   // under the floor no shortcut: the whole field from tmin
+    if (SCENE_GROUND == 0 || ro.y >= 0.0f) {
 #if SCENE_GROUND
-    if (ro.y < 0.0f) return marchRange(ro, rd, tmin, u_maxDist);   // under the floor: no shortcut
-    if (rd.y < 0.0f) tGround = max(-ro.y / rd.y, tmin);
+        if (rd.y < 0.0f) tGround = max(-ro.y / rd.y, tmin);
 #endif
-    vec2 inside = sphereInterval(ro, rd, sceneBound());
-    float a = max(inside.x, tmin);
-    float b = min(min(inside.y, tGround), u_maxDist);
+        vec2 inside = sphereInterval(ro, rd, sceneBound());
+        a = max(inside.x, tmin);
+        b = min(min(inside.y, tGround), u_maxDist);
 #if USE_BOX
-    vec2 box = boxInterval(ro, rd, sceneBoxMin(), sceneBoxMax());
-    a = max(a, box.x);
-    b = min(b, box.y);
+        vec2 box = boxInterval(ro, rd, sceneBoxMin(), sceneBoxMax());
+        a = max(a, box.x);
+        b = min(b, box.y);
 #endif
+    }
     float steps = 0.0f;
     if (a <= b) {
         Hit h = marchRange(ro, rd, a, b);
         if (h.hit) return h;
         steps = h.steps;
     }
-    if (tGround <= u_maxDist) {
-        vec4 g = mapNear(ro + rd * tGround);
+#if SCENE_GROUND
+    if (tGround <= u_maxDist) {   // the march found nothing before the floor, so the floor alone is there
+        vec4 g = mapGround(ro + rd * tGround);
         return Hit(tGround, steps + 1.0f, true, vec3(g.x, g.y, g.z));
     }
+#endif
     return Hit(u_maxDist, steps, false, vec3(0.0f));
 #else
     return marchRange(ro, rd, tmin, u_maxDist);
