@@ -8,9 +8,10 @@
 
 uniform float u_time;        // seconds since start (replay: frame / fps)
 uniform int u_frame;         // frame index
-#if defined(__VERSION__) && !defined(SDF_LOOP_ZERO)
+#if !defined(SDF_GLSL_DOUBLE) && !defined(SDF_LOOP_ZERO)
 // A 0 the GLSL compiler cannot see: a loop from it stays rolled, so the map() call in its body is
-// inlined once (lib/shading.glsl's normals, lib/field.glsl's cells); C++ builds get a plain 0.
+// inlined once (lib/shading.glsl's normals, lib/field.glsl's cells). C++ builds (src/sdf/glsl_prelude.h
+// defines SDF_GLSL_DOUBLE) get the libraries' plain 0.
 #define SDF_LOOP_ZERO min(u_frame, 0)
 #endif
 uniform vec2 u_resolution;   // output size in pixels
