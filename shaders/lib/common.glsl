@@ -14,6 +14,13 @@
 #define SCENE_STATE
 #endif
 
+// Where a loop around a map() call (or other heavy code) starts: render/uniforms.glsl makes it a 0
+// the GLSL compiler cannot see, so the loop stays rolled and its body is inlined once, not once per
+// iteration (less for the driver to compile and for the GPU's instruction cache); plain 0 in C++.
+#ifndef SDF_LOOP_ZERO
+#define SDF_LOOP_ZERO 0
+#endif
+
 // Irrational constants are computed from exactly representable literals: a `f` literal
 // is rounded to float even in the double build, an expression of 3.0f is not.
 const float PI = acos(-1.0f);

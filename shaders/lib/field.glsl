@@ -35,9 +35,6 @@
 #include "lib/primitives.glsl"
 #include "lib/domain.glsl"
 #include "lib/combinators.glsl"
-#ifndef SDF_LOOP_ZERO
-#define SDF_LOOP_ZERO 0
-#endif
 
 const float FIELD_UNIT = 1.17f;      // shape dimensions below are in units of size * FIELD_UNIT
 const float FIELD_RADIUS = 0.45f;    // every shape within this * size of its cell's axis (XZ): 0.38 * 1.17

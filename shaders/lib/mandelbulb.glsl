@@ -91,9 +91,13 @@ vec2 mandelbulbOrbit(vec3 p, float n, int iterations, bool eight, float boundR) 
 // clamped to [0, 1]; scenes map it to colour or occlusion. Power 8 (the default, and the
 // presets') takes the step without trigonometry; the choice is the same for every pixel, so a
 // GPU warp never diverges on it.
-vec2 fMandelbulbTrap(vec3 p, float power, int iterations) {
+// boundR: mandelbulbBoundingRadius(max(power, 2)), which a scene may compute once per invocation.
+vec2 fMandelbulbTrapBounded(vec3 p, float power, int iterations, float boundR) {
     float n = max(power, 2.0f);
-    return mandelbulbOrbit(p, n, iterations, n == 8.0f, mandelbulbBoundingRadius(n));
+    return mandelbulbOrbit(p, n, iterations, n == 8.0f, boundR);
+}
+vec2 fMandelbulbTrap(vec3 p, float power, int iterations) {
+    return fMandelbulbTrapBounded(p, power, iterations, mandelbulbBoundingRadius(max(power, 2.0f)));
 }
 
 // Distance estimate only.

@@ -17,25 +17,19 @@
 #ifndef PROBE_MAP
 #define PROBE_MAP map
 #endif
-// The normals' loops start at SDF_LOOP_ZERO, so each has one map() call site. The renderer makes it
-// a 0 the compiler cannot see (render/uniforms.glsl), so the loop stays rolled: map() inlined once,
-// not four or six times (less for the driver to compile and for the GPU's instruction cache).
-#ifndef SDF_LOOP_ZERO
-#define SDF_LOOP_ZERO 0
-#endif
 
 // 1 / (the step correction the scene asks for)
 float sceneStepScale() { return 1.0f / max(1.0f, sceneLipschitz()); }
 
 // ---- normals --------------------------------------------------------------------------
-// Central differences: 6 map calls, second-order accurate.
+// Central differences: 6 map calls, second-order accurate. The normals below are loops from
+// SDF_LOOP_ZERO (lib/common.glsl): one map() call site each.
 vec3 calcNormalCentral(vec3 p, float eps) {
     vec3 n = vec3(0.0f);
     for (int i = SDF_LOOP_ZERO; i < 6; i++) {   // +x, -x, +y, -y, +z, -z
         float sg = (i & 1) == 0 ? 1.0f : -1.0f;
-        vec3 e = vec3(i < 2 ? eps : 0.0f, i == 2 || i == 3 ? eps : 0.0f, i > 3 ? eps : 0.0f);
-        float d = sg * PROBE_MAP(p + sg * e).w;
-        n += vec3(i < 2 ? d : 0.0f, i == 2 || i == 3 ? d : 0.0f, i > 3 ? d : 0.0f);
+        vec3 axis = vec3(i < 2 ? 1.0f : 0.0f, i == 2 || i == 3 ? 1.0f : 0.0f, i > 3 ? 1.0f : 0.0f);
+        n += axis * (sg * PROBE_MAP(p + axis * (sg * eps)).w);
     }
     return safeNormalize(n);
 }

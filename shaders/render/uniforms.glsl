@@ -9,9 +9,8 @@
 uniform float u_time;        // seconds since start (replay: frame / fps)
 uniform int u_frame;         // frame index
 #if !defined(SDF_GLSL_DOUBLE) && !defined(SDF_LOOP_ZERO)
-// A 0 the GLSL compiler cannot see: a loop from it stays rolled, so the map() call in its body is
-// inlined once (lib/shading.glsl's normals, lib/field.glsl's cells). C++ builds (src/sdf/glsl_prelude.h
-// defines SDF_GLSL_DOUBLE) get the libraries' plain 0.
+// A 0 the GLSL compiler cannot see, for loops that must stay rolled (lib/common.glsl SDF_LOOP_ZERO).
+// C++ builds (src/sdf/glsl_prelude.h defines SDF_GLSL_DOUBLE) get common.glsl's plain 0.
 #define SDF_LOOP_ZERO min(u_frame, 0)
 #endif
 uniform vec2 u_resolution;   // output size in pixels

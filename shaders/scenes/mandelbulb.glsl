@@ -40,8 +40,7 @@ void sceneSetup() {
 vec4 map(vec3 p) {
     vec3 q = vec3(g_spin.x * p.x - g_spin.y * p.z, p.y, g_spin.y * p.x + g_spin.x * p.z);   // pRotateY(p, u_time * u_spin)
     int iterations = int(clamp(u_iterations, 1.0f, 32.0f) + 0.5f);
-    float n = max(u_power, 2.0f);
-    vec2 dt = mandelbulbOrbit(q, n, iterations, n == 8.0f, g_boundR);   // fMandelbulbTrap(q, u_power, iterations)
+    vec2 dt = fMandelbulbTrapBounded(q, u_power, iterations, g_boundR);
     return vec4(bulbPalette(dt.y), dt.x);
 }
 
