@@ -60,6 +60,9 @@ public:
             *error = "cannot open an OpenGL 4.5 core window on this display";
             return false;
         }
+        // A tap shorter than a frame still counts: glfwGetKey says PRESS once after it (a slow
+        // frame would otherwise see press and release in one poll and miss Esc, F11 or a preset).
+        glfwSetInputMode(window_, GLFW_STICKY_KEYS, GLFW_TRUE);
         glfwMakeContextCurrent(window_);
         glfwSwapInterval(1);
         std::fprintf(stderr, "GL: %s, %s\n", (const char*)glGetString(GL_RENDERER), (const char*)glGetString(GL_VERSION));
