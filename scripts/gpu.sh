@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -201,6 +201,15 @@ case "${1:-}" in
     acc=$(echo ${AB_SCENES:-mandelbulb field150} | tr ' ' ,)
     timeout 150 bash "$0" remote bench accuracy --scene "$acc" --size 1920x1080 --ref-size 960x540 --path compute \
       --frames 15 --warmup 5 --out "$out/accuracy_ab" --csv "$out/accuracy_ab.csv" > "$out/accuracy_ab.txt" 2>&1 || true
+    fi
+    if [ "$part" = ssaa ]; then
+    # Issue 13's 4x supersampled 4K: the show lighting at 7680x4320 (every sample shaded, then a
+    # downsample not timed) against 4 samples a pixel at 3840x2160, each sample shaded
+    # (show_ssaa_exact) or each surface the samples see shaded once (show_ssaa), one interleaved
+    # run (its 7680x4320 rows of show_ssaa* are 16 samples a 4K pixel, there only to interleave).
+    all="midi primitives character mandelbulb field50 field150"
+    timeout 300 bash "$0" remote bench --scenes $all --sizes 3840x2160 7680x4320 --tests show show_ssaa show_ssaa_exact \
+      --paths compute --frames 8 --warmup 3 --markdown "$out/ssaa.md" --csv "$out/ssaa.csv" > "$out/ssaa.txt" 2>&1 || true
     fi
     if [ "$part" = loops ]; then
     # Session 10: the frame tables after one copy of map() per loop (every scene at 1080p and 4K,

@@ -1,7 +1,7 @@
 // common.glsl - constants and small scalar/vector helpers used by every SDF file.
 //
 // Usage: #include "lib/common.glsl", then PI, TAU, saturate(x), dot2(v), vmax(v), vmin(v),
-// sgn(x) (never 0), square(x), safeNormalize(v).
+// sgn(x) (never 0), square(x), safeNormalize(v), octEncode(n).
 // Written in the GLSL subset that also compiles as C++ (src/sdf/glsl_prelude.h): no
 // swizzles, no inout/out, float literals with `f`.
 #ifndef SDF_LIB_COMMON_GLSL
@@ -51,6 +51,20 @@ float square(float x) { return x * x; }
 vec3 safeNormalize(vec3 v) {
     float l = length(v);
     return l > 1e-20f ? v / l : vec3(0.0f, 1.0f, 0.0f);
+}
+
+// Octahedral encoding of a unit vector into two floats (DEBUG_VIEW 4).
+vec2 octEncode(vec3 n) {
+    float s = abs(n.x) + abs(n.y) + abs(n.z);
+    float x = n.x / max(s, 1e-20f);
+    float y = n.y / max(s, 1e-20f);
+    if (n.z < 0.0f) {
+        float ox = (1.0f - abs(y)) * sgn(x);
+        float oy = (1.0f - abs(x)) * sgn(y);
+        x = ox;
+        y = oy;
+    }
+    return vec2(x, y);
 }
 
 #endif

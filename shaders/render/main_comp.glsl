@@ -29,6 +29,10 @@ void main() {
         if (pixel.x >= tiles.x || pixel.y >= tiles.y) return;
         vec2 lo = vec2(pixel * CONE_TILE) + 0.5;
         vec2 hi = min(lo + float(CONE_TILE - 1), u_resolution - 0.5);
+#if USE_SUPERSAMPLE
+        lo -= 0.5;   // the samples reach the tile's pixels' edges
+        hi += 0.5;
+#endif
 #if CONE_PREPASS
         imageStore(u_coneStart, pixel, vec4(coneStart(lo, hi)));
 #else
@@ -39,5 +43,5 @@ void main() {
     if (pixel.x >= int(u_resolution.x) || pixel.y >= int(u_resolution.y)) return;
     vec2 fragCoord = vec2(gl_GlobalInvocationID.xy) + 0.5;
     float tStart = u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
-    imageStore(u_output, pixel, renderFrom(fragCoord, tStart));
+    imageStore(u_output, pixel, renderPixel(fragCoord, tStart));
 }

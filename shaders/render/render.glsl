@@ -428,20 +428,6 @@ vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n) {
     return col;
 }
 
-// Octahedral encoding of a unit vector into two floats (DEBUG_VIEW 4).
-vec2 octEncode(vec3 n) {
-    float s = abs(n.x) + abs(n.y) + abs(n.z);
-    float x = n.x / max(s, 1e-20f);
-    float y = n.y / max(s, 1e-20f);
-    if (n.z < 0.0f) {
-        float ox = (1.0f - abs(y)) * sgn(x);
-        float oy = (1.0f - abs(x)) * sgn(y);
-        x = ox;
-        y = oy;
-    }
-    return vec2(x, y);
-}
-
 // Tiny per-pixel dither (+-0.5 / 255) against banding in 8-bit output; deterministic
 // per frame so replays match.
 float ditherNoise(vec2 fragCoord) {
@@ -449,19 +435,18 @@ float ditherNoise(vec2 fragCoord) {
                                      0.1f * float(u_frame % 16))) - 0.5f;
 }
 
-// tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
-// The primary ray and each mirror bounce run one loop body: one copy of the march, the normal and
-// the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the cost per map() call,
-// and it doubled what the driver compiles); the trip count reads a uniform, so it is not unrolled.
-vec4 renderFrom(vec2 fragCoord, float tStart) {
-    callSceneSetup();
-    vec3 ro = u_camPos;
-    vec3 rd = cameraRay(fragCoord);
+// The primary ray (from `ro` along `rd`) and each mirror bounce run one loop body: one copy of the
+// march, the normal and the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the
+// cost per map() call, and it doubled what the driver compiles); the trip count reads a uniform, so
+// it is not unrolled. The primary ray is marched from tStart (the compute path's cone pre-pass; 0
+// from the eye), or its hit is `given` (supersample.glsl marches a pixel's samples first).
+// Returns linear radiance (or a DEBUG_VIEW's value).
+vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 col = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     for (int bounce = 0; bounce <= bounces; bounce++) {
-        Hit h = march(ro, rd, bounce == 0 ? tStart : 0.0f);
+        Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f);
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
         if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
 #if DEBUG_VIEW == 1
@@ -487,12 +472,24 @@ vec4 renderFrom(vec2 fragCoord, float tStart) {
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));
         rd = reflect(rd, n);
     }
-#if DEBUG_VIEW == 5
     return vec4(col, 1.0f);
+}
+
+// Linear radiance to the display colour: tone mapped, sRGB, dithered.
+vec3 displayColor(vec3 col, vec2 fragCoord) {
+    return linearToSRGB(toneMapACES(col)) + vec3(ditherNoise(fragCoord) / 255.0f);
+}
+
+// tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
+vec4 renderFrom(vec2 fragCoord, float tStart) {
+    callSceneSetup();
+    Hit none = Hit(0.0f, 0.0f, false, vec3(0.0f));
+    vec4 c = traceRay(u_camPos, cameraRay(fragCoord), tStart, none, false);
+#if DEBUG_VIEW
+    return c;
+#else
+    return vec4(displayColor(vec3(c.x, c.y, c.z), fragCoord), 1.0f);
 #endif
-    col = linearToSRGB(toneMapACES(col));
-    col += vec3(ditherNoise(fragCoord) / 255.0f);
-    return vec4(col, 1.0f);
 }
 
 vec4 render(vec2 fragCoord) { return renderFrom(fragCoord, 0.0f); }

@@ -32,13 +32,15 @@ int RunBench(const BenchOptions& o) {
     std::vector<LightingTest> tests;
     std::vector<LightingTest> known = SeedLightingTests();
     known.push_back(ShowLightingTest());
+    known.push_back(ShowSupersampledLightingTest(false));
+    known.push_back(ShowSupersampledLightingTest(true));
     for (const std::string& name : o.tests)
         if (std::none_of(known.begin(), known.end(), [&](const LightingTest& t) { return name == t.name; })) {
-            std::fprintf(stderr, "sdfvj bench: unknown lighting test '%s', expected full, shadows_ao, shadows, none or show\n", name.c_str());
+            std::fprintf(stderr, "sdfvj bench: unknown lighting test '%s', expected full, shadows_ao, shadows, none, show, show_ssaa or show_ssaa_exact\n", name.c_str());
             return 2;
         }
     for (const auto& t : known)
-        if ((o.tests.empty() && t.name != std::string("show")) || std::find(o.tests.begin(), o.tests.end(), t.name) != o.tests.end())
+        if ((o.tests.empty() && std::string(t.name).rfind("show", 0) != 0) || std::find(o.tests.begin(), o.tests.end(), t.name) != o.tests.end())
             tests.push_back(t);
     std::vector<std::pair<int, int>> sizes;
     for (const auto& s : o.sizes) {

@@ -36,4 +36,11 @@ LightingTest ShowLightingTest() {
     return {"show", show};
 }
 
+LightingTest ShowSupersampledLightingTest(bool exact) {
+    LightingTest t = ShowLightingTest();
+    t.effects.supersample = exact ? 2 : 1;
+    t.name = exact ? "show_ssaa_exact" : "show_ssaa";
+    return t;
+}
+
 }  // namespace sdfvj

@@ -31,6 +31,7 @@ struct EffectSet {
     int debugView = 0;      // 0 off, 1 step heatmap, 2 depth, 3 normals
     int normals = 0;        // 0 central, 1 forward, 2 tetrahedron
     bool marchFixed = false;
+    int supersample = 0;   // 1 `ssaa`: 4 samples a pixel, shading shared per surface; 2 `ssaa_exact`: each sample shaded (render/supersample.glsl)
     auto operator<=>(const EffectSet&) const = default;
 };
 
@@ -83,6 +84,10 @@ std::vector<EffectSet> OneEffectToggles(const EffectSet& e);
 // Issue 13's heaviest target: soft shadows, AO, specular, PBR and one reflection bounce
 // (`bench --tests show`; not among the seed's four, so not in a bare `bench`).
 LightingTest ShowLightingTest();
+// The show lighting with 4x supersampling that shares each surface's shading between the samples
+// (`ssaa`; `bench --tests show_ssaa`, at 3840x2160 the 4x supersampled 4K of issue 13); `exact`:
+// every sample shaded (`ssaa_exact`, show_ssaa_exact).
+LightingTest ShowSupersampledLightingTest(bool exact);
 
 // A preset: a scene with parameter values and effect overrides, optionally a mapping and a take.
 struct Preset {

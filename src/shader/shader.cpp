@@ -124,9 +124,18 @@ std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
         "DEBUG_VIEW " + std::to_string(e.debugView),
         "NORMALS " + std::to_string(e.normals),
         "MARCH_FIXED " + std::to_string(e.marchFixed ? 1 : 0),
+        "SUPERSAMPLE " + std::to_string(e.supersample),
     };
     d.push_back(path == RenderPath::Compute ? "SDFVJ_COMPUTE 1" : "SDFVJ_FRAGMENT 1");
     return d;
+}
+
+// After the scene: the raymarcher, the pixel entry (supersampling) and the path's main().
+static bool ExpandRenderer(const fs::path& root, RenderPath path, ShaderSource* s, std::string* error) {
+    const char* mainFile = path == RenderPath::Compute ? "main_comp.glsl" : "main_frag.glsl";
+    for (const char* file : {"render.glsl", "supersample.glsl", mainFile})
+        if (!ExpandIncludes((root / "render" / file).string(), s, error)) return false;
+    return true;
 }
 
 bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error,
@@ -147,9 +156,7 @@ bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource
         if (s.literals.empty()) s.literals.push_back(0.0f);   // declared either way: one skeleton, one program
         s.text.insert(literalsAt, "uniform float u_lit[" + std::to_string(s.literals.size()) + "];\n");
     }
-    if (!ExpandIncludes((root / "render" / "render.glsl").string(), &s, error)) return false;
-    const char* mainFile = key.path == RenderPath::Compute ? "main_comp.glsl" : "main_frag.glsl";
-    if (!ExpandIncludes((root / "render" / mainFile).string(), &s, error)) return false;
+    if (!ExpandRenderer(root, key.path, &s, error)) return false;
     s.hash = HashBytes(s.text);   // with lifted literals: the skeleton's hash, whatever their values
     *out = std::move(s);
     return true;
@@ -211,9 +218,7 @@ bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const Vari
         "vec4 mapGround(vec3 p) { return mix(m0_mapGround(p), m1_mapGround(p), u_morph); }\n"
         "#endif\n"
         "#endif\n";
-    if (!ExpandIncludes((root / "render" / "render.glsl").string(), &s, error)) return false;
-    const char* mainFile = key.path == RenderPath::Compute ? "main_comp.glsl" : "main_frag.glsl";
-    if (!ExpandIncludes((root / "render" / mainFile).string(), &s, error)) return false;
+    if (!ExpandRenderer(root, key.path, &s, error)) return false;
     s.hash = HashBytes(s.text);
     *out = std::move(s);
     return true;
