@@ -1,14 +1,14 @@
 // supersample.glsl - the pixel entry of both paths (GLSL only, after render.glsl): renderPixel.
 //
 // SUPERSAMPLE 1 (the `ssaa` effect): four samples a pixel on a rotated grid, each marched on
-// its own, and the shading (normal, shadows, AO, the mirror bounce) done once per surface the
-// samples see, not once per sample: the samples that see the surface of a shaded one (both miss,
-// or both hit the same albedo at nearly the same depth) take its colour, as multisampling
-// shares a fragment's shading between the samples it covers. A pixel inside one surface shades
-// once; a silhouette pixel shades once per side. The samples are resolved in display space
-// (tone mapped, then averaged), as a supersampled image downsampled would be.
+// its own. When the four hit one surface (the same albedo at nearly the same depth) that is flat
+// across the pixel, the shading (normal, shadows, AO, the mirror bounce) is done once and every
+// sample takes its colour, as multisampling shares a fragment's shading between the samples it
+// covers; samples that see the sky share one colour too. A silhouette, an edge of a box or a
+// fractal's folds are shaded per sample. The samples are resolved in display space (tone
+// mapped, then averaged), as a supersampled frame downsampled would be.
 // SUPERSAMPLE 2 (`ssaa_exact`): the same samples, each shaded on its own (what the shared shading
-// is measured against). SUPERSAMPLE 0 (default): one ray through the pixel's centre, render.glsl's renderFrom.
+// is measured against). SUPERSAMPLE 0 (default): one ray through the pixel's centre (renderFrom).
 #ifndef SDF_RENDER_SUPERSAMPLE_GLSL
 #define SDF_RENDER_SUPERSAMPLE_GLSL
 
@@ -24,7 +24,7 @@
 #endif
 const vec2 SAMPLE_OFFSETS[4] = vec2[4](vec2(-0.125, -0.375), vec2(0.375, -0.125), vec2(0.125, 0.375), vec2(-0.375, 0.125));
 
-// Whether sample b sees the surface that sample a's shading was computed for.
+// Whether two samples see one surface: both the sky, or the same albedo at nearly the same depth.
 bool sameSurface(Hit a, Hit b) {
     if (a.hit != b.hit) return false;
     if (!a.hit) return true;   // both see the sky: its colour varies slowly with the direction
@@ -41,22 +41,23 @@ vec4 renderSupersampled(vec2 fragCoord, float tStart) {
     }
     vec3 sum = vec3(0.0);
     int shaded = 0;   // bit s: sample s has its colour
-    bool share = SUPERSAMPLE == 1;
-    // Four hits on one surface that bends within the pixel (an edge of a box, a fractal's folds):
-    // its shading varies there, each sample is shaded on its own.
-    if (share && hits[0].hit && sameSurface(hits[0], hits[1]) && sameSurface(hits[0], hits[2]) && sameSurface(hits[0], hits[3])) {
+    // The four hits on one surface, flat across the pixel, share one shading; a surface that bends
+    // within the pixel (an edge of a box, a fractal's folds) or a silhouette is shaded per sample.
+    bool oneFlat = false;
+    if (SUPERSAMPLE == 1 && hits[0].hit && sameSurface(hits[0], hits[1]) && sameSurface(hits[0], hits[2]) &&
+        sameSurface(hits[0], hits[3])) {
         vec3 p0 = u_camPos + rds[0] * hits[0].t;
         vec3 a = u_camPos + rds[1] * hits[1].t - p0, b = u_camPos + rds[2] * hits[2].t - p0;
         vec3 c = u_camPos + rds[3] * hits[3].t - p0;
         vec3 n = cross(a, b);
-        if (abs(dot(c, n)) > SUPERSAMPLE_FLAT * length(n) * max(length(c), 1e-20)) share = false;
+        oneFlat = abs(dot(c, n)) <= SUPERSAMPLE_FLAT * length(n) * max(length(c), 1e-20);
     }
     for (int lead = SDF_LOOP_ZERO; lead < 4; lead++) {
         if ((shaded & (1 << lead)) != 0) continue;
         vec4 c = traceRay(u_camPos, rds[lead], 0.0, hits[lead], true);
         vec3 display = linearToSRGB(toneMapACES(c.rgb));
         for (int s = lead; s < 4; s++)
-            if ((shaded & (1 << s)) == 0 && (s == lead || (share && sameSurface(hits[lead], hits[s])))) {
+            if ((shaded & (1 << s)) == 0 && (s == lead || oneFlat || (SUPERSAMPLE == 1 && !hits[lead].hit && !hits[s].hit))) {
                 sum += display;
                 shaded |= 1 << s;
             }
