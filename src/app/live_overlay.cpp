@@ -197,7 +197,8 @@ void DrawPresets(const OverlayModel& m, OverlayUi& ui, OverlayActions& a) {
 void DrawEffects(const OverlayModel& m, OverlayActions& a) {
     const EffectSet& e = m.effects;
     const std::pair<const char*, bool> boxes[] = {{"shadows", e.shadows != 0}, {"ao", e.ao},   {"specular", e.specular},
-                                                  {"fog", e.fog},               {"pbr", e.pbr}, {"reflections", e.reflections != 0}};
+                                                  {"fog", e.fog},               {"pbr", e.pbr}, {"reflections", e.reflections != 0},
+                                                  {"ssaa", e.supersample != 0}};   // 4 samples a pixel (anti-aliasing)
     for (size_t i = 0; i < std::size(boxes); ++i) {
         bool on = boxes[i].second;
         if (i % 3 != 0) ImGui::SameLine(190.0f * (float)(i % 3) + ImGui::GetStyle().WindowPadding.x);

@@ -308,6 +308,12 @@ TEST_CASE("live_overlay draw: a click on a checkbox returns the effect toggle, a
     OverlayActions click = imgui.Frame(m, ui, ao, false);
     REQUIRE(click.effectToggles.size() == 1);
     CHECK(click.effectToggles[0] == std::make_pair(std::string("ao"), true));
+    ImVec2 ssaa;   // anti-aliasing, a box of its own
+    REQUIRE(imgui.Find(m, ui, ImGui::FindWindowByName("sdfvj")->GetID("ssaa"), &ssaa));
+    imgui.Frame(m, ui, ssaa, true);
+    OverlayActions aa = imgui.Frame(m, ui, ssaa, false);
+    REQUIRE(aa.effectToggles.size() == 1);
+    CHECK(aa.effectToggles[0] == std::make_pair(std::string("ssaa"), true));
 
     // The free slider: a click sets a target; the scripted one: nothing.
     ImVec2 scale, twist;

@@ -122,7 +122,7 @@ TEST_CASE("live_state follow: a scene header that gains an input rebuilds the pa
     CHECK(s.params.target[(size_t)FindParam(s.params, "glow")] == Approx(0.3f));
 }
 
-TEST_CASE("live_state effects: /sdfvj/effect/ao i 0 asks for the variant without AO, unknown effects are reported", "[live_state]") {
+TEST_CASE("live_state effects: /sdfvj/effect/ao i 0 asks for the variant without AO, ssaa for the supersampled one, unknown effects are reported", "[live_state]") {
     LiveState s = OpenMidi();
     REQUIRE(s.wanted.effects.ao);
     ApplyControl(s, {Osc("/sdfvj/effect/ao", Int(0))}, 1.0);
@@ -131,6 +131,14 @@ TEST_CASE("live_state effects: /sdfvj/effect/ao i 0 asks for the variant without
     ApplyControl(s, {Osc("/sdfvj/effect/nonsense", Int(1))}, 2.0);
     REQUIRE_NOTHROW(ApplyActions(s, 2.0));
     CHECK_FALSE(s.wanted.effects.ao);
+    // Anti-aliasing for the audience's big screen: its own variant, off again the same way.
+    ApplyControl(s, {Osc("/sdfvj/effect/ssaa", Int(1))}, 3.0);
+    ApplyActions(s, 3.0);
+    CHECK(s.wanted.effects.supersample == 1);
+    CHECK_FALSE(s.wanted.effects.ao);
+    ApplyControl(s, {Osc("/sdfvj/effect/ssaa", Int(0))}, 4.0);
+    ApplyActions(s, 4.0);
+    CHECK(s.wanted.effects.supersample == 0);
 }
 
 TEST_CASE("live_state presets: a preset for another scene waits for its program, then cuts to its values", "[live_state]") {
