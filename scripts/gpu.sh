@@ -19,6 +19,7 @@
 #                                 `ab` (issue 13: scenes now against `prepare-ab REV`'s, and the show lighting at 8K);
 #                                 `toggle` (issue 12: effect pad hits, cold against built ahead)
 #                                 `loops` (issues 13 and 12: all scenes twice, the show at 8K, compiles against `prepare-rev`)
+#                                 `ssaa` (issue 13: the show at 7680x4320 against show_ssaa / show_ssaa_exact at 4K)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
