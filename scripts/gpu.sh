@@ -83,6 +83,7 @@ case "${1:-}" in
     part="${2:-all}"
     if [ "$part" = pending ]; then bash "$0" measure adopt; bash "$0" measure field; bash "$0" measure cone; exit; fi
     run() { bash "$0" remote "$@"; }
+    all="midi primitives character mandelbulb field50 field150"   # every shipped scene
     if [ "$part" = reload ] || [ "$part" = all ]; then
     for s in midi character; do
       timeout 100 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --rounds 3 > "$out/reload_$s.txt" 2>&1 || true
@@ -208,7 +209,6 @@ case "${1:-}" in
     # downsample not timed) against 4 samples a pixel at 3840x2160, each sample shaded
     # (show_ssaa_exact) or each surface the samples see shaded once (show_ssaa), one interleaved
     # run (its 7680x4320 rows of show_ssaa* are 16 samples a 4K pixel, there only to interleave).
-    all="midi primitives character mandelbulb field50 field150"
     timeout 300 bash "$0" remote bench --scenes $all --sizes 3840x2160 7680x4320 --tests show show_ssaa show_ssaa_exact \
       --paths compute --frames 8 --warmup 3 --markdown "$out/ssaa.md" --csv "$out/ssaa.csv" > "$out/ssaa.txt" 2>&1 || true
     fi
@@ -216,7 +216,6 @@ case "${1:-}" in
     # Session 10: the frame tables after one copy of map() per loop (every scene at 1080p and 4K,
     # twice, then the show lighting at 4K and 7680x4320), and the compiles of field150 and
     # character against the shaders of `prepare-rev REV` (.devbuild/rev), driver caches off.
-    all="midi primitives character mandelbulb field50 field150"
     for i in 1 2; do
       timeout 100 bash "$0" remote bench --scenes $all --sizes 1920x1080 3840x2160 --tests full --paths compute \
         --frames 15 --warmup 3 --markdown "$out/frames_$i.md" --csv "$out/frames_$i.csv" > "$out/frames_$i.txt" 2>&1 || true

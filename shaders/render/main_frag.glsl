@@ -1,6 +1,6 @@
 // main_frag.glsl - fragment-shader entry point (GLSL only). The host prepends #version,
-// the defines, uniforms, scene, render/render.glsl and
-// render/supersample.glsl, and draws a full-screen triangle.
+// the defines, uniforms, scene, render/render.glsl and render/supersample.glsl, and draws a
+// full-screen triangle.
 out vec4 fragColor;
 
 void main() {

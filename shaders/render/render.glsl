@@ -475,10 +475,11 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     return vec4(col, 1.0f);
 }
 
-// Linear radiance to the display colour: tone mapped, sRGB, dithered.
-vec3 displayColor(vec3 col, vec2 fragCoord) {
-    return linearToSRGB(toneMapACES(col)) + vec3(ditherNoise(fragCoord) / 255.0f);
-}
+// Linear radiance to the display colour: tone mapped, sRGB (supersample.glsl averages these).
+vec3 displayColor(vec3 col) { return linearToSRGB(toneMapACES(col)); }
+
+// The pixel's output: its display colour, dithered.
+vec4 pixelColor(vec3 display, vec2 fragCoord) { return vec4(display + vec3(ditherNoise(fragCoord) / 255.0f), 1.0f); }
 
 // tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
 vec4 renderFrom(vec2 fragCoord, float tStart) {
@@ -488,7 +489,7 @@ vec4 renderFrom(vec2 fragCoord, float tStart) {
 #if DEBUG_VIEW
     return c;
 #else
-    return vec4(displayColor(vec3(c.x, c.y, c.z), fragCoord), 1.0f);
+    return pixelColor(displayColor(vec3(c.x, c.y, c.z)), fragCoord);
 #endif
 }
 

@@ -35,9 +35,11 @@ vec4 renderSupersampled(vec2 fragCoord, float tStart) {
     callSceneSetup();
     vec3 rds[4];
     Hit hits[4];
+    vec3 points[4];   // where each sample hit (its far end on a miss)
     for (int s = SDF_LOOP_ZERO; s < 4; s++) {   // one march call site: a loop, not four copies
         rds[s] = cameraRay(fragCoord + SAMPLE_OFFSETS[s]);
         hits[s] = march(u_camPos, rds[s], tStart);
+        points[s] = u_camPos + rds[s] * hits[s].t;
     }
     vec3 sum = vec3(0.0);
     int shaded = 0;   // bit s: sample s has its colour
@@ -46,23 +48,21 @@ vec4 renderSupersampled(vec2 fragCoord, float tStart) {
     bool oneFlat = false;
     if (SUPERSAMPLE == 1 && hits[0].hit && sameSurface(hits[0], hits[1]) && sameSurface(hits[0], hits[2]) &&
         sameSurface(hits[0], hits[3])) {
-        vec3 p0 = u_camPos + rds[0] * hits[0].t;
-        vec3 a = u_camPos + rds[1] * hits[1].t - p0, b = u_camPos + rds[2] * hits[2].t - p0;
-        vec3 c = u_camPos + rds[3] * hits[3].t - p0;
-        vec3 n = cross(a, b);
+        vec3 n = cross(points[1] - points[0], points[2] - points[0]);
+        vec3 c = points[3] - points[0];
         oneFlat = abs(dot(c, n)) <= SUPERSAMPLE_FLAT * length(n) * max(length(c), 1e-20);
     }
     for (int lead = SDF_LOOP_ZERO; lead < 4; lead++) {
         if ((shaded & (1 << lead)) != 0) continue;
         vec4 c = traceRay(u_camPos, rds[lead], 0.0, hits[lead], true);
-        vec3 display = linearToSRGB(toneMapACES(c.rgb));
+        vec3 display = displayColor(c.rgb);
         for (int s = lead; s < 4; s++)
             if ((shaded & (1 << s)) == 0 && (s == lead || oneFlat || (SUPERSAMPLE == 1 && !hits[lead].hit && !hits[s].hit))) {
                 sum += display;
                 shaded |= 1 << s;
             }
     }
-    return vec4(sum * 0.25 + vec3(ditherNoise(fragCoord) / 255.0), 1.0);
+    return pixelColor(sum * 0.25, fragCoord);
 }
 #endif
 

@@ -179,6 +179,20 @@ GeometryError CompareGeometry(const Geometry& test, const Geometry& ref, double 
     return e;
 }
 
+std::vector<uint8_t> DownsampleRgba8x2(const std::vector<uint8_t>& rgba, int w, int h) {
+    const int ow = w / 2, oh = h / 2;
+    std::vector<uint8_t> out(size_t(ow) * oh * 4);
+    for (int y = 0; y < oh; ++y)
+        for (int x = 0; x < ow; ++x)
+            for (int c = 0; c < 4; ++c) {
+                int sum = 0;
+                for (int dy = 0; dy < 2; ++dy)
+                    for (int dx = 0; dx < 2; ++dx) sum += rgba[(size_t(2 * y + dy) * w + 2 * x + dx) * 4 + c];
+                out[(size_t(y) * ow + x) * 4 + c] = uint8_t((sum + 2) / 4);
+            }
+    return out;
+}
+
 ImageError CompareRgba8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
     ImageError e;
     if (a.size() != b.size() || a.empty()) return e;

@@ -113,6 +113,8 @@ struct ImageError {
     double pctOver8 = 0;    // % pixels with any channel more than 8/255 off
 };
 ImageError CompareRgba8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
+// An RGBA8 image of w x h (even) averaged 2x2 (rounded): w/2 x h/2, what a supersampled frame shows.
+std::vector<uint8_t> DownsampleRgba8x2(const std::vector<uint8_t>& rgba, int w, int h);
 
 // Counts non-finite floats; `firstBad` gets the first pixel index when any.
 size_t CountNonFinite(const std::vector<float>& v, size_t* firstBad = nullptr);

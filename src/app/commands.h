@@ -50,6 +50,17 @@ struct EffectsBenchOptions {
 };
 int RunEffectsBench(const EffectsBenchOptions& o);
 
+// `sdfvj bench ssaa`: one sample, `ssaa` and `ssaa_exact` against a frame twice the size averaged
+// 2x2 (cmd_bench_ssaa.cpp).
+struct SsaaBenchOptions {
+    std::vector<std::string> scenes;   // default: all
+    std::string size = "640x360";
+    std::string path = "compute";
+    std::string effects = "pbr,reflections=1";
+    std::string markdown;
+};
+int RunSsaaBench(const SsaaBenchOptions& o);
+
 // `sdfvj bench accuracy --scene S`: every quality knob swept; GPU time and error against the CPU
 // double reference (geometry) and a 4096-step GPU render (image). CSV, plots, docs/accuracy.md.
 struct AccuracyBenchOptions {

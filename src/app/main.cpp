@@ -99,6 +99,13 @@ int main(int argc, char** argv) {
     cmdEffects->add_option("--warmup", effectsBench.warmup, "untimed rotations first")->capture_default_str();
     cmdEffects->add_option("--markdown", effectsBench.markdown, "also write the table to this file");
     cmdEffects->add_option("--csv", effectsBench.csv, "also write the table as CSV: scene,lighting,size,path,ms,gpu,effect,variant");
+    SsaaBenchOptions ssaaBench;
+    auto* cmdSsaa = cmdBench->add_subcommand("ssaa", "ssaa's anti-aliasing: one sample, ssaa and ssaa_exact against a frame twice the size averaged 2x2");
+    cmdSsaa->add_option("--scenes", ssaaBench.scenes, "scenes (default: all)")->delimiter(',');
+    cmdSsaa->add_option("--size", ssaaBench.size, "frame size (the truth is drawn at twice it)")->capture_default_str();
+    cmdSsaa->add_option("--path", ssaaBench.path, "compute or fragment")->capture_default_str();
+    cmdSsaa->add_option("--effects", ssaaBench.effects, "effects over each scene's own (as render --effects)")->capture_default_str();
+    cmdSsaa->add_option("--markdown", ssaaBench.markdown, "also write the table to this file");
     AccuracyBenchOptions accuracyBench;
     auto* cmdAccuracy = cmdBench->add_subcommand("accuracy", "quality knobs: GPU time against error vs a CPU double reference");
     cmdAccuracy->add_option("--scene", accuracyBench.scenes, "scenes, comma-separated, or all")->capture_default_str()->delimiter(',');
@@ -230,6 +237,7 @@ int main(int argc, char** argv) {
         return RunAccuracyBench(accuracyBench);
     }
     if (cmdEffects->parsed()) return RunEffectsBench(effectsBench);
+    if (cmdSsaa->parsed()) return RunSsaaBench(ssaaBench);
     if (cmdReload->parsed()) return RunReloadBench(reloadBench);
 #ifdef SDFVJ_HAS_LIVE
     if (cmdInput->parsed()) return RunInputBench(inputSeconds);

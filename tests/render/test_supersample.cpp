@@ -6,6 +6,7 @@
 // one-sample frame's own error, so they hold on any renderer that anti-aliases at all.
 #include <catch2/catch.hpp>
 
+#include "accuracy/accuracy.h"
 #include "gl_fixture.h"
 
 using namespace sdfvj;
@@ -14,19 +15,7 @@ using namespace sdfvj::test;
 namespace {
 
 Image Downsample2x2(const Image& big) {
-    Image out;
-    out.width = big.width / 2;
-    out.height = big.height / 2;
-    out.rgba.resize(size_t(out.width) * out.height * 4);
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x)
-            for (int c = 0; c < 4; ++c) {
-                int sum = 0;
-                for (int dy = 0; dy < 2; ++dy)
-                    for (int dx = 0; dx < 2; ++dx) sum += big.rgba[(size_t(2 * y + dy) * big.width + 2 * x + dx) * 4 + c];
-                out.rgba[(size_t(y) * out.width + x) * 4 + c] = uint8_t((sum + 2) / 4);
-            }
-    return out;
+    return Image{big.width / 2, big.height / 2, accuracy::DownsampleRgba8x2(big.rgba, big.width, big.height)};
 }
 
 EffectSet Show(int supersample) {
