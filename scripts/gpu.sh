@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -20,6 +20,8 @@
 #                                 `toggle` (issue 12: effect pad hits, cold against built ahead)
 #                                 `loops` (issues 13 and 12: all scenes twice, the show at 8K, compiles against `prepare-rev`)
 #                                 `ssaa` (issue 13: the show at 7680x4320 against show_ssaa / show_ssaa_exact at 4K)
+#                                 `wg` (issue 13: work-group shapes against 8x8, interleaved; character's effects at 4K)
+#                                 `launch` (issue 12: second launch with the driver's disk cache on, program cache on/off)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -211,6 +213,40 @@ case "${1:-}" in
     # run (its 7680x4320 rows of show_ssaa* are 16 samples a 4K pixel, there only to interleave).
     timeout 300 bash "$0" remote bench --scenes $all --sizes 3840x2160 7680x4320 --tests show show_ssaa show_ssaa_exact \
       --paths compute --frames 8 --warmup 3 --markdown "$out/ssaa.md" --csv "$out/ssaa.csv" > "$out/ssaa.txt" 2>&1 || true
+    fi
+    if [ "$part" = wg ]; then
+    # Issue 13: the compute path's work-group shape (main_comp.glsl WORKGROUP_X/Y, 8x8 by default),
+    # scene copies that define another shape (NAME_wgXxY), one interleaved run at 1080p and 4K;
+    # then where character's 4K frame goes now (`bench effects`).
+    wg="$(mktemp -d)"; cp -r shaders presets mappings "$wg/"; sc=""
+    for s in ${WG_SCENES:-character field150 mandelbulb}; do
+      sc="$sc $s"
+      for v in ${WG_SHAPES:-8x4 16x4 16x8 16x16}; do
+        sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_wg$v\"/" -e "/^}\*\//a #define WORKGROUP_X ${v%x*}\n#define WORKGROUP_Y ${v#*x}" \
+          "shaders/scenes/$s.glsl" > "$wg/shaders/scenes/${s}_wg$v.glsl"
+        sc="$sc ${s}_wg$v"
+      done
+    done
+    SDFVJ_ROOT_OVERRIDE="$wg" timeout 200 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 15 --warmup 3 --markdown "$out/wg.md" --csv "$out/wg.csv" > "$out/wg.txt" 2>&1 || true
+    rm -rf "$wg"
+    timeout 100 bash "$0" remote bench effects --scene character --size 3840x2160 --path compute \
+      --csv "$out/effects_character_4k.csv" > "$out/effects_character_4k.txt" 2>&1 || true
+    fi
+    if [ "$part" = launch ]; then
+    # Issue 12: a second launch as a user has it, the driver's own disk cache on (in a folder kept
+    # between the two launches) with and without sdfvj's program cache; first launch into empty caches.
+    for s in midi character; do
+      for pc in on off; do
+        rm -rf /tmp/sdfvj-launch; mkdir -p /tmp/sdfvj-launch/nv
+        flag=""; [ $pc = off ] && flag="--no-program-cache"
+        for launch in first second third; do
+          XDG_CACHE_HOME=/tmp/sdfvj-launch __GL_SHADER_DISK_CACHE=1 __GL_SHADER_DISK_CACHE_PATH=/tmp/sdfvj-launch/nv \
+            __GL_SHADER_DISK_CACHE_SKIP_CLEANUP=1 timeout 60 bash "$0" remote bench reload --scene $s --size 1920x1080 \
+            --path compute --first-frame --driver-cache warm $flag > "$out/launch_${s}_pc${pc}_$launch.txt" 2>&1 || true
+        done
+      done
+    done
     fi
     if [ "$part" = loops ]; then
     # Session 10: the frame tables after one copy of map() per loop (every scene at 1080p and 4K,

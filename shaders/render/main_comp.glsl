@@ -1,5 +1,5 @@
 // main_comp.glsl - compute-shader entry point (GLSL only): one invocation per pixel in
-// 8x8 groups, dispatch ceil(w/8) x ceil(h/8); writes image unit 0 (rgba8). Row 0 of the
+// 8x8 groups (WORKGROUP_X/Y), dispatch ceil(w/8) x ceil(h/8); writes image unit 0 (rgba8). Row 0 of the
 // image is the bottom row, as with the fragment path (fragCoord has the same meaning).
 // DEBUG_VIEW 4 and 5 (accuracy bench, NaN scans) write an rgba32f image instead.
 //
@@ -12,7 +12,15 @@
 #ifndef CONE_PREPASS
 #define CONE_PREPASS 1
 #endif
-layout(local_size_x = 8, local_size_y = 8) in;
+// The work-group size: 8x8 unless the scene defines WORKGROUP_X / WORKGROUP_Y (FrameRenderer reads
+// it back from the program and sizes both dispatches by it).
+#ifndef WORKGROUP_X
+#define WORKGROUP_X 8
+#endif
+#ifndef WORKGROUP_Y
+#define WORKGROUP_Y 8
+#endif
+layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y) in;
 #if DEBUG_VIEW >= 4
 layout(rgba32f, binding = 0) uniform writeonly image2D u_output;
 #else

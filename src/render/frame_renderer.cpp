@@ -116,14 +116,15 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     if (p.Path() == RenderPath::Compute) {
         glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatTarget_ ? GL_RGBA32F : GL_RGBA8);
         glBindImageTexture(1, coneTexture_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-        if (q.conePrepass) {   // one invocation per 8x8 tile, in 8x8 groups
+        const GLuint gx = (GLuint)std::max(p.GroupX(), 1), gy = (GLuint)std::max(p.GroupY(), 1);
+        if (q.conePrepass) {   // one invocation per 8x8 tile, in the program's groups
             p.Set("u_conePass", 1.0f);
             const GLuint tilesX = (GLuint)(width_ + kConeTile - 1) / kConeTile, tilesY = (GLuint)(height_ + kConeTile - 1) / kConeTile;
-            glDispatchCompute((tilesX + 7) / 8, (tilesY + 7) / 8, 1);
+            glDispatchCompute((tilesX + gx - 1) / gx, (tilesY + gy - 1) / gy, 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
         p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
-        glDispatchCompute((GLuint)(width_ + 7) / 8, (GLuint)(height_ + 7) / 8, 1);
+        glDispatchCompute(((GLuint)width_ + gx - 1) / gx, ((GLuint)height_ + gy - 1) / gy, 1);
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_);

@@ -43,6 +43,9 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const
     origin_ = origin;
     literals_ = src.literals;
     uniforms_.clear();
+    group_[0] = group_[1] = 8;
+    group_[2] = 1;
+    if (path == RenderPath::Compute) glGetProgramiv(id, GL_COMPUTE_WORK_GROUP_SIZE, group_);
     GLint count = 0;
     glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
     for (GLint i = 0; i < count; ++i) {

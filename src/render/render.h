@@ -105,6 +105,10 @@ public:
     bool IsValid() const { return id_ != 0; }
     unsigned Id() const { return id_; }
     RenderPath Path() const { return path_; }
+    // A compute program's work-group size (main_comp.glsl's WORKGROUP_X/Y; 8x8 unless a scene
+    // defines them): FrameRenderer sizes its dispatches from it.
+    int GroupX() const { return group_[0]; }
+    int GroupY() const { return group_[1]; }
     const ShaderSource& Source() const { return source_; }
     // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
     void Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin = {});
@@ -128,6 +132,7 @@ private:
     struct Slot { int location; unsigned type; };
     unsigned id_ = 0;
     RenderPath path_ = RenderPath::Fragment;
+    int group_[3] = {8, 8, 1};
     ShaderSource source_;
     ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;

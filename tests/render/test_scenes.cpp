@@ -7,6 +7,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "gl_fixture.h"
 
@@ -144,6 +146,45 @@ TEST_CASE("render: a scene parameter changes the image", "[render]") {
             Image lo = RenderScene("midi", none, RenderPath::Fragment, 96, 72, 1.0, {{d.name, d.minValue}});
             Image hi = RenderScene("midi", none, RenderPath::Fragment, 96, 72, 1.0, {{d.name, d.maxValue}});
             CHECK(CompareImages(lo, hi, 8).fractionOver > 0.01);
+        }
+    }
+}
+
+// The compute path's work-group size is the program's (main_comp.glsl WORKGROUP_X/Y, read back
+// with GL_COMPUTE_WORK_GROUP_SIZE): a scene that defines another shape covers every pixel of a
+// frame whose size no shape divides, with and without the cone pre-pass, and draws the same
+// bytes as 8x8 (each pixel runs the same code). With the dispatch still sized for 8x8 groups, a
+// 16x4 group leaves a band of rows unwritten, a 4x16 one columns.
+TEST_CASE("render: the compute path dispatches by the program's work-group size", "[render]") {
+    const fs::path dir = fs::path(SDFVJ_TEST_OUTPUT_DIR) / "workgroup";
+    fs::create_directories(dir);
+    SceneInfo info;
+    std::string error;
+    REQUIRE(FindScene("midi", &info, &error));
+    std::ifstream in(info.path);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string original = text.str();
+    const size_t header = original.find("}*/");
+    REQUIRE(header != std::string::npos);
+    EffectSet own = info.effects;
+    for (const char* shape : {"16x4", "4x16", "32x2"}) {
+        SECTION(shape) {
+            const std::string s = shape;
+            const std::string x = s.substr(0, s.find('x')), y = s.substr(s.find('x') + 1);
+            const fs::path file = dir / ("midi_wg" + s + ".glsl");
+            std::ofstream(file) << original.substr(0, header + 3) << "\n#define WORKGROUP_X " << x
+                                << "\n#define WORKGROUP_Y " << y << original.substr(header + 3);
+            for (bool cone : {true, false}) {
+                Quality q;
+                q.conePrepass = cone;
+                Image a = RenderScene("midi", own, RenderPath::Compute, 45, 27, 1.0, {}, q);
+                Image b = RenderScene(file.string(), own, RenderPath::Compute, 45, 27, 1.0, {}, q);
+                REQUIRE(a.rgba.size() == b.rgba.size());
+                ImageDiff d = CompareImages(a, b, 0);
+                INFO("cone pre-pass " << cone << ": " << d.fractionOver * 100 << " % of pixels differ, by up to " << d.maxAbs);
+                CHECK(a.rgba == b.rgba);
+            }
         }
     }
 }
