@@ -38,6 +38,13 @@ void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
     cmd->add_flag("--no-cone-prepass", [s](int64_t) { s->quality.conePrepass = false; },
                   "compute path: march every primary ray from the eye, without the 8x8-tile cone pre-pass "
                   "that starts it where its tile's cone met a surface (same image; for comparison)");
+    cmd->add_option_function<std::string>(
+           "--shared-visibility",
+           [s](const std::string& v) { s->quality.shareVisibility = v == "on" ? 1 : v == "off" ? 0 : -1; },
+           "compute path: on traces shadows and AO from one pixel of each 2x2 quad and lets the quad's other "
+           "pixels on the same surface interpolate them; off traces them from every pixel; auto (default) is on "
+           "where the GPU is not a software renderer")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
 }
 
 }  // namespace
