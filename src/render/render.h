@@ -55,10 +55,9 @@ struct Quality {
     // starts where its tile's cone met a surface (render.glsl coneStart; docs/performance.md).
     bool conePrepass = true;
     // Compute path: shadows and AO traced from one pixel of each 2x2 quad and interpolated by the
-    // others on the same surface (main_comp.glsl; docs/performance.md). 1 on, 0 every pixel its
-    // own, -1 on where the GPU is hardware (llvmpipe runs the group's barriers slower than the
-    // work they save: docs/performance.md).
-    int shareVisibility = -1;
+    // others on the same surface (main_comp.glsl; docs/performance.md); false: every pixel its own.
+    // Only where the program compiled it in (ComputeSharedVisibility(): not on llvmpipe).
+    bool shareVisibility = true;
 };
 
 // Everything a frame sets besides the program: clock, camera, light, quality, scene parameters.

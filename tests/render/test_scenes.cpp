@@ -66,7 +66,7 @@ TEST_CASE("render: fragment and compute paths give the same image", "[render]") 
             EffectSet full = SeedLightingTests()[0].effects;
             Quality fromEye, cone;   // every pixel its own shadows and AO, as the fragment path
             fromEye.conePrepass = false;
-            fromEye.shareVisibility = cone.shareVisibility = 0;
+            fromEye.shareVisibility = cone.shareVisibility = false;
             Image frag = RenderScene(scene, full, RenderPath::Fragment, 64, 48);
             Image comp = RenderScene(scene, full, RenderPath::Compute, 64, 48, 1.0, {}, fromEye);
             ImageDiff d = CompareImages(frag, comp, 2);
@@ -171,6 +171,10 @@ TEST_CASE("render: the compute path dispatches by the program's work-group size"
     const size_t header = original.find("}*/");
     REQUIRE(header != std::string::npos);
     EffectSet own = info.effects;
+    RequireGl();
+    const bool compiled = ComputeSharedVisibility();
+    SetComputeSharedVisibility(true);   // compiled in, as on a GPU (llvmpipe leaves it out)
+    struct Restore { bool was; ~Restore() { SetComputeSharedVisibility(was); } } restore{compiled};
     for (const char* shape : {"16x4", "4x16", "32x2"}) {
         SECTION(shape) {
             const std::string s = shape;
