@@ -10,7 +10,8 @@
 // CONE_PREPASS 0 (the quick tier of a tiered compile, QuickTierText) leaves coneStart out of the
 // program: one map() call site less to compile; its tiles then start at 0, from the eye.
 //
-// Shared visibility (u_shareVisibility 1, Quality::shareVisibility): shadows and AO are traced
+// Shared visibility (SHARED_VISIBILITY 1: compiled in where the GPU is hardware; u_shareVisibility 1,
+// Quality::shareVisibility, turns the sharing on; 0 has every pixel trace its own in the same code): shadows and AO are traced
 // from one pixel of each 2x2 quad of the group (its even x, even y corner, and the group's last
 // column and row) and the other pixels interpolate their representatives' (shadow, occlusion) bilinearly, each representative
 // counted only where it lies on the pixel's own surface (normals within 18 degrees, within 1 % of
@@ -93,7 +94,7 @@ vec4 renderShared(ivec2 pixel, bool inside, float tStart) {
     vec4 w = vec4(0.0);
     bool own = false;
     if (me.w >= 0.0) {
-        own = r00 == li;
+        own = u_shareVisibility == 0 || r00 == li;
         if (!own) {
             w = vec4(standsFor(me, n, s_point[r00], s_normal[r00]), standsFor(me, n, s_point[r10], s_normal[r10]),
                      standsFor(me, n, s_point[r01], s_normal[r01]), standsFor(me, n, s_point[r11], s_normal[r11]));
@@ -137,7 +138,11 @@ vec4 renderShared(ivec2 pixel, bool inside, float tStart) {
                             : (w.x * s_visibility[r00] + w.y * s_visibility[r10] + w.z * s_visibility[r01] + w.w * s_visibility[r11]) /
                                   dot(w, vec4(1.0));
     }
+#if REFLECTIONS == 0
+    return vec4(shadeRay(u_camPos, rd, h, n, vis), 1.0);   // traceRay's loop would be a second copy of it all
+#else
     return traceRay(u_camPos, rd, 0.0, h, true, n, vis);
+#endif
 }
 #endif
 
@@ -163,12 +168,13 @@ void main() {
     vec2 fragCoord = vec2(gl_GlobalInvocationID.xy) + 0.5;
     float tStart = inside && u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
 #if USE_SHARED_VISIBILITY
-    if (u_shareVisibility != 0) {   // uniform: the whole group takes this branch and its barriers
-        vec4 c = renderShared(pixel, inside, tStart);
-        if (inside) imageStore(u_output, pixel, pixelColor(displayColor(c.rgb), fragCoord));
-        return;
-    }
-#endif
+    // Every invocation of the group runs it (its barriers); u_shareVisibility 0 makes every pixel
+    // trace its own. No second path: each map() call site is code the driver compiles and the
+    // GPU's instruction cache holds.
+    vec4 c = renderShared(pixel, inside, tStart);
+    if (inside) imageStore(u_output, pixel, pixelColor(displayColor(c.rgb), fragCoord));
+#else
     if (!inside) return;
     imageStore(u_output, pixel, renderPixel(fragCoord, tStart));
+#endif
 }
