@@ -237,6 +237,14 @@ case "${1:-}" in
       --sweep tiny --frames 10 --warmup 3 --csv "$out/accuracy_vis.csv" > "$out/accuracy_vis.txt" 2>&1 || true
     timeout 100 bash "$0" remote bench effects --scene character --size 3840x2160 --path compute \
       --csv "$out/effects_character_4k.csv" > "$out/effects_character_4k.txt" 2>&1 || true
+    # The frames to look at: character and field150 at 1080p, shared and every pixel its own.
+    for s in character field150; do
+      for v in shared own; do
+        flag=""; [ $v = own ] && flag="--no-shared-visibility"
+        timeout 60 bash "$0" remote render --scene $s --size 1920x1080 --path compute --quiet $flag --out "$out/frames_${s}_$v" \
+          > /dev/null 2>&1 || true
+      done
+    done
     fi
     if [ "$part" = launch ]; then
     # Issue 12: a second launch as a user has it, the driver's own disk cache on (in a folder kept
