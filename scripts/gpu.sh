@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|vis|launch]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -20,7 +20,7 @@
 #                                 `toggle` (issue 12: effect pad hits, cold against built ahead)
 #                                 `loops` (issues 13 and 12: all scenes twice, the show at 8K, compiles against `prepare-rev`)
 #                                 `ssaa` (issue 13: the show at 7680x4320 against show_ssaa / show_ssaa_exact at 4K)
-#                                 `vis` (issue 13: shared visibility against every pixel's own, 8x8 and 16x16 groups)
+#                                 `wg` (issue 13: work-group shapes, each scene's own against copies, interleaved)
 #                                 `launch` (issue 12: second launch with the driver's disk cache on, program cache on/off)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
@@ -214,37 +214,26 @@ case "${1:-}" in
     timeout 300 bash "$0" remote bench --scenes $all --sizes 3840x2160 7680x4320 --tests show show_ssaa show_ssaa_exact \
       --paths compute --frames 8 --warmup 3 --markdown "$out/ssaa.md" --csv "$out/ssaa.csv" > "$out/ssaa.txt" 2>&1 || true
     fi
-    if [ "$part" = vis ]; then
-    # Issue 13: shared visibility (main_comp.glsl: shadows and AO from one pixel of each 2x2 quad)
-    # against every pixel its own (NAME_own: SHARED_VISIBILITY 0), each in 8x8 and 16x16 groups
-    # (NAME_wg16, NAME_own_wg16), one interleaved run at 1080p and 4K, then the show lighting at
-    # 7680x4320; the accuracy sweep's `visibility` row; where character's 4K frame goes now.
-    vis="$(mktemp -d)"; cp -r shaders presets mappings "$vis/"; sc=""; show=""
-    mk() { local s=$1 suf=$2; shift 2; local ins=""; for d in "$@"; do ins="$ins\n#define $d"; done
-      sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$suf\"/" -e "/^}\*\//a ${ins#\\n}" "shaders/scenes/$s.glsl" \
-        > "$vis/shaders/scenes/${s}_$suf.glsl"; }
-    for s in ${VIS_SCENES:-$all}; do
-      mk $s own "SHARED_VISIBILITY 0"; mk $s wg16 "WORKGROUP_X 16" "WORKGROUP_Y 16"
-      mk $s own_wg16 "SHARED_VISIBILITY 0" "WORKGROUP_X 16" "WORKGROUP_Y 16"
-      sc="$sc $s ${s}_own ${s}_wg16 ${s}_own_wg16"; show="$show $s ${s}_own ${s}_wg16"
-    done
-    SDFVJ_ROOT_OVERRIDE="$vis" timeout 240 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
-      --paths compute --frames 12 --warmup 3 --markdown "$out/vis.md" --csv "$out/vis.csv" > "$out/vis.txt" 2>&1 || true
-    SDFVJ_ROOT_OVERRIDE="$vis" timeout 150 bash "$0" remote bench --scenes $show --sizes 7680x4320 --tests show \
-      --paths compute --frames 6 --warmup 2 --markdown "$out/vis_show.md" --csv "$out/vis_show.csv" > "$out/vis_show.txt" 2>&1 || true
-    rm -rf "$vis"
-    timeout 150 bash "$0" remote bench accuracy --scene character,field150 --size 1920x1080 --ref-size 960x540 --path compute \
-      --sweep tiny --frames 10 --warmup 3 --csv "$out/accuracy_vis.csv" > "$out/accuracy_vis.txt" 2>&1 || true
-    timeout 100 bash "$0" remote bench effects --scene character --size 3840x2160 --path compute \
-      --csv "$out/effects_character_4k.csv" > "$out/effects_character_4k.txt" 2>&1 || true
-    # The frames to look at: character and field150 at 1080p, shared and every pixel its own.
-    for s in character field150; do
-      for v in shared own; do
-        flag=""; [ $v = own ] && flag="--no-shared-visibility"
-        timeout 60 bash "$0" remote render --scene $s --size 1920x1080 --path compute --quiet $flag --out "$out/frames_${s}_$v" \
-          > /dev/null 2>&1 || true
+    if [ "$part" = wg ]; then
+    # Issue 13: the compute path's work-group shape (main_comp.glsl WORKGROUP_X/Y, 8x8 unless the
+    # scene declares another), scene copies that define another shape (NAME_wgXxY), one interleaved
+    # run at 1080p and 4K, then the show lighting at 7680x4320 for the scenes given in $WG_SHOW.
+    wg="$(mktemp -d)"; cp -r shaders presets mappings "$wg/"; sc=""; show=""
+    for s in ${WG_SCENES:-$all}; do
+      sc="$sc $s"
+      case " ${WG_SHOW:-} " in *" $s "*) show="$show $s" ;; esac
+      for v in ${WG_SHAPES:-8x8 8x4 16x8 8x16 16x16}; do
+        sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_wg$v\"/" -e "/^}\*\//a #define WORKGROUP_X ${v%x*}\n#define WORKGROUP_Y ${v#*x}" \
+          "shaders/scenes/$s.glsl" > "$wg/shaders/scenes/${s}_wg$v.glsl"
+        sc="$sc ${s}_wg$v"
+        case " ${WG_SHOW:-} " in *" $s "*) show="$show ${s}_wg$v" ;; esac
       done
     done
+    SDFVJ_ROOT_OVERRIDE="$wg" timeout 300 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 12 --warmup 3 --markdown "$out/wg.md" --csv "$out/wg.csv" > "$out/wg.txt" 2>&1 || true
+    [ -z "$show" ] || SDFVJ_ROOT_OVERRIDE="$wg" timeout 200 bash "$0" remote bench --scenes $show --sizes 7680x4320 --tests show \
+      --paths compute --frames 6 --warmup 2 --markdown "$out/wg_show.md" --csv "$out/wg_show.csv" > "$out/wg_show.txt" 2>&1 || true
+    rm -rf "$wg"
     fi
     if [ "$part" = launch ]; then
     # Issue 12: a second launch as a user has it, the driver's own disk cache on (in a folder kept

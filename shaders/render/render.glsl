@@ -382,10 +382,10 @@ vec3 background(vec3 rd) {
 #endif
 }
 
-// What a surface point sees of the light and of its surroundings: (shadow, occlusion), each
-// 1 = open. The compute path may share it between the pixels of a 2x2 quad (main_comp.glsl).
-vec2 surfaceVisibility(vec3 p, vec3 n, float t) {
+// Direct light plus ambient at a surface point (linear radiance).
+vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
     vec3 l = u_lightDir;
+    vec3 v = -rd;
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
     // Every direct term (Lambert, Blinn-Phong, Cook-Torrance) carries max(n.l, 0), so a surface
@@ -405,15 +405,6 @@ vec2 surfaceVisibility(vec3 p, vec3 n, float t) {
 #if AO
     if ((u_effectsOff & EFFECT_OFF_AO) == 0) occlusion = ambientOcclusion(p, n, u_aoSamples);
 #endif
-    return vec2(shadow, occlusion);
-}
-
-// Direct light plus ambient at a surface point (linear radiance), with its visibility.
-vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, vec2 visibility) {
-    vec3 l = u_lightDir;
-    vec3 v = -rd;
-    float shadow = visibility.x;
-    float occlusion = visibility.y;
 #if PBR
     vec3 col = cookTorrance(n, v, l, albedo, u_metalness, u_roughness) * u_lightColor * (PI * shadow);
     col += ambientLight(n) * albedo * (1.0f - 0.8f * u_metalness) * occlusion;
@@ -427,12 +418,10 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, vec2 visibility
     return col;
 }
 
-// Shaded colour of one marched ray, with fog; `visibility` (shadow, occlusion) when given
-// (x >= 0), else its own.
-vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n, vec2 visibility) {
+// Shaded colour of one marched ray, with fog.
+vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n) {
     if (!h.hit) return background(rd);
-    vec3 p = ro + rd * h.t;
-    vec3 col = shadeSurface(p, n, rd, h.albedo, h.t, visibility.x >= 0.0f ? visibility : surfaceVisibility(p, n, h.t));
+    vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t);
 #if FOG
     if ((u_effectsOff & EFFECT_OFF_FOG) == 0) col = applyFog(col, h.t, background(rd), 0.03f);
 #endif
@@ -450,19 +439,16 @@ float ditherNoise(vec2 fragCoord) {
 // march, the normal and the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the
 // cost per map() call, and it doubled what the driver compiles); the trip count reads a uniform, so
 // it is not unrolled. The primary ray is marched from tStart (the compute path's cone pre-pass; 0
-// from the eye), or its hit is `given` (supersample.glsl marches a pixel's samples first), with
-// its normal when firstN is not zero and its visibility when firstVis.x >= 0 (main_comp.glsl's
-// shared visibility). Returns linear radiance (or a DEBUG_VIEW's value).
-vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given, vec3 firstN, vec2 firstVis) {
+// from the eye), or its hit is `given` (supersample.glsl marches a pixel's samples first).
+// Returns linear radiance (or a DEBUG_VIEW's value).
+vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 col = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     for (int bounce = 0; bounce <= bounces; bounce++) {
         Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f);
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
-        bool givenN = bounce == 0 && given && dot(firstN, firstN) > 0.0f;
-        if (givenN) n = firstN;
-        else if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
+        if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
 #if DEBUG_VIEW == 1
         return vec4(heatmap(h.steps / max(float(u_maxSteps), 1.0f)), 1.0f);
 #elif DEBUG_VIEW == 2
@@ -480,7 +466,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given, vec3 firstN
         vec2 oct = octEncode(n);
         return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
 #endif
-        col += throughput * shadeRay(ro, rd, h, n, bounce == 0 ? firstVis : vec2(-1.0f));
+        col += throughput * shadeRay(ro, rd, h, n);
         if (!h.hit || bounce == bounces) break;
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));
@@ -499,7 +485,7 @@ vec4 pixelColor(vec3 display, vec2 fragCoord) { return vec4(display + vec3(dithe
 vec4 renderFrom(vec2 fragCoord, float tStart) {
     callSceneSetup();
     Hit none = Hit(0.0f, 0.0f, false, vec3(0.0f));
-    vec4 c = traceRay(u_camPos, cameraRay(fragCoord), tStart, none, false, vec3(0.0f), vec2(-1.0f));
+    vec4 c = traceRay(u_camPos, cameraRay(fragCoord), tStart, none, false);
 #if DEBUG_VIEW
     return c;
 #else

@@ -54,7 +54,7 @@ vec4 renderSupersampled(vec2 fragCoord, float tStart) {
     }
     for (int lead = SDF_LOOP_ZERO; lead < 4; lead++) {
         if ((shaded & (1 << lead)) != 0) continue;
-        vec4 c = traceRay(u_camPos, rds[lead], 0.0, hits[lead], true, vec3(0.0), vec2(-1.0));
+        vec4 c = traceRay(u_camPos, rds[lead], 0.0, hits[lead], true);
         vec3 display = displayColor(c.rgb);
         for (int s = lead; s < 4; s++)
             if ((shaded & (1 << s)) == 0 && (s == lead || oneFlat || (SUPERSAMPLE == 1 && !hits[lead].hit && !hits[s].hit))) {

@@ -38,7 +38,6 @@ std::vector<Setting> SweepSettings(const std::string& which) {
     plain.naiveStep = true;
     plain.bounds = false;
     plain.q.conePrepass = false;
-    plain.q.shareVisibility = false;
     out.push_back(plain);
     // What the scene's bounding volume buys: the defaults marching the whole field everywhere.
     Setting unbounded = Make("bounds", "no bounding volume");
@@ -48,10 +47,6 @@ std::vector<Setting> SweepSettings(const std::string& which) {
     Setting noCone = Make("cone", "no cone pre-pass");
     noCone.q.conePrepass = false;
     out.push_back(noCone);
-    // What sharing shadows and AO within 2x2 quads costs: the defaults with every pixel its own.
-    Setting ownVisibility = Make("visibility", "no shared visibility");
-    ownVisibility.q.shareVisibility = false;
-    out.push_back(ownVisibility);
     if (which == "tiny") {
         Setting s = Make("steps", "steps=32");
         s.q.maxSteps = 32;
@@ -225,7 +220,6 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
                 // everything else at the defaults; geometric truth is the CPU reference's job.
                 in.quality = Quality{};
                 in.quality.conePrepass = false;   // every ray from the eye, as a plain raymarcher
-                in.quality.shareVisibility = false;   // every pixel's own shadow and AO
                 in.quality.maxSteps = 4096;
                 in.quality.shadowSteps = 1024;
                 in.quality.shadowK = look.shadowK;

@@ -66,7 +66,6 @@ public:
         glfwMakeContextCurrent(window_);
         glfwSwapInterval(1);
         std::fprintf(stderr, "GL: %s, %s\n", (const char*)glGetString(GL_RENDERER), (const char*)glGetString(GL_VERSION));
-        SetComputeSharedVisibility(!IsSoftwareRenderer());
         IMGUI_CHECKVERSION();
         ImGui::CreateContext();
         ImGui::GetIO().IniFilename = nullptr;

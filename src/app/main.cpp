@@ -38,10 +38,6 @@ void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
     cmd->add_flag("--no-cone-prepass", [s](int64_t) { s->quality.conePrepass = false; },
                   "compute path: march every primary ray from the eye, without the 8x8-tile cone pre-pass "
                   "that starts it where its tile's cone met a surface (same image; for comparison)");
-    cmd->add_flag("--no-shared-visibility", [s](int64_t) { s->quality.shareVisibility = false; },
-                  "compute path: trace shadows and AO from every pixel, not from one pixel of each 2x2 quad "
-                  "interpolated by the quad's other pixels on the same surface (for comparison; sharing is "
-                  "compiled in where the GPU is hardware, SDFVJ_SHARED_VISIBILITY=0/1 to force)");
 }
 
 }  // namespace

@@ -124,7 +124,6 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
         p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
-        p.Set("u_shareVisibility", q.shareVisibility ? 1.0f : 0.0f);
         glDispatchCompute(((GLuint)width_ + gx - 1) / gx, ((GLuint)height_ + gy - 1) / gy, 1);
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {

@@ -43,7 +43,6 @@ bool HeadlessContext::Create(std::string* error) {
             context_ = ctx;
             description_ = std::string(name) + ": " + (const char*)glGetString(GL_RENDERER) + ", " +
                            (const char*)glGetString(GL_VERSION);
-            SetComputeSharedVisibility(!IsSoftwareRenderer());
             return true;
         }
         tried += std::string(tried.empty() ? "" : "; ") + name + ": " + why;

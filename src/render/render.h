@@ -54,10 +54,6 @@ struct Quality {
     // Compute path: a low-resolution pre-pass marches one cone per 8x8 tile and every primary ray
     // starts where its tile's cone met a surface (render.glsl coneStart; docs/performance.md).
     bool conePrepass = true;
-    // Compute path: shadows and AO traced from one pixel of each 2x2 quad and interpolated by the
-    // others on the same surface (main_comp.glsl; docs/performance.md); false: every pixel its own.
-    // Only where the program compiled it in (ComputeSharedVisibility(): not on llvmpipe).
-    bool shareVisibility = true;
 };
 
 // Everything a frame sets besides the program: clock, camera, light, quality, scene parameters.

@@ -2,9 +2,7 @@
 
 #include "shader/literals.h"
 
-#include <atomic>
 #include <charconv>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -129,21 +127,8 @@ std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
         "SUPERSAMPLE " + std::to_string(e.supersample),
     };
     d.push_back(path == RenderPath::Compute ? "SDFVJ_COMPUTE 1" : "SDFVJ_FRAGMENT 1");
-    if (path == RenderPath::Compute && !ComputeSharedVisibility()) d.push_back("SHARED_VISIBILITY 0");
     return d;
 }
-
-namespace {
-std::atomic<bool> g_sharedVisibility{true};
-}
-
-void SetComputeSharedVisibility(bool on) {
-    const char* force = std::getenv("SDFVJ_SHARED_VISIBILITY");
-    if (force && (std::string(force) == "0" || std::string(force) == "1")) on = std::string(force) == "1";
-    g_sharedVisibility = on;
-}
-
-bool ComputeSharedVisibility() { return g_sharedVisibility; }
 
 // After the scene: the raymarcher, the pixel entry (supersampling) and the path's main().
 static bool ExpandRenderer(const fs::path& root, RenderPath path, ShaderSource* s, std::string* error) {

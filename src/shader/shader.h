@@ -58,13 +58,6 @@ bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const Vari
 // The #defines a variant compiles with, one "NAME VALUE" per entry (also used by tests).
 std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path);
 
-// Whether compute programs compile the shared-visibility path in (main_comp.glsl; when off,
-// VariantDefines adds SHARED_VISIBILITY 0). The render module sets it when a context is made:
-// off on a software renderer, where llvmpipe runs a compute program that has barriers 70 % slower
-// even with the branch not taken (docs/performance.md). SDFVJ_SHARED_VISIBILITY=0/1 forces it.
-void SetComputeSharedVisibility(bool on);
-bool ComputeSharedVisibility();
-
 // Rewrites a driver's compile log so each message names the file and line the performer edited.
 // Understands Mesa ("0:42(5): error: ...") and NVIDIA ("0(42) : error C0000: ...") formats.
 std::string MapCompileLog(const std::string& log, const ShaderSource& src);
