@@ -27,6 +27,15 @@ vec3 limbDir(float a) { return vec3(0.0f, -cos(a), -sin(a)); }
 #define SCENE_BOUND 1
 #define SCENE_GROUND 1
 
+// The compute path's work-group (render/main_comp.glsl): 16x16, not 8x8. On the H200, against
+// 8x8, 8x4, 16x8 and 8x16 in one interleaved run: 4K full lighting 0.854 -> 0.798 ms, 1080p
+// 0.309 -> 0.298, the 7680x4320 show 5.13 -> 4.67 (the other scenes are fastest in 8x8 or within
+// 1 % of it: docs/performance.md). The same pixels in any shape. Guarded, so a copy can try another.
+#ifndef WORKGROUP_X
+#define WORKGROUP_X 16
+#define WORKGROUP_Y 16
+#endif
+
 // The floor y = 0 with its grid lines.
 vec4 mapGround(vec3 p) {
     float grid = max(smoothstep(0.46f, 0.5f, abs(fract(p.x) - 0.5f)), smoothstep(0.46f, 0.5f, abs(fract(p.z) - 0.5f)));

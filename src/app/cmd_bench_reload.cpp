@@ -176,7 +176,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     fs::create_directories(root);
     struct Cleanup { fs::path p; ~Cleanup() { std::error_code ec; fs::remove_all(p, ec); } } cleanup{root};
     const std::string cacheLine = SetDriverCaches(o.driverCache, root / "driver-cache");
-    if (o.firstFrame) return FirstFrame(o, scene, w, h, cacheLine);
+    if (o.firstFrame) {   // one launch: no saves, so nothing warmed the caches but earlier launches
+        const size_t warmed = cacheLine.find(", warmed by");
+        return FirstFrame(o, scene, w, h, warmed == std::string::npos ? cacheLine : cacheLine.substr(0, warmed) + ", kept from earlier launches");
+    }
     if (o.edit == "toggle") return RunToggleBench(o, scene, w, h, cacheLine);
 
     HeadlessContext gl;
