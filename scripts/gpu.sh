@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -22,6 +22,7 @@
 #                                 `ssaa` (issue 13: the show at 7680x4320 against show_ssaa / show_ssaa_exact at 4K)
 #                                 `wg` (issue 13: work-group shapes, each scene's own against copies, interleaved)
 #                                 `launch` (issue 12: second launch with the driver's disk cache on, program cache on/off)
+#                                 `fresh` (issue 12: reloads with the driver caches on but empty, against off)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -234,6 +235,27 @@ case "${1:-}" in
     [ -z "$show" ] || SDFVJ_ROOT_OVERRIDE="$wg" timeout 200 bash "$0" remote bench --scenes $show --sizes 7680x4320 --tests show \
       --paths compute --frames 6 --warmup 2 --markdown "$out/wg_show.md" --csv "$out/wg_show.csv" > "$out/wg_show.txt" 2>&1 || true
     rm -rf "$wg"
+    fi
+    if [ "$part" = fresh ]; then
+    # Issue 12: reloads with the drivers' disk caches on but empty at the start (`--driver-cache
+    # fresh`, the folder shared with the compile process), every save a program no cache has seen:
+    # does the compile process's priming use leave NVIDIA's finished code where the show finds it?
+    # (Session 12: no: the first draw of the loaded binary still took 175-245 ms.) Then the compile
+    # server's diagnosis switches: a new context after each job (SDFVJ_SERVER_RECYCLE), no priming
+    # use before the binary is read (SDFVJ_SERVER_NO_PRIME), both.
+    if [ "${FRESH_BASE:-1}" = 1 ]; then
+    for s in midi character; do
+      timeout 150 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process,driver \
+        --driver-cache fresh --rounds 3 > "$out/reload_${s}_fresh.txt" 2>&1 || true
+      timeout 150 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process \
+        --driver-cache off --rounds 3 > "$out/reload_${s}_off.txt" 2>&1 || true
+    done
+    fi
+    for v in recycle noprime both; do
+      r=0; n=0; [ $v != noprime ] && r=1; [ $v != recycle ] && n=1
+      SDFVJ_SERVER_RECYCLE=$r SDFVJ_SERVER_NO_PRIME=$n timeout 100 bash "$0" remote bench reload --scene midi \
+        --size 1920x1080 --path compute --modes process --driver-cache fresh --rounds 3 > "$out/reload_midi_fresh_$v.txt" 2>&1 || true
+    done
     fi
     if [ "$part" = launch ]; then
     # Issue 12: a second launch as a user has it, the driver's own disk cache on (in a folder kept
