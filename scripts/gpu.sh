@@ -240,21 +240,14 @@ case "${1:-}" in
     # Issue 12: reloads with the drivers' disk caches on but empty at the start (`--driver-cache
     # fresh`, the folder shared with the compile process), every save a program no cache has seen:
     # does the compile process's priming use leave NVIDIA's finished code where the show finds it?
-    # (Session 12: no: the first draw of the loaded binary still took 175-245 ms.) Then the compile
-    # server's diagnosis switches: a new context after each job (SDFVJ_SERVER_RECYCLE), no priming
-    # use before the binary is read (SDFVJ_SERVER_NO_PRIME), both.
-    if [ "${FRESH_BASE:-1}" = 1 ]; then
+    # (Session 12: no, the first draw of the loaded binary still took 175-245 ms; nor with the
+    # compile server making a new context after each job, leaving out its priming use, or running
+    # each job in a child process that exits: commit 41045dc, docs/performance.md.)
     for s in midi character; do
       timeout 150 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process,driver \
         --driver-cache fresh --rounds 3 > "$out/reload_${s}_fresh.txt" 2>&1 || true
       timeout 150 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process \
         --driver-cache off --rounds 3 > "$out/reload_${s}_off.txt" 2>&1 || true
-    done
-    fi
-    for v in recycle noprime both; do
-      r=0; n=0; [ $v != noprime ] && r=1; [ $v != recycle ] && n=1
-      SDFVJ_SERVER_RECYCLE=$r SDFVJ_SERVER_NO_PRIME=$n timeout 100 bash "$0" remote bench reload --scene midi \
-        --size 1920x1080 --path compute --modes process --driver-cache fresh --rounds 3 > "$out/reload_midi_fresh_$v.txt" 2>&1 || true
     done
     fi
     if [ "$part" = launch ]; then

@@ -12,7 +12,6 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <memory>
 
@@ -246,44 +245,6 @@ CompileProcess* SharedCompileProcess() {
     return shared.get();
 }
 
-namespace {
-// One job in the server: compile, link, prime, read the binary back, store it. Returns the reply's
-// fields after the ticket (status, format, binary, log, ms).
-std::string CompileJob(const std::string& text, RenderPath rp, bool store, bool prime) {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::string log;
-    const unsigned prog = CompileLinkHere(text, rp, &log, true);
-    uint32_t status = 1, format = 0;
-    std::vector<uint8_t> binary;
-    if (prog) {
-        if (prime) PrimeProgram(prog, rp, text.find("rgba32f") != std::string::npos);
-        GLint len = 0;
-        glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &len);
-        binary.resize(len > 0 ? (size_t)len : 0);
-        GLsizei got = 0;
-        GLenum fmt = 0;
-        if (len > 0) glGetProgramBinary(prog, len, &got, &fmt, binary.data());
-        binary.resize(got > 0 ? (size_t)got : 0);
-        format = fmt;
-        status = binary.empty() ? 2 : 0;
-        glDeleteProgram(prog);
-    }
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    // Into the disk cache before the reply (a few ms): the program is there by the time the show
-    // has it, even when the show quits right after (the server is then terminated mid-job).
-    if (store && status == 0) StoreCachedBinary(format, binary, text, rp);
-    std::string reply;
-    Put(&reply, status);
-    Put(&reply, format);
-    Put(&reply, (uint64_t)binary.size());
-    reply.append(binary.begin(), binary.end());
-    Put(&reply, (uint32_t)log.size());
-    reply += log;
-    Put(&reply, ms);
-    return reply;
-}
-}  // namespace
-
 int RunCompileServer(int in, int out) {
     // Compiles yield the CPU to the show's frames (the same machine's cores; see CompileWorker).
     setpriority(PRIO_PROCESS, 0, 10);
@@ -291,21 +252,11 @@ int RunCompileServer(int in, int out) {
     // posix_spawn passes on every one not marked close-on-exec.
     for (int fd = 3; fd < 1024; ++fd)
         if (fd != in && fd != out) ::close(fd);
-    // Diagnosis (issue 12, `gpu.sh measure fresh`): SDFVJ_SERVER_RECYCLE=1 ends the context after
-    // each job and makes a new one; SDFVJ_SERVER_NO_PRIME=1 leaves out the priming use before the
-    // binary is read; SDFVJ_SERVER_FORK=1 runs each job in a child process of its own, with its own
-    // context, that exits when done (does the driver write its finished code to its disk cache at
-    // exit, where the show's first draw would find it?).
-    const auto flag = [](const char* name) { const char* v = std::getenv(name); return v && std::string(v) == "1"; };
-    const bool recycle = flag("SDFVJ_SERVER_RECYCLE"), prime = !flag("SDFVJ_SERVER_NO_PRIME"), forked = flag("SDFVJ_SERVER_FORK");
-    std::unique_ptr<HeadlessContext> gl;
+    HeadlessContext gl;
     std::string error;
-    if (!forked) {   // a forked child makes its own: no context may cross a fork
-        gl = std::make_unique<HeadlessContext>();
-        if (!gl->Create(&error)) {
-            std::fprintf(stderr, "sdfvj compile-server: %s\n", error.c_str());
-            return 1;
-        }
+    if (!gl.Create(&error)) {
+        std::fprintf(stderr, "sdfvj compile-server: %s\n", error.c_str());
+        return 1;
     }
     for (;;) {
         uint64_t ticket = 0;
@@ -316,55 +267,37 @@ int RunCompileServer(int in, int out) {
         std::string text(length, '\0');
         if (length && !ReadAll(in, text.data(), length)) return 0;
         const RenderPath rp = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
-        std::string fields;
-        if (forked) {
-            int pipefd[2];
-            if (::pipe(pipefd) != 0) return 1;
-            const pid_t child = ::fork();
-            if (child < 0) return 1;
-            if (child == 0) {
-                ::close(pipefd[0]);
-                int rc = 1;
-                {
-                    HeadlessContext here;
-                    std::string why;
-                    if (here.Create(&why)) {
-                        std::string r = CompileJob(text, rp, store != 0, prime);
-                        size_t at = 0;
-                        while (at < r.size()) {
-                            const ssize_t w = ::write(pipefd[1], r.data() + at, r.size() - at);
-                            if (w <= 0) break;
-                            at += (size_t)w;
-                        }
-                        rc = at == r.size() ? 0 : 1;
-                    }
-                }
-                ::close(pipefd[1]);
-                std::exit(rc);   // exit, not _exit: the driver's exit handlers run
-            }
-            ::close(pipefd[1]);
-            char buf[1 << 16];
-            for (;;) {
-                const ssize_t got = ::read(pipefd[0], buf, sizeof buf);
-                if (got < 0 && errno == EINTR) continue;
-                if (got <= 0) break;
-                fields.append(buf, (size_t)got);
-            }
-            ::close(pipefd[0]);
-            int status = 0;
-            ::waitpid(child, &status, 0);
-            if (fields.empty()) return 1;   // the child failed: the show compiles in-process
-        } else {
-            fields = CompileJob(text, rp, store != 0, prime);
-            if (recycle) {
-                gl.reset();
-                gl = std::make_unique<HeadlessContext>();
-                if (!gl->Create(&error)) return 1;
-            }
+        const auto t0 = std::chrono::steady_clock::now();
+        std::string log;
+        const unsigned prog = CompileLinkHere(text, rp, &log, true);
+        uint32_t status = 1, format = 0;
+        std::vector<uint8_t> binary;
+        if (prog) {
+            PrimeProgram(prog, rp, text.find("rgba32f") != std::string::npos);
+            GLint len = 0;
+            glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &len);
+            binary.resize(len > 0 ? (size_t)len : 0);
+            GLsizei got = 0;
+            GLenum fmt = 0;
+            if (len > 0) glGetProgramBinary(prog, len, &got, &fmt, binary.data());
+            binary.resize(got > 0 ? (size_t)got : 0);
+            format = fmt;
+            status = binary.empty() ? 2 : 0;
+            glDeleteProgram(prog);
         }
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        // Into the disk cache before the reply (a few ms): the program is there by the time the show
+        // has it, even when the show quits right after (the server is then terminated mid-job).
+        if (store && status == 0) StoreCachedBinary(format, binary, text, rp);
         std::string reply;
         Put(&reply, ticket);
-        reply += fields;
+        Put(&reply, status);
+        Put(&reply, format);
+        Put(&reply, (uint64_t)binary.size());
+        reply.append(binary.begin(), binary.end());
+        Put(&reply, (uint32_t)log.size());
+        reply += log;
+        Put(&reply, ms);
         if (!WriteAll(out, reply)) return 0;
     }
 }
