@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -23,6 +23,7 @@
 #                                 `wg` (issue 13: work-group shapes, each scene's own against copies, interleaved)
 #                                 `launch` (issue 12: second launch with the driver's disk cache on, program cache on/off)
 #                                 `fresh` (issue 12: reloads with the driver caches on but empty, against off)
+#                                 `overrelax` (issue 13: over-relaxed sphere tracing against plain, every scene)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -249,6 +250,20 @@ case "${1:-}" in
       timeout 150 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process \
         --driver-cache off --rounds 3 > "$out/reload_${s}_off.txt" 2>&1 || true
     done
+    fi
+    if [ "$part" = overrelax ]; then
+    # Issue 13: over-relaxed sphere tracing (render.glsl OVERRELAX, Keinert et al. 2014) against
+    # plain sphere tracing, every scene and a copy that defines OVERRELAX 1 (NAME_or), one
+    # interleaved run at 1080p and 4K.
+    orr="$(mktemp -d)"; cp -r shaders presets mappings "$orr/"; sc=""
+    for s in $all; do
+      sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_or\"/" -e "/^}\*\//a #define OVERRELAX 1" "shaders/scenes/$s.glsl" \
+        > "$orr/shaders/scenes/${s}_or.glsl"
+      sc="$sc $s ${s}_or"
+    done
+    SDFVJ_ROOT_OVERRIDE="$orr" timeout 200 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 12 --warmup 3 --markdown "$out/overrelax.md" --csv "$out/overrelax.csv" > "$out/overrelax.txt" 2>&1 || true
+    rm -rf "$orr"
     fi
     if [ "$part" = launch ]; then
     # Issue 12: a second launch as a user has it, the driver's own disk cache on (in a folder kept

@@ -78,6 +78,12 @@
 #ifndef BOUNDS
 #define BOUNDS 1
 #endif
+#ifndef OVERRELAX
+#define OVERRELAX 0          // 1: over-relaxed sphere tracing (marchRange), steps of OVERRELAX_OMEGA
+#endif
+#ifndef OVERRELAX_OMEGA
+#define OVERRELAX_OMEGA 1.2f
+#endif
 #ifndef SCENE_BOUND
 #define SCENE_BOUND 0
 #endif
@@ -234,6 +240,28 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
 #else
     float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
     vec4 m = vec4(0.0f);
+#if OVERRELAX
+    // Over-relaxed sphere tracing (Keinert et al. 2014): steps of OVERRELAX_OMEGA times the
+    // distance; where the new point's sphere and the last one's leave a gap, step back to plain
+    // sphere tracing (the point is not tested for a hit, so no surface is skipped).
+    float omega = OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
+    for (int i = 0; i < u_maxSteps; i++) {
+        steps += 1.0f;
+        m = map(ro + rd * t);
+        float r = m.w * stepScale;
+        bool gap = omega > 1.0f && abs(r) + prevR < stepLen;
+        if (gap) {
+            stepLen -= omega * stepLen;   // back to the last point plus a plain step
+            omega = 1.0f;
+        } else {
+            if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+            stepLen = r * omega;
+            prevR = abs(r);
+        }
+        t += stepLen;
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
+    }
+#else
     for (int i = 0; i < u_maxSteps; i++) {
         steps += 1.0f;
         m = map(ro + rd * t);
@@ -241,6 +269,7 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
         t += m.w * stepScale;
         if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
     }
+#endif
     // Out of steps short of the far plane: the ray is creeping along a surface (grazing
     // silhouettes, a floor at the horizon, a heavily twisted field). Calling it a hit
     // avoids sky-coloured holes; DEBUG_VIEW 1 shows where it happens.
