@@ -20,6 +20,22 @@ namespace {
 constexpr int kW = 160, kH = 120;
 const fs::path kReferenceDir = SDFVJ_TEST_REFERENCE_DIR;
 const fs::path kActualDir = SDFVJ_TEST_OUTPUT_DIR;
+
+// A copy of a shipped scene at `file` with `defines` (lines) right after its header, where a scene
+// declares its own switches. False when the scene is unknown or has no header.
+bool WriteSceneCopy(const std::string& scene, const std::string& defines, const fs::path& file) {
+    SceneInfo info;
+    std::string error;
+    if (!FindScene(scene, &info, &error)) return false;
+    std::ifstream in(info.path);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string original = text.str();
+    const size_t header = original.find("}*/");
+    if (header == std::string::npos) return false;
+    std::ofstream(file) << original.substr(0, header + 3) << "\n" << defines << original.substr(header + 3);
+    return true;
+}
 }  // namespace
 
 TEST_CASE("render: every scene x lighting test matches its reference image", "[render]") {
@@ -161,20 +177,13 @@ TEST_CASE("render: the compute path dispatches by the program's work-group size"
     SceneInfo info;
     std::string error;
     REQUIRE(FindScene("midi", &info, &error));
-    std::ifstream in(info.path);
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string original = text.str();
-    const size_t header = original.find("}*/");
-    REQUIRE(header != std::string::npos);
     EffectSet own = info.effects;
     for (const char* shape : {"16x4", "4x16", "32x2"}) {
         SECTION(shape) {
             const std::string s = shape;
             const std::string x = s.substr(0, s.find('x')), y = s.substr(s.find('x') + 1);
             const fs::path file = dir / ("midi_wg" + s + ".glsl");
-            std::ofstream(file) << original.substr(0, header + 3) << "\n#define WORKGROUP_X " << x
-                                << "\n#define WORKGROUP_Y " << y << original.substr(header + 3);
+            REQUIRE(WriteSceneCopy("midi", "#define WORKGROUP_X " + x + "\n#define WORKGROUP_Y " + y, file));
             for (bool cone : {true, false}) {
                 Quality q;
                 q.conePrepass = cone;
@@ -202,14 +211,8 @@ TEST_CASE("render: over-relaxed sphere tracing finds the surfaces plain sphere t
             SceneInfo info;
             std::string error;
             REQUIRE(FindScene(name, &info, &error));
-            std::ifstream in(info.path);
-            std::stringstream text;
-            text << in.rdbuf();
-            const std::string original = text.str();
-            const size_t header = original.find("}*/");
-            REQUIRE(header != std::string::npos);
             const fs::path file = dir / (std::string(name) + "_or.glsl");
-            std::ofstream(file) << original.substr(0, header + 3) << "\n#define OVERRELAX 1" << original.substr(header + 3);
+            REQUIRE(WriteSceneCopy(name, "#define OVERRELAX 1", file));
             EffectSet own = info.effects;
             Image plain = RenderScene(name, own, RenderPath::Fragment, 320, 180);
             Image relaxed = RenderScene(file.string(), own, RenderPath::Fragment, 320, 180);
