@@ -48,8 +48,9 @@ int Fail(const std::string& what, int code = 2) {
 
 // Sets the drivers' disk-cache variables; must run before the first context exists (drivers read
 // them when they load). off: both off. fresh: on, in empty folders under `scratch` (cold, but
-// Mesa can hand a worker's JIT to the render context through it). warm: left as the user has them.
-std::string SetDriverCaches(const std::string& mode, const fs::path& scratch) {
+// Mesa can hand a worker's JIT to the render context through it). warm: left as the user has them
+// (warmed by the bench's untimed pass of the same saves, or for one launch by earlier launches).
+std::string SetDriverCaches(const std::string& mode, const fs::path& scratch, bool oneLaunch) {
     if (mode == "off") {
         setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
         setenv("__GL_SHADER_DISK_CACHE", "0", 1);
@@ -66,7 +67,8 @@ std::string SetDriverCaches(const std::string& mode, const fs::path& scratch) {
     const char* mesa = std::getenv("MESA_SHADER_CACHE_DISABLE");
     const char* nv = std::getenv("__GL_SHADER_DISK_CACHE");
     return std::string("as the environment has them (MESA_SHADER_CACHE_DISABLE=") + (mesa ? mesa : "unset") +
-           ", __GL_SHADER_DISK_CACHE=" + (nv ? nv : "unset") + "), warmed by an untimed pass of the same saves";
+           ", __GL_SHADER_DISK_CACHE=" + (nv ? nv : "unset") + ")" +
+           (oneLaunch ? ", kept from earlier launches" : ", warmed by an untimed pass of the same saves");
 }
 
 // Writes like an editor: a temp file renamed over the original.
@@ -175,11 +177,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     fs::remove_all(root);
     fs::create_directories(root);
     struct Cleanup { fs::path p; ~Cleanup() { std::error_code ec; fs::remove_all(p, ec); } } cleanup{root};
-    const std::string cacheLine = SetDriverCaches(o.driverCache, root / "driver-cache");
-    if (o.firstFrame) {   // one launch: no saves, so nothing warmed the caches but earlier launches
-        const size_t warmed = cacheLine.find(", warmed by");
-        return FirstFrame(o, scene, w, h, warmed == std::string::npos ? cacheLine : cacheLine.substr(0, warmed) + ", kept from earlier launches");
-    }
+    const std::string cacheLine = SetDriverCaches(o.driverCache, root / "driver-cache", o.firstFrame);
+    if (o.firstFrame) return FirstFrame(o, scene, w, h, cacheLine);
     if (o.edit == "toggle") return RunToggleBench(o, scene, w, h, cacheLine);
 
     HeadlessContext gl;

@@ -36,6 +36,7 @@
 #undef SDF_LIB_FIELD_GLSL
 #undef SDF_RENDER_UNIFORMS_GLSL
 #undef SDF_RENDER_RENDER_GLSL
+#undef SDF_RENDER_MARCH_GLSL
 // what a scene declares for render.glsl (its bounding volume) must not carry over to the next
 #undef SCENE_BOUND
 #undef SCENE_GROUND

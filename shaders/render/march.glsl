@@ -1,0 +1,162 @@
+// march.glsl - the primary ray's marcher (GLSL/C++ subset), included by render.glsl after its
+// Hit, cameraRay and hitEpsilon: marchRange (sphere tracing, over-relaxed with OVERRELAX, or a
+// fixed step), march (only the stretch inside the scene's bound, the ground met analytically) and
+// the compute path's cone pre-pass (coneStart).
+#ifndef SDF_RENDER_MARCH_GLSL
+#define SDF_RENDER_MARCH_GLSL
+
+// Marches the whole field from tmin; past tmax the ray has missed.
+Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
+    float t = tmin;
+    float steps = 0.0f;
+#if MARCH_FIXED
+    float prevT = t;
+    for (int i = 0; i < u_maxSteps; i++) {
+        steps += 1.0f;
+        float d = map(ro + rd * t).w;
+        if (d < hitEpsilon(t)) {
+            // crossed the surface: bisect between the last two samples
+            float a = prevT;
+            float b = t;
+            for (int j = 0; j < 8; j++) {
+                float m = 0.5f * (a + b);
+                if (map(ro + rd * m).w < hitEpsilon(m)) b = m; else a = m;
+            }
+            vec4 m = map(ro + rd * b);
+            return Hit(b, steps, true, vec3(m.x, m.y, m.z));
+        }
+        prevT = t;
+        t += max(u_fixedStep, 1e-4f);
+        if (t > tmax) break;
+    }
+#else
+    float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
+    vec4 m = vec4(0.0f);
+#if OVERRELAX
+    // Over-relaxed sphere tracing (Keinert et al. 2014): steps of OVERRELAX_OMEGA times the
+    // distance; where the new point's sphere and the last one's leave a gap, step back to plain
+    // sphere tracing (the point is not tested for a hit, so no surface is skipped).
+    float omega = OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
+    for (int i = 0; i < u_maxSteps; i++) {
+        steps += 1.0f;
+        m = map(ro + rd * t);
+        float r = m.w * stepScale;
+        bool gap = omega > 1.0f && abs(r) + prevR < stepLen;
+        if (gap) {
+            stepLen -= omega * stepLen;   // back to the last point plus a plain step
+            omega = 1.0f;
+        } else {
+            if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+            stepLen = r * omega;
+            prevR = abs(r);
+        }
+        t += stepLen;
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
+    }
+#else
+    for (int i = 0; i < u_maxSteps; i++) {
+        steps += 1.0f;
+        m = map(ro + rd * t);
+        if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+        t += m.w * stepScale;
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
+    }
+#endif
+    // Out of steps short of the far plane: the ray is creeping along a surface (grazing
+    // silhouettes, a floor at the horizon, a heavily twisted field). Calling it a hit
+    // avoids sky-coloured holes; DEBUG_VIEW 1 shows where it happens.
+    if (steps > 0.0f) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+#endif
+    return Hit(u_maxDist, steps, false, vec3(0.0f));
+}
+
+// The primary (and reflection) ray: with the scene's bound only the stretch inside the sphere
+// is marched, and the ground is met analytically. One marchRange call site: one inlined loop.
+Hit march(vec3 ro, vec3 rd, float tmin) {
+#if USE_BOUND
+    float tGround = 2.0f * u_maxDist + 1.0f;   // no ground in front
+    float a = tmin, b = u_maxDist;   // under the floor no shortcut: the whole field from tmin
+    if (SCENE_GROUND == 0 || ro.y >= 0.0f) {
+#if SCENE_GROUND
+        if (rd.y < 0.0f) tGround = max(-ro.y / rd.y, tmin);
+#endif
+        vec2 inside = sphereInterval(ro, rd, sceneBound());
+        a = max(inside.x, tmin);
+        b = min(min(inside.y, tGround), u_maxDist);
+#if USE_BOX
+        vec2 box = boxInterval(ro, rd, sceneBoxMin(), sceneBoxMax());
+        a = max(a, box.x);
+        b = min(b, box.y);
+#endif
+    }
+    float steps = 0.0f;
+    if (a <= b) {
+        Hit h = marchRange(ro, rd, a, b);
+        if (h.hit) return h;
+        steps = h.steps;
+    }
+#if SCENE_GROUND
+    if (tGround <= u_maxDist) {   // the march found nothing before the floor, so the floor alone is there
+        vec4 g = mapGround(ro + rd * tGround);
+        return Hit(tGround, steps + 1.0f, true, vec3(g.x, g.y, g.z));
+    }
+#endif
+    return Hit(u_maxDist, steps, false, vec3(0.0f));
+#else
+    return marchRange(ro, rd, tmin, u_maxDist);
+#endif
+}
+
+// The low-resolution pre-pass of the compute path (main_comp.glsl): how far every pixel ray of a
+// tile (pixel centres lo..hi) can start. One ray through the tile's centre marches with spheres
+// that hold the tile's whole bundle of rays: a pixel ray leaves the centre ray by at most
+// t * alpha (alpha: the widest chord between the centre direction and a corner's), so for t' in
+// [t, t + s] with s = (d - e - t alpha) / (1 + alpha) it stays within d - e of the centre ray's
+// point at t, whose nearest surface is d away: every pixel ray is at least e = hitEpsilon(t + d)
+// from any surface up to the returned distance, so no pixel march could have stopped before it.
+// d is a lower bound of the distance: map() over the scene's Lipschitz bound (and the step
+// factor where it under-relaxes), or outside the bounding volume the distance to it and to the
+// ground. Used as the primary ray's tmin; 0 where the pre-pass is off or the field is an estimate.
+float coneDistance(vec3 p, float t, float alpha, float inv) {
+#if USE_BOUND
+    float d = boundDistance(p);
+#if SCENE_GROUND
+    d = min(d, mapGround(p).w);
+#endif
+    // The cheap bound only while it still lets the cone step on; then the field itself.
+    if (d - hitEpsilon(t + max(d, 0.0f)) - t * alpha < hitEpsilon(t)) d = max(d, mapNear(p).w * inv);
+    return d;
+#else
+    return map(p).w * inv;
+#endif
+}
+
+float coneStart(vec2 lo, vec2 hi) {
+    callSceneSetup();
+    // A distance *estimate* (sceneLipschitz() > 1: the Mandelbulb's) is no bound to build on: a
+    // later start changes which filament a ray stops on (3.5 % of its pixels moved by > 8/255,
+    // same geometry error), so those scenes march from the eye.
+    if (sceneLipschitz() > 1.0f) return 0.0f;
+    vec3 ro = u_camPos;
+    vec3 rc = cameraRay(0.5f * (lo + hi));
+    float alpha = length(cameraRay(lo) - rc);
+    alpha = max(alpha, length(cameraRay(hi) - rc));
+    alpha = max(alpha, length(cameraRay(vec2(lo.x, hi.y)) - rc));
+    alpha = max(alpha, length(cameraRay(vec2(hi.x, lo.y)) - rc));
+    alpha = alpha * 1.001f + 1e-6f;   // the corners' rounding
+    float inv = min(u_stepFactor, 1.0f) / max(1.0f, sceneLipschitz());
+#if USE_GROUND
+    if (ro.y < 0.0f) return 0.0f;   // under the floor the primary march takes no shortcut either
+#endif
+    float t = 0.0f;
+    for (int i = 0; i < u_maxSteps; i++) {
+        float d = coneDistance(ro + rc * t, t, alpha, inv);
+        float s = (d - hitEpsilon(t + max(d, 0.0f)) - t * alpha) / (1.0f + alpha);
+        if (s < hitEpsilon(t)) break;   // the bundle is near a surface: the pixel rays go on alone
+        t += s;
+        if (t >= u_maxDist) return u_maxDist;
+    }
+    return t;
+}
+
+#endif
