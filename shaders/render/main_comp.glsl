@@ -3,7 +3,7 @@
 // image is the bottom row, as with the fragment path (fragCoord has the same meaning).
 // DEBUG_VIEW 4 and 5 (accuracy bench, NaN scans) write an rgba32f image instead.
 //
-// The cone pre-pass (render.glsl's coneStart; Quality::conePrepass): u_conePass 1 is a dispatch
+// The cone pre-pass (render/march.glsl's coneStart; Quality::conePrepass): u_conePass 1 is a dispatch
 // of one invocation per 8x8 tile, ceil(w/64) x ceil(h/64) groups, that writes each tile's start
 // distance into image unit 1 (r32f, ceil(w/8) x ceil(h/8)); u_conePass 2 is the frame, every
 // primary ray starting at its tile's distance; 0 is the frame from the eye, no pre-pass.

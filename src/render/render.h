@@ -52,7 +52,7 @@ struct Quality {
     int aoSamples = 5;
     float normalEps = 1e-3f;
     // Compute path: a low-resolution pre-pass marches one cone per 8x8 tile and every primary ray
-    // starts where its tile's cone met a surface (render.glsl coneStart; docs/performance.md).
+    // starts where its tile's cone met a surface (render/march.glsl coneStart; docs/performance.md).
     bool conePrepass = true;
 };
 
