@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -24,6 +24,8 @@
 #                                 `launch` (issue 12: second launch with the driver's disk cache on, program cache on/off)
 #                                 `fresh` (issue 12: reloads with the driver caches on but empty, against off)
 #                                 `overrelax` (issue 13: over-relaxed sphere tracing against plain, every scene)
+#                                 `s13` (issue 13: over-relaxation, 4x4 cone tiles, the fields' cell skip, cheaper
+#                                 reflections in the 8K show, the accuracy sweep; needs `AB_RENDER_OK=1 prepare-ab REV`)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -250,6 +252,40 @@ case "${1:-}" in
       timeout 150 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process \
         --driver-cache off --rounds 3 > "$out/reload_${s}_off.txt" 2>&1 || true
     done
+    fi
+    if [ "$part" = s13 ]; then
+    # Issue 13, session 13, one call: (1) every scene as it ships against copies (NAME_SUFFIX, each
+    # a #define after the header) at 1080p and 4K, full lighting, interleaved: _or over-relaxed
+    # sphere tracing, _ct4 the cone pre-pass in 4x4 tiles, _orct4 both, and the fields' exact cell
+    # skip against the field lib before it (.devbuild/ab from `AB_RENDER_OK=1 prepare-ab REV`:
+    # NAME_before); (2) the show lighting at 7680x4320 against cheaper reflections: _l1 no AO where
+    # a reflection lands, _l2 neither AO nor a shadow ray there, _s48 a reflection marches at most
+    # 48 steps, _l1s48 and _l2s48 both; (3) the accuracy sweep (its over-relaxed and 4x4 rows).
+    root="$(mktemp -d)"; cp -r .devbuild/ab/. "$root/"
+    variant() { local s=$1 v=$2; shift 2
+      sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$v\"/" "shaders/scenes/$s.glsl" > "$root/shaders/scenes/${s}_$v.glsl"
+      for d in "$@"; do sed -i "/^}\*\//a #define $d" "$root/shaders/scenes/${s}_$v.glsl"; done; }
+    sc=""
+    for s in $all; do
+      sc="$sc $s"; variant $s or "OVERRELAX 1"; sc="$sc ${s}_or"
+      [ $s = mandelbulb ] && continue   # a distance estimate: no cone pre-pass
+      variant $s ct4 "CONE_TILE 4"; variant $s orct4 "OVERRELAX 1" "CONE_TILE 4"; sc="$sc ${s}_ct4 ${s}_orct4"
+    done
+    for s in field50 field150; do [ -f "$root/shaders/scenes/${s}_before.glsl" ] && sc="$sc ${s}_before"; done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 230 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 12 --warmup 3 --markdown "$out/s13.md" --csv "$out/s13.csv" > "$out/s13.txt" 2>&1 || true
+    show=""
+    for s in ${S13_SHOW:-character mandelbulb field50 field150}; do
+      variant $s l1 "BOUNCE_LIGHT 1"; variant $s l2 "BOUNCE_LIGHT 2"; variant $s s48 "BOUNCE_STEPS 48"
+      variant $s l1s48 "BOUNCE_LIGHT 1" "BOUNCE_STEPS 48"; variant $s l2s48 "BOUNCE_LIGHT 2" "BOUNCE_STEPS 48"
+      show="$show $s ${s}_l1 ${s}_l2 ${s}_s48 ${s}_l1s48 ${s}_l2s48"
+    done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 170 bash "$0" remote bench --scenes $show --sizes 7680x4320 --tests show \
+      --paths compute --frames 8 --warmup 2 --markdown "$out/s13_show.md" --csv "$out/s13_show.csv" > "$out/s13_show.txt" 2>&1 || true
+    timeout 150 bash "$0" remote bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 12 \
+      --warmup 4 --out "$out/s13_accuracy" --csv "$out/s13_accuracy.csv" > "$out/s13_accuracy.txt" 2>&1 || true
+    grep -h 'drift' "$out"/s13*.txt || true
+    rm -rf "$root"
     fi
     if [ "$part" = overrelax ]; then
     # Issue 13: over-relaxed sphere tracing (render.glsl OVERRELAX, Keinert et al. 2014) against

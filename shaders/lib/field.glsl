@@ -96,13 +96,16 @@ FieldPair fieldInsert(FieldPair n, vec4 m) {
     return n;
 }
 
-// Inserts cell (i, j)'s shape at p into the pair. Skips the shape (exactly) when the cylinder
-// around it is no nearer than the pair's second, and cells outside the nx x nz grid.
-FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, float size, float wave, float phase,
-                    float spin) {
+// Inserts cell (i, j)'s shape at p into the pair. Skips cells outside the nx x nz grid, and
+// (exactly) a shape whose cylinder is no nearer than the pair's second, or at least `blend`
+// farther than its nearest: the blend of two distances k or more apart is the nearer one, colour
+// and all (sminPoly, blendWeight), and the nearest only comes closer, so the field is unchanged.
+FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, float size, float blend, float wave,
+                    float phase, float spin) {
     if (i < -0.5f || j < -0.5f || i > nx - 0.5f || j > nz - 0.5f) return n;
     vec3 q = p - vec3(i - 0.5f * (nx - 1.0f), 0.0f, j - 0.5f * (nz - 1.0f));
-    if (length(vec2(q.x, q.z)) - FIELD_RADIUS * max(size, 0.05f) >= n.next.w) return n;
+    float reach = min(n.next.w, n.near.w + max(blend, 0.0f));
+    if (length(vec2(q.x, q.z)) - FIELD_RADIUS * max(size, 0.05f) >= reach) return n;
     return fieldInsert(n, vec4(i, j, 0.0f, fieldShape(q, i, j, size, wave, phase, spin)));
 }
 
@@ -147,7 +150,7 @@ vec4 fieldMap(vec3 p, float nx, float nz, float size, float blend, float wave, f
     FieldPair n = FieldPair(vec4(0.0f, 0.0f, 0.0f, 1e9f), vec4(0.0f, 0.0f, 0.0f, 1e9f));
     // one call site in a rolled loop (SDF_LOOP_ZERO): fieldShape's code once, not four times
     for (int c = SDF_LOOP_ZERO; c < 4; c++)
-        n = fieldCell(n, p, i0 + ((c & 1) == 0 ? di : 1.0f - di), j0 + (c < 2 ? dj : 1.0f - dj), nx, nz, size, wave, phase, spin);
+        n = fieldCell(n, p, i0 + ((c & 1) == 0 ? di : 1.0f - di), j0 + (c < 2 ? dj : 1.0f - dj), nx, nz, size, blend, wave, phase, spin);
     vec4 m = fieldBlend(n, blend);
     float k = max(blend, 0.0f);
     m.w = min(m.w, max(fieldExcluded(u, v, i0, j0, nx, nz, size) - 1.25f * k, p.y - fieldTop(size, wave) - 0.25f * k));

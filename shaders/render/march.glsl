@@ -5,13 +5,13 @@
 #ifndef SDF_RENDER_MARCH_GLSL
 #define SDF_RENDER_MARCH_GLSL
 
-// Marches the whole field from tmin; past tmax the ray has missed.
-Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
+// Marches the whole field from tmin in at most maxSteps steps; past tmax the ray has missed.
+Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
     float t = tmin;
     float steps = 0.0f;
 #if MARCH_FIXED
     float prevT = t;
-    for (int i = 0; i < u_maxSteps; i++) {
+    for (int i = 0; i < maxSteps; i++) {
         steps += 1.0f;
         float d = map(ro + rd * t).w;
         if (d < hitEpsilon(t)) {
@@ -37,7 +37,7 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
     // distance; where the new point's sphere and the last one's leave a gap, step back to plain
     // sphere tracing (the point is not tested for a hit, so no surface is skipped).
     float omega = OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
-    for (int i = 0; i < u_maxSteps; i++) {
+    for (int i = 0; i < maxSteps; i++) {
         steps += 1.0f;
         m = map(ro + rd * t);
         float r = m.w * stepScale;
@@ -54,7 +54,7 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
         if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
     }
 #else
-    for (int i = 0; i < u_maxSteps; i++) {
+    for (int i = 0; i < maxSteps; i++) {
         steps += 1.0f;
         m = map(ro + rd * t);
         if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
@@ -70,9 +70,12 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) {
     return Hit(u_maxDist, steps, false, vec3(0.0f));
 }
 
+Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) { return marchRange(ro, rd, tmin, tmax, u_maxSteps); }
+
 // The primary (and reflection) ray: with the scene's bound only the stretch inside the sphere
 // is marched, and the ground is met analytically. One marchRange call site: one inlined loop.
-Hit march(vec3 ro, vec3 rd, float tmin) {
+// maxSteps: the march's step budget (traceRay gives a reflection BOUNCE_STEPS).
+Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
 #if USE_BOUND
     float tGround = 2.0f * u_maxDist + 1.0f;   // no ground in front
     float a = tmin, b = u_maxDist;   // under the floor no shortcut: the whole field from tmin
@@ -91,7 +94,7 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
     }
     float steps = 0.0f;
     if (a <= b) {
-        Hit h = marchRange(ro, rd, a, b);
+        Hit h = marchRange(ro, rd, a, b, maxSteps);
         if (h.hit) return h;
         steps = h.steps;
     }
@@ -103,9 +106,10 @@ Hit march(vec3 ro, vec3 rd, float tmin) {
 #endif
     return Hit(u_maxDist, steps, false, vec3(0.0f));
 #else
-    return marchRange(ro, rd, tmin, u_maxDist);
+    return marchRange(ro, rd, tmin, u_maxDist, maxSteps);
 #endif
 }
+Hit march(vec3 ro, vec3 rd, float tmin) { return march(ro, rd, tmin, u_maxSteps); }
 
 // The low-resolution pre-pass of the compute path (main_comp.glsl): how far every pixel ray of a
 // tile (pixel centres lo..hi) can start. One ray through the tile's centre marches with spheres

@@ -20,6 +20,9 @@
 //   MARCH_FIXED 0 sphere tracing / 1 fixed step of u_fixedStep
 //   EPS_MODE    hit threshold: 0 u_hitEps * max(1, t) / 1 fixed u_hitEps /
 //               2 u_hitEps pixel footprints (u_hitEps * t * pixel angle)
+//   BOUNCE_STEPS a reflection ray's step budget (0: u_maxSteps, as the primary ray's)
+//   BOUNCE_LIGHT what lights the surface a reflection meets: 0 as a primary hit (shadows, AO) /
+//               1 no AO / 2 neither shadow nor AO (direct light unshadowed, ambient unoccluded)
 //   BOUNDS      1 (default) use the scene's bounding volume, 0 march the whole field
 //               everywhere as a plain raymarcher does (the accuracy bench's plain row and its
 //               references)
@@ -45,6 +48,12 @@
 #ifndef SDF_RENDER_RENDER_GLSL
 #define SDF_RENDER_RENDER_GLSL
 
+#ifndef BOUNCE_STEPS
+#define BOUNCE_STEPS 0
+#endif
+#ifndef BOUNCE_LIGHT
+#define BOUNCE_LIGHT 0
+#endif
 #ifndef SHADOWS
 #define SHADOWS 2
 #endif
@@ -259,15 +268,16 @@ vec3 background(vec3 rd) {
 #endif
 }
 
-// Direct light plus ambient at a surface point (linear radiance).
-vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
+// Direct light plus ambient at a surface point (linear radiance); bounce > 0: a surface a
+// reflection met (BOUNCE_LIGHT).
+vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
     vec3 l = u_lightDir;
     vec3 v = -rd;
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
     // Every direct term (Lambert, Blinn-Phong, Cook-Torrance) carries max(n.l, 0), so a surface
     // turned away from the light needs no shadow ray: skipping it changes no pixel.
-    bool facesLight = dot(n, l) > 0.0f;
+    bool facesLight = dot(n, l) > 0.0f && (BOUNCE_LIGHT < 2 || bounce == 0);
 #if SHADOWS == 1
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, 1e6f);
     if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
@@ -280,7 +290,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
 #endif
     float occlusion = 1.0f;
 #if AO
-    if ((u_effectsOff & EFFECT_OFF_AO) == 0) occlusion = ambientOcclusion(p, n, u_aoSamples);
+    if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = ambientOcclusion(p, n, u_aoSamples);
 #endif
 #if PBR
     vec3 col = cookTorrance(n, v, l, albedo, u_metalness, u_roughness) * u_lightColor * (PI * shadow);
@@ -296,9 +306,9 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t) {
 }
 
 // Shaded colour of one marched ray, with fog.
-vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n) {
+vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n, int bounce) {
     if (!h.hit) return background(rd);
-    vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t);
+    vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t, bounce);
 #if FOG
     if ((u_effectsOff & EFFECT_OFF_FOG) == 0) col = applyFog(col, h.t, background(rd), 0.03f);
 #endif
@@ -323,7 +333,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     for (int bounce = 0; bounce <= bounces; bounce++) {
-        Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f);
+        Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f, bounce == 0 || BOUNCE_STEPS <= 0 ? u_maxSteps : min(u_maxSteps, BOUNCE_STEPS));
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
         if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
 #if DEBUG_VIEW == 1
@@ -343,7 +353,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         vec2 oct = octEncode(n);
         return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
 #endif
-        col += throughput * shadeRay(ro, rd, h, n);
+        col += throughput * shadeRay(ro, rd, h, n, bounce);
         if (!h.hit || bounce == bounces) break;
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));

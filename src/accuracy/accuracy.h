@@ -149,6 +149,7 @@ struct Setting {
     bool naiveStep = false;  // step factor multiplied back by the scene's Lipschitz bound
     bool bounds = true;      // BOUNDS: use the scene's bounding volume (render.glsl)
     std::string role;        // "default" (sdfvj's Quality{}), "plain" (seed raymarcher) or ""
+    std::vector<std::string> defines;   // extra "#define NAME VALUE" lines of this row's program
 };
 // which: "full" (every knob) or "tiny" (a handful, for the test suite).
 std::vector<Setting> SweepSettings(const std::string& which);

@@ -65,6 +65,14 @@ std::vector<Setting> SweepSettings(const std::string& which) {
         out.push_back(s);
         return out;
     }
+    // Over-relaxed sphere tracing (render/march.glsl OVERRELAX), and the cone pre-pass in 4x4 tiles
+    // (main_comp.glsl CONE_TILE; compute path): the defaults otherwise.
+    Setting relaxed = Make("overrelax", "over-relaxed sphere tracing");
+    relaxed.defines = {"OVERRELAX 1"};
+    out.push_back(relaxed);
+    Setting cone4 = Make("cone_tile", "cone tiles 4x4");
+    cone4.defines = {"CONE_TILE 4"};
+    out.push_back(cone4);
     for (int n : {16, 32, 64, 96, 128, 192, 256, 512, 1024}) {
         Setting s = Make("steps", "steps=" + std::to_string(n));
         s.q.maxSteps = n;
@@ -191,16 +199,19 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
         }
 
         std::map<std::string, std::unique_ptr<Program>> programs;
-        auto program = [&](const EffectSet& e, int epsMode, Program** out, bool raw = false, bool bounds = true) {
+        auto program = [&](const EffectSet& e, int epsMode, Program** out, bool raw = false, bool bounds = true,
+                           const std::vector<std::string>& extra = {}) {
             std::string key = DescribeEffects(e) + "|n" + std::to_string(e.normals) + "|f" + std::to_string(e.marchFixed) +
                               "|d" + std::to_string(e.debugView) + "|e" + std::to_string(epsMode) + (raw ? "|raw" : "") +
                               (bounds ? "" : "|unbounded");
+            for (const std::string& d : extra) key += "|" + d;
             auto it = programs.find(key);
             if (it == programs.end()) {
                 auto p = std::make_unique<Program>();
                 std::vector<std::string> defines = {"EPS_MODE " + std::to_string(epsMode)};
                 if (raw) defines.push_back("SCENE_GLOBAL_LIPSCHITZ 1");
                 if (!bounds) defines.push_back("BOUNDS 0");
+                defines.insert(defines.end(), extra.begin(), extra.end());
                 if (!BuildProgram(scene, e, path, defines, p.get(), error)) return false;
                 it = programs.emplace(key, std::move(p)).first;
             }
@@ -254,7 +265,7 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             e.marchFixed = st.marchFixed;
             const bool raw = st.naiveStep && hasRaw;
             Program* shaded = nullptr;
-            if (!program(e, st.epsMode, &shaded, raw, st.bounds)) return false;
+            if (!program(e, st.epsMode, &shaded, raw, st.bounds, st.defines)) return false;
             if (!colour.Resize(o.width, o.height, error)) return false;
             colour.Draw(*shaded, scene, in, false);
             Row r;
@@ -269,7 +280,7 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             EffectSet eg = e;
             eg.debugView = 4;
             Program* gp = nullptr;
-            if (!program(eg, st.epsMode, &gp, raw, st.bounds)) return false;
+            if (!program(eg, st.epsMode, &gp, raw, st.bounds, st.defines)) return false;
             if (!geom.Resize(rw, rh, error, true)) return false;
             geom.Draw(*gp, scene, in, false);
             Geometry g = DecodeGeometry(geom.ReadPixelsFloat(), rw, rh);
