@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -26,6 +26,8 @@
 #                                 `overrelax` (issue 13: over-relaxed sphere tracing against plain, every scene)
 #                                 `s13` (issue 13: over-relaxation, 4x4 cone tiles, the fields' cell skip, cheaper
 #                                 reflections in the 8K show, the accuracy sweep; needs `AB_RENDER_OK=1 prepare-ab REV`)
+#                                 `final13` (issue 13: session 13's figures as shipped: 1080p, 4K, the 8K show with
+#                                 full and direct reflections, accuracy, character's and field150's effects)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -286,6 +288,23 @@ case "${1:-}" in
       --warmup 4 --out "$out/s13_accuracy" --csv "$out/s13_accuracy.csv" > "$out/s13_accuracy.txt" 2>&1 || true
     grep -h 'drift' "$out"/s13*.txt || true
     rm -rf "$root"
+    fi
+    if [ "$part" = final13 ]; then
+    # Issue 13, session 13's figures as shipped (over-relaxation on, the fields' cell skip): every
+    # scene at 1080p and 4K with its own lighting, the 7680x4320 show with full and with direct
+    # reflections, the accuracy sweep (its plain-sphere-tracing row), character's and field150's
+    # effects at 4K.
+    timeout 100 bash "$0" remote bench --scenes $all --sizes 1920x1080 3840x2160 --tests full --paths compute \
+      --frames 20 --warmup 5 --markdown "$out/f13_frames.md" --csv "$out/f13_frames.csv" > "$out/f13_frames.txt" 2>&1 || true
+    timeout 150 bash "$0" remote bench --scenes $all --sizes 7680x4320 --tests show show_direct --paths compute \
+      --frames 8 --warmup 2 --markdown "$out/f13_show.md" --csv "$out/f13_show.csv" > "$out/f13_show.txt" 2>&1 || true
+    timeout 150 bash "$0" remote bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 12 \
+      --warmup 4 --out "$out/f13_accuracy" --csv "$out/f13_accuracy.csv" > "$out/f13_accuracy.txt" 2>&1 || true
+    for s in character field150; do
+      timeout 60 bash "$0" remote bench effects --scene $s --size 3840x2160 --path compute --csv "$out/f13_effects_$s.csv" \
+        > "$out/f13_effects_$s.txt" 2>&1 || true
+    done
+    grep -h 'drift' "$out"/f13*.txt || true
     fi
     if [ "$part" = overrelax ]; then
     # Issue 13: over-relaxed sphere tracing (render.glsl OVERRELAX, Keinert et al. 2014) against

@@ -4,10 +4,9 @@
 // DEBUG_VIEW 4 and 5 (accuracy bench, NaN scans) write an rgba32f image instead.
 //
 // The cone pre-pass (render/march.glsl's coneStart; Quality::conePrepass): u_conePass 1 is a dispatch
-// of one invocation per CONE_TILE x CONE_TILE pixel tile (8x8 unless the scene defines CONE_TILE)
-// that writes each tile's start distance into image unit 1 (r32f, at least ceil(w/CONE_TILE) x
-// ceil(h/CONE_TILE)); u_conePass 2 is the frame, every primary ray starting at its tile's
-// distance; 0 is the frame from the eye, no pre-pass.
+// of one invocation per 8x8 tile, ceil(w/64) x ceil(h/64) groups, that writes each tile's start
+// distance into image unit 1 (r32f, ceil(w/8) x ceil(h/8)); u_conePass 2 is the frame, every
+// primary ray starting at its tile's distance; 0 is the frame from the eye, no pre-pass.
 // CONE_PREPASS 0 (the quick tier of a tiered compile, QuickTierText) leaves coneStart out of the
 // program: one map() call site less to compile; its tiles then start at 0, from the eye.
 #ifndef CONE_PREPASS
@@ -29,16 +28,12 @@ layout(rgba8, binding = 0) uniform writeonly image2D u_output;
 #endif
 layout(r32f, binding = 1) uniform image2D u_coneStart;
 uniform int u_conePass;
-#ifndef CONE_TILE
-#define CONE_TILE 8
-#endif
-// Never set: FrameRenderer reads its initial value back (Program::ConeTile) to size the pre-pass.
-uniform int u_coneTile = CONE_TILE;
+const int CONE_TILE = 8;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (u_conePass == 1) {
-        ivec2 tiles = (ivec2(u_resolution) + u_coneTile - 1) / u_coneTile;
+        ivec2 tiles = (ivec2(u_resolution) + CONE_TILE - 1) / CONE_TILE;
         if (pixel.x >= tiles.x || pixel.y >= tiles.y) return;
         vec2 lo = vec2(pixel * CONE_TILE) + 0.5;
         vec2 hi = min(lo + float(CONE_TILE - 1), u_resolution - 0.5);

@@ -35,8 +35,9 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
 #if OVERRELAX
     // Over-relaxed sphere tracing (Keinert et al. 2014): steps of OVERRELAX_OMEGA times the
     // distance; where the new point's sphere and the last one's leave a gap, step back to plain
-    // sphere tracing (the point is not tested for a hit, so no surface is skipped).
-    float omega = OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
+    // sphere tracing (the point is not tested for a hit, so no surface is skipped). A distance
+    // estimate (sceneLipschitz() > 1) steps plainly from the start.
+    float omega = sceneLipschitz() > 1.0f ? 1.0f : OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
     for (int i = 0; i < maxSteps; i++) {
         steps += 1.0f;
         m = map(ro + rd * t);

@@ -25,7 +25,8 @@ void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
     cmd->add_option("--preset", s->preset, "preset JSON (presets/NAME.json): scene, parameter values, effects, mapping");
     cmd->add_option("--effects", s->effects,
                     "effects over the scene's own, comma-separated: hard_shadows, soft_shadows, improved_shadows, ao, "
-                    "specular, pbr, reflections=N, fog, fixed_step, ssaa (4 samples a pixel, each surface shaded once), ssaa_exact "
+                    "specular, pbr, reflections=N, direct_reflections (a reflection lands on a surface lit without its shadow ray or AO, "
+                    "in at most 48 steps: cheaper), fog, fixed_step, ssaa (4 samples a pixel, each surface shaded once), ssaa_exact "
                     "(each sample shaded), heatmap, "
                     "depth, normals; none clears; -ao removes");
     cmd->add_option("--normals", s->normals, "normal method: central, forward or tetrahedron");
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
     auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
     cmdBench->add_option("--scenes", bench.scenes, "scenes (default: all); NAME:literals times the literal tier of NAME (its float literals read from uniforms: what `live` shows first after a save that only retunes numbers)")->delimiter(',');
     cmdBench->add_option("--sizes", bench.sizes, "sizes")->capture_default_str()->delimiter(',');
-    cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: these four); show = soft shadows, AO, specular, PBR and one reflection bounce; show_ssaa = show with 4 samples a pixel sharing each surface's shading; show_ssaa_exact = each sample shaded")->delimiter(',');
+    cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: these four); show = soft shadows, AO, specular, PBR and one reflection bounce; show_ssaa = show with 4 samples a pixel sharing each surface's shading; show_ssaa_exact = each sample shaded; show_direct = show with direct_reflections (the reflected surface lit without its shadow ray or AO, its march at most 48 steps)")->delimiter(',');
     cmdBench->add_option("--paths", bench.paths, "render paths")->capture_default_str()->delimiter(',');
     cmdBench->add_option("--frames", bench.frames, "timed frames per cell (median)")->capture_default_str();
     cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->capture_default_str();

@@ -11,6 +11,10 @@
 
 namespace sdfvj {
 
+namespace {
+constexpr int kConeTile = 8;   // main_comp.glsl's CONE_TILE
+}
+
 FrameRenderer::~FrameRenderer() { Release(); }
 
 void FrameRenderer::Release() {
@@ -20,7 +24,6 @@ void FrameRenderer::Release() {
     if (query_) glDeleteQueries(1, &query_);
     if (coneTexture_) glDeleteTextures(1, &coneTexture_);
     fbo_ = texture_ = vao_ = query_ = coneTexture_ = 0;
-    coneTextureTile_ = 0;
 }
 
 bool FrameRenderer::Resize(int width, int height, std::string* error, bool floatTarget) {
@@ -46,6 +49,9 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
         Release();
         return false;
     }
+    glGenTextures(1, &coneTexture_);
+    glBindTexture(GL_TEXTURE_2D, coneTexture_);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (width + kConeTile - 1) / kConeTile, (height + kConeTile - 1) / kConeTile);
     glGenVertexArrays(1, &vao_);
     glGenQueries(1, &query_);
     width_ = width;
@@ -109,19 +115,11 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     glUseProgram(p.Id());
     if (p.Path() == RenderPath::Compute) {
         glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatTarget_ ? GL_RGBA32F : GL_RGBA8);
-        const int tile = std::max(p.ConeTile(), 1);
-        if (tile != coneTextureTile_) {   // one texel per tile of this program's size
-            if (coneTexture_) glDeleteTextures(1, &coneTexture_);
-            glGenTextures(1, &coneTexture_);
-            glBindTexture(GL_TEXTURE_2D, coneTexture_);
-            glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (width_ + tile - 1) / tile, (height_ + tile - 1) / tile);
-            coneTextureTile_ = tile;
-        }
         glBindImageTexture(1, coneTexture_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
         const GLuint gx = (GLuint)std::max(p.GroupX(), 1), gy = (GLuint)std::max(p.GroupY(), 1);
-        if (q.conePrepass) {   // one invocation per cone tile, in the program's groups
+        if (q.conePrepass) {   // one invocation per 8x8 tile, in the program's groups
             p.Set("u_conePass", 1.0f);
-            const GLuint tilesX = (GLuint)(width_ + tile - 1) / tile, tilesY = (GLuint)(height_ + tile - 1) / tile;
+            const GLuint tilesX = (GLuint)(width_ + kConeTile - 1) / kConeTile, tilesY = (GLuint)(height_ + kConeTile - 1) / kConeTile;
             glDispatchCompute((tilesX + gx - 1) / gx, (tilesY + gy - 1) / gy, 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }

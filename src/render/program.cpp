@@ -6,7 +6,6 @@
 #include "render/gl_stages.h"
 #include "render/program_cache.h"
 
-#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -55,15 +54,6 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const
         GLenum type = 0;
         glGetActiveUniform(id, (GLuint)i, sizeof name, nullptr, &size, &type, name);
         uniforms_[name] = Slot{glGetUniformLocation(id, name), type};
-    }
-    coneTile_ = 0;
-    if (path == RenderPath::Compute) {
-        coneTile_ = 8;
-        if (auto it = uniforms_.find("u_coneTile"); it != uniforms_.end() && it->second.location >= 0) {
-            GLint tile = 8;
-            glGetUniformiv(id, it->second.location, &tile);
-            coneTile_ = std::max((int)tile, 1);
-        }
     }
 }
 

@@ -109,9 +109,6 @@ public:
     // defines them): FrameRenderer sizes its dispatches from it.
     int GroupX() const { return group_[0]; }
     int GroupY() const { return group_[1]; }
-    // A compute program's cone pre-pass tile (main_comp.glsl's CONE_TILE, read back from the
-    // initial value of u_coneTile; 8 unless a scene defines it, 0 for a fragment program).
-    int ConeTile() const { return coneTile_; }
     const ShaderSource& Source() const { return source_; }
     // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
     void Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin = {});
@@ -136,7 +133,6 @@ private:
     unsigned id_ = 0;
     RenderPath path_ = RenderPath::Fragment;
     int group_[3] = {8, 8, 1};
-    int coneTile_ = 0;
     ShaderSource source_;
     ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;
@@ -241,8 +237,7 @@ private:
     int width_ = 0, height_ = 0;
     bool floatTarget_ = false;
     unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
-    unsigned coneTexture_ = 0;   // r32f, one texel per cone tile: the cone pre-pass's start distances
-    int coneTextureTile_ = 0;    // the tile coneTexture_ was sized for
+    unsigned coneTexture_ = 0;   // r32f, one texel per 8x8 tile: the cone pre-pass's start distances
     double lastGpuMs_ = 0.0;
 };
 

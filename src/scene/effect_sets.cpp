@@ -43,4 +43,11 @@ LightingTest ShowSupersampledLightingTest(bool exact) {
     return t;
 }
 
+LightingTest ShowDirectReflectionsLightingTest() {
+    LightingTest t = ShowLightingTest();
+    t.effects.directReflections = true;
+    t.name = "show_direct";
+    return t;
+}
+
 }  // namespace sdfvj

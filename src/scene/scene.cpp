@@ -427,6 +427,7 @@ bool ParseEffectList(const std::string& list, EffectSet* effects, std::string* e
         else if (item == "pbr") e.pbr = on;
         else if (item == "fog") e.fog = on;
         else if (item == "fixed_step") e.marchFixed = on;
+        else if (item == "direct_reflections") e.directReflections = on;
         else if (item == "ssaa") e.supersample = on ? 1 : 0;
         else if (item == "ssaa_exact") e.supersample = on ? 2 : 0;
         else if (item == "heatmap" || item == "steps") e.debugView = on ? 1 : 0;
@@ -446,7 +447,8 @@ bool ParseEffectList(const std::string& list, EffectSet* effects, std::string* e
             e.reflections = on ? n : 0;
         } else {
             *error = "unknown effect '" + item + "', expected hard_shadows, soft_shadows, improved_shadows, ao, specular, pbr, "
-                     "reflections[=N], fog, fixed_step, ssaa, ssaa_exact, heatmap, depth, normals or none (prefix - to remove)";
+                     "reflections[=N], direct_reflections, fog, fixed_step, ssaa, ssaa_exact, heatmap, depth, normals or none (prefix - to "
+                     "remove)";
             return false;
         }
     }
@@ -462,6 +464,7 @@ std::string DescribeEffects(const EffectSet& e) {
     if (e.specular) add("specular");
     if (e.pbr) add("pbr");
     if (e.reflections) add("reflections=" + std::to_string(e.reflections));
+    if (e.directReflections) add("direct_reflections");
     if (e.fog) add("fog");
     if (e.marchFixed) add("fixed_step");
     if (e.supersample) add(e.supersample == 2 ? "ssaa_exact" : "ssaa");

@@ -31,6 +31,7 @@ struct EffectSet {
     int debugView = 0;      // 0 off, 1 step heatmap, 2 depth, 3 normals
     int normals = 0;        // 0 central, 1 forward, 2 tetrahedron
     bool marchFixed = false;
+    bool directReflections = false;   // `direct_reflections`: a reflection lands on a surface lit without its shadow ray or AO, in at most 48 steps (render.glsl BOUNCE_LIGHT 2, BOUNCE_STEPS 48)
     int supersample = 0;   // 1 `ssaa`: 4 samples a pixel, shading shared per surface; 2 `ssaa_exact`: each sample shaded (render/supersample.glsl)
     auto operator<=>(const EffectSet&) const = default;
 };
@@ -88,6 +89,9 @@ LightingTest ShowLightingTest();
 // (`ssaa`; `bench --tests show_ssaa`, at 3840x2160 the 4x supersampled 4K of issue 13); `exact`:
 // every sample shaded (`ssaa_exact`, show_ssaa_exact).
 LightingTest ShowSupersampledLightingTest(bool exact);
+// The show lighting with `direct_reflections` (`bench --tests show_direct`): the reflected surface
+// lit directly, unshadowed and unoccluded, its march at most 48 steps.
+LightingTest ShowDirectReflectionsLightingTest();
 
 // A preset: a scene with parameter values and effect overrides, optionally a mapping and a take.
 struct Preset {

@@ -77,6 +77,8 @@ TEST_CASE("render: fragment and compute paths give the same image", "[render]") 
     // slower than fragment on llvmpipe. The compute path's cone pre-pass starts rays elsewhere
     // (the same surfaces, stopped a step apart at silhouettes: 1 % of pixels at this size, where a
     // tile is a sixth of the frame; tests/stability/test_cone.cpp holds it to its own claims).
+    // Over-relaxed sphere tracing (on by default) spreads the two step sequences further: midi
+    // 1.8 % past 2/255 (0.6 % stepping plainly), most of it 3-6/255 of shading on grazing surfaces.
     for (const std::string& scene : ListScenes()) {
         SECTION(scene) {
             EffectSet full = SeedLightingTests()[0].effects;
@@ -90,7 +92,7 @@ TEST_CASE("render: fragment and compute paths give the same image", "[render]") 
             Image cone = RenderScene(scene, full, RenderPath::Compute, 64, 48);
             ImageDiff c = CompareImages(frag, cone, 2);
             INFO("with the cone pre-pass: mean " << c.meanAbs << ", max " << c.maxAbs << ", over 2/255: " << c.fractionOver * 100 << "%");
-            CHECK(c.fractionOver <= 0.015);
+            CHECK(c.fractionOver <= 0.025);
         }
     }
 }
@@ -198,11 +200,12 @@ TEST_CASE("render: the compute path dispatches by the program's work-group size"
     }
 }
 
-// Over-relaxed sphere tracing (render.glsl OVERRELAX, off by default; docs/performance.md): a scene
-// that turns it on finds the surfaces plain sphere tracing finds. Its gap test steps back wherever
-// the over-long step could have jumped a surface, so the frames differ only where a ray stops at
-// another point within the hit epsilon: at most 0.5 % of pixels past 8/255. With the step back
-// left out (a bare 1.2x step) rays tunnel through thin parts and the test fails.
+// Over-relaxed sphere tracing (render.glsl OVERRELAX, on by default for distance bounds;
+// docs/performance.md): the scenes as shipped find the surfaces plain sphere tracing (a copy with
+// OVERRELAX 0) finds. Its gap test steps back wherever the over-long step could have jumped a
+// surface, so the frames differ only where a ray stops at another point within the hit epsilon: at
+// most 0.5 % of pixels past 8/255. With the step back left out (a bare 1.2x step) rays tunnel
+// through thin parts and the test fails.
 TEST_CASE("render: over-relaxed sphere tracing finds the surfaces plain sphere tracing finds", "[render]") {
     const fs::path dir = fs::path(SDFVJ_TEST_OUTPUT_DIR) / "overrelax";
     fs::create_directories(dir);
@@ -211,16 +214,28 @@ TEST_CASE("render: over-relaxed sphere tracing finds the surfaces plain sphere t
             SceneInfo info;
             std::string error;
             REQUIRE(FindScene(name, &info, &error));
-            const fs::path file = dir / (std::string(name) + "_or.glsl");
-            REQUIRE(WriteSceneCopy(name, "#define OVERRELAX 1", file));
+            const fs::path file = dir / (std::string(name) + "_plain.glsl");
+            REQUIRE(WriteSceneCopy(name, "#define OVERRELAX 0", file));
             EffectSet own = info.effects;
-            Image plain = RenderScene(name, own, RenderPath::Fragment, 320, 180);
-            Image relaxed = RenderScene(file.string(), own, RenderPath::Fragment, 320, 180);
-            SavePng((dir / (std::string(name) + "_or.png")).string(), relaxed);
+            Image plain = RenderScene(file.string(), own, RenderPath::Fragment, 320, 180);
+            Image relaxed = RenderScene(name, own, RenderPath::Fragment, 320, 180);
+            SavePng((dir / (std::string(name) + "_plain.png")).string(), plain);
             ImageDiff d = CompareImages(plain, relaxed, 8);
             INFO(d.fractionOver * 100 << " % of pixels past 8/255, mean " << d.meanAbs << ", max " << d.maxAbs);
             CHECK(d.fractionOver <= 0.005);
             CHECK(d.meanAbs <= 0.3);
         }
+    }
+    // A distance estimate (the Mandelbulb's sceneLipschitz() > 1) steps plainly: over-relaxed it
+    // moved 4 % of its pixels on the H200. The frame as shipped is the plain copy's, byte for byte.
+    SECTION("mandelbulb") {
+        const fs::path file = dir / "mandelbulb_plain.glsl";
+        REQUIRE(WriteSceneCopy("mandelbulb", "#define OVERRELAX 0", file));
+        SceneInfo info;
+        std::string error;
+        REQUIRE(FindScene("mandelbulb", &info, &error));
+        Image plain = RenderScene(file.string(), info.effects, RenderPath::Fragment, 160, 90);
+        Image shipped = RenderScene("mandelbulb", info.effects, RenderPath::Fragment, 160, 90);
+        CHECK(plain.rgba == shipped.rgba);
     }
 }
