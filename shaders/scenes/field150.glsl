@@ -18,6 +18,13 @@
 // by a wave rolling across the field (u_wave high, u_speed fast) and spinning (u_spin),
 // u_size scales them. Each map() evaluates 4 shapes whatever the count: see lib/field.glsl
 // for why that is exact within the blend radius.
+// Plain sphere tracing (render.glsl OVERRELAX): over-relaxed, 0.120 % of field150's pixels were more
+// than 8/255 off its 4096-step render on the H200 (0.094-0.104 % plain), past the accuracy report's
+// 0.1 % budget, for 1.8 % of its frame time (docs/performance.md, session 13). Guarded, so a copy
+// can measure it again.
+#ifndef OVERRELAX
+#define OVERRELAX 0
+#endif
 const float FIELD_NX = 15.0f;
 const float FIELD_NZ = 10.0f;
 
