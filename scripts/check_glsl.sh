@@ -3,7 +3,7 @@
 # validate it with glslangValidator, as fragment and as compute shader, for the scene's own
 # effects and for each effect switched one at a time (SHADOWS 0..3, AO, SPECULAR, PBR,
 # REFLECTIONS 0..2, FOG, MARCH_FIXED), DEBUG_VIEW 1..3 and NORMALS 0..2, plus all-off and
-# all-on. Usage: scripts/check_glsl.sh [scene ...]   (exit status 1 if any variant fails)
+# all-on, over-relaxation on and off, supersampling, and the reflections' BOUNCE_LIGHT / BOUNCE_STEPS. Usage: scripts/check_glsl.sh [scene ...]   (exit status 1 if any variant fails)
 set -u
 cd "$(dirname "$0")/.."
 command -v glslangValidator >/dev/null || { echo "glslangValidator missing: apt-get install -y glslang-tools"; exit 2; }
@@ -18,6 +18,8 @@ variants=(
   "REFLECTIONS=0" "REFLECTIONS=1" "REFLECTIONS=2" "FOG=0" "FOG=1" "MARCH_FIXED=1"
   "SHADOWS=0 AO=0 SPECULAR=0 PBR=0 REFLECTIONS=0 FOG=0"
   "SHADOWS=3 AO=1 SPECULAR=1 PBR=1 REFLECTIONS=2 FOG=1 NORMALS=2"
+  "OVERRELAX=0" "OVERRELAX=1" "SUPERSAMPLE=1" "SUPERSAMPLE=2"
+  "REFLECTIONS=1 BOUNCE_LIGHT=1" "REFLECTIONS=1 BOUNCE_LIGHT=2 BOUNCE_STEPS=48"
 )
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0; count=0

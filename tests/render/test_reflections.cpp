@@ -1,6 +1,6 @@
 // `direct_reflections` (render.glsl BOUNCE_LIGHT 2, BOUNCE_STEPS 48): the surface a reflection
 // lands on is lit by the light directly, without its shadow ray or AO, and the reflected ray
-// marches at most 48 steps; the primary surfaces keep everything. On the H200 it takes 18-25 % off
+// marches at most 48 steps; the primary surfaces keep everything. On the H200 it takes 17-24 % off
 // the 7680x4320 show of mandelbulb and the fields (docs/performance.md, session 13).
 #include <catch2/catch.hpp>
 
