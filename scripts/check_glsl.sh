@@ -3,7 +3,8 @@
 # validate it with glslangValidator, as fragment and as compute shader, for the scene's own
 # effects and for each effect switched one at a time (SHADOWS 0..3, AO, SPECULAR, PBR,
 # REFLECTIONS 0..2, FOG, MARCH_FIXED), DEBUG_VIEW 1..3 and NORMALS 0..2, plus all-off and
-# all-on, over-relaxation on and off, supersampling, and the reflections' BOUNCE_LIGHT / BOUNCE_STEPS. Usage: scripts/check_glsl.sh [scene ...]   (exit status 1 if any variant fails)
+# all-on, over-relaxation on and off, supersampling, and the reflections' BOUNCE_LIGHT /
+# BOUNCE_STEPS. Usage: scripts/check_glsl.sh [scene ...]   (exit status 1 if any variant fails)
 set -u
 cd "$(dirname "$0")/.."
 command -v glslangValidator >/dev/null || { echo "glslangValidator missing: apt-get install -y glslang-tools"; exit 2; }

@@ -91,6 +91,11 @@ case "${1:-}" in
     part="${2:-all}"
     if [ "$part" = pending ]; then bash "$0" measure adopt; bash "$0" measure field; bash "$0" measure cone; exit; fi
     run() { bash "$0" remote "$@"; }
+    # variant ROOT SCENE SUFFIX "NAME VALUE"...: ROOT/shaders/scenes/SCENE_SUFFIX.glsl, the scene renamed,
+    # each #define right after its header (a scene copy for an interleaved A/B through SDFVJ_ROOT_OVERRIDE)
+    variant() { local root=$1 s=$2 v=$3 d; shift 3
+      sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$v\"/" "shaders/scenes/$s.glsl" > "$root/shaders/scenes/${s}_$v.glsl"
+      for d in "$@"; do sed -i "/^}\*\//a #define $d" "$root/shaders/scenes/${s}_$v.glsl"; done; }
     all="midi primitives character mandelbulb field50 field150"   # every shipped scene
     if [ "$part" = reload ] || [ "$part" = all ]; then
     for s in midi character; do
@@ -229,8 +234,7 @@ case "${1:-}" in
       sc="$sc $s"
       case " ${WG_SHOW:-} " in *" $s "*) show="$show $s" ;; esac
       for v in ${WG_SHAPES:-8x8 8x4 16x8 8x16 16x16}; do
-        sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_wg$v\"/" -e "/^}\*\//a #define WORKGROUP_X ${v%x*}\n#define WORKGROUP_Y ${v#*x}" \
-          "shaders/scenes/$s.glsl" > "$wg/shaders/scenes/${s}_wg$v.glsl"
+        variant "$wg" $s wg$v "WORKGROUP_X ${v%x*}" "WORKGROUP_Y ${v#*x}"
         sc="$sc ${s}_wg$v"
         case " ${WG_SHOW:-} " in *" $s "*) show="$show ${s}_wg$v" ;; esac
       done
@@ -258,28 +262,24 @@ case "${1:-}" in
     if [ "$part" = s13 ]; then
     # Issue 13, session 13, one call: (1) every scene as it ships against copies (NAME_SUFFIX, each
     # a #define after the header) at 1080p and 4K, full lighting, interleaved: _or over-relaxed
-    # sphere tracing, _ct4 the cone pre-pass in 4x4 tiles, _orct4 both, and the fields' exact cell
-    # skip against the field lib before it (.devbuild/ab from `AB_RENDER_OK=1 prepare-ab REV`:
-    # NAME_before); (2) the show lighting at 7680x4320 against cheaper reflections: _l1 no AO where
-    # a reflection lands, _l2 neither AO nor a shadow ray there, _s48 a reflection marches at most
-    # 48 steps, _l1s48 and _l2s48 both; (3) the accuracy sweep (its over-relaxed and 4x4 rows).
+    # and _plain plainly stepping sphere tracing, and the fields' exact cell skip against the field
+    # lib before it (.devbuild/ab from `AB_RENDER_OK=1 prepare-ab REV`: NAME_before); (2) the show
+    # lighting at 7680x4320 against cheaper reflections: _l1 no AO where a reflection lands, _l2
+    # neither AO nor a shadow ray there, _s48 a reflection marches at most 48 steps, _l1s48 and
+    # _l2s48 both; (3) the accuracy sweep (its plain-sphere-tracing row). Session 13 also ran _ct4 /
+    # _orct4 copies, the cone pre-pass in 4x4 tiles; that switch was removed (slower at 4K).
     root="$(mktemp -d)"; cp -r .devbuild/ab/. "$root/"
-    variant() { local s=$1 v=$2; shift 2
-      sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$v\"/" "shaders/scenes/$s.glsl" > "$root/shaders/scenes/${s}_$v.glsl"
-      for d in "$@"; do sed -i "/^}\*\//a #define $d" "$root/shaders/scenes/${s}_$v.glsl"; done; }
     sc=""
     for s in $all; do
-      sc="$sc $s"; variant $s or "OVERRELAX 1"; sc="$sc ${s}_or"
-      [ $s = mandelbulb ] && continue   # a distance estimate: no cone pre-pass
-      variant $s ct4 "CONE_TILE 4"; variant $s orct4 "OVERRELAX 1" "CONE_TILE 4"; sc="$sc ${s}_ct4 ${s}_orct4"
+      variant "$root" $s or "OVERRELAX 1"; variant "$root" $s plain "OVERRELAX 0"; sc="$sc $s ${s}_or ${s}_plain"
     done
     for s in field50 field150; do [ -f "$root/shaders/scenes/${s}_before.glsl" ] && sc="$sc ${s}_before"; done
     SDFVJ_ROOT_OVERRIDE="$root" timeout 230 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
       --paths compute --frames 12 --warmup 3 --markdown "$out/s13.md" --csv "$out/s13.csv" > "$out/s13.txt" 2>&1 || true
     show=""
     for s in ${S13_SHOW:-character mandelbulb field50 field150}; do
-      variant $s l1 "BOUNCE_LIGHT 1"; variant $s l2 "BOUNCE_LIGHT 2"; variant $s s48 "BOUNCE_STEPS 48"
-      variant $s l1s48 "BOUNCE_LIGHT 1" "BOUNCE_STEPS 48"; variant $s l2s48 "BOUNCE_LIGHT 2" "BOUNCE_STEPS 48"
+      variant "$root" $s l1 "BOUNCE_LIGHT 1"; variant "$root" $s l2 "BOUNCE_LIGHT 2"; variant "$root" $s s48 "BOUNCE_STEPS 48"
+      variant "$root" $s l1s48 "BOUNCE_LIGHT 1" "BOUNCE_STEPS 48"; variant "$root" $s l2s48 "BOUNCE_LIGHT 2" "BOUNCE_STEPS 48"
       show="$show $s ${s}_l1 ${s}_l2 ${s}_s48 ${s}_l1s48 ${s}_l2s48"
     done
     SDFVJ_ROOT_OVERRIDE="$root" timeout 170 bash "$0" remote bench --scenes $show --sizes 7680x4320 --tests show \
@@ -308,13 +308,11 @@ case "${1:-}" in
     fi
     if [ "$part" = overrelax ]; then
     # Issue 13: over-relaxed sphere tracing (render.glsl OVERRELAX, Keinert et al. 2014) against
-    # plain sphere tracing, every scene and a copy that defines OVERRELAX 1 (NAME_or), one
-    # interleaved run at 1080p and 4K.
+    # plain sphere tracing, every scene as it ships and copies that define OVERRELAX 1 (NAME_or) and
+    # 0 (NAME_plain), one interleaved run at 1080p and 4K.
     orr="$(mktemp -d)"; cp -r shaders presets mappings "$orr/"; sc=""
     for s in $all; do
-      sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_or\"/" -e "/^}\*\//a #define OVERRELAX 1" "shaders/scenes/$s.glsl" \
-        > "$orr/shaders/scenes/${s}_or.glsl"
-      sc="$sc $s ${s}_or"
+      variant "$orr" $s or "OVERRELAX 1"; variant "$orr" $s plain "OVERRELAX 0"; sc="$sc $s ${s}_or ${s}_plain"
     done
     SDFVJ_ROOT_OVERRIDE="$orr" timeout 200 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
       --paths compute --frames 12 --warmup 3 --markdown "$out/overrelax.md" --csv "$out/overrelax.csv" > "$out/overrelax.txt" 2>&1 || true

@@ -5,6 +5,10 @@
 #ifndef SDF_RENDER_MARCH_GLSL
 #define SDF_RENDER_MARCH_GLSL
 
+// A distance *estimate* (sceneLipschitz() > 1: the Mandelbulb's), not a bound: no step may lean on
+// it being one (the over-relaxed step, the cone pre-pass).
+bool sceneIsEstimate() { return sceneLipschitz() > 1.0f; }
+
 // Marches the whole field from tmin in at most maxSteps steps; past tmax the ray has missed.
 Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
     float t = tmin;
@@ -36,8 +40,8 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
     // Over-relaxed sphere tracing (Keinert et al. 2014): steps of OVERRELAX_OMEGA times the
     // distance; where the new point's sphere and the last one's leave a gap, step back to plain
     // sphere tracing (the point is not tested for a hit, so no surface is skipped). A distance
-    // estimate (sceneLipschitz() > 1) steps plainly from the start.
-    float omega = sceneLipschitz() > 1.0f ? 1.0f : OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
+    // estimate steps plainly from the start.
+    float omega = sceneIsEstimate() ? 1.0f : OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
     for (int i = 0; i < maxSteps; i++) {
         steps += 1.0f;
         m = map(ro + rd * t);
@@ -71,6 +75,7 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
     return Hit(u_maxDist, steps, false, vec3(0.0f));
 }
 
+// (The C++ reference's whole-field march, scene_instance.inc marchWhole.)
 Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) { return marchRange(ro, rd, tmin, tmax, u_maxSteps); }
 
 // The primary (and reflection) ray: with the scene's bound only the stretch inside the sphere
@@ -141,7 +146,7 @@ float coneStart(vec2 lo, vec2 hi) {
     // A distance *estimate* (sceneLipschitz() > 1: the Mandelbulb's) is no bound to build on: a
     // later start changes which filament a ray stops on (3.5 % of its pixels moved by > 8/255,
     // same geometry error), so those scenes march from the eye.
-    if (sceneLipschitz() > 1.0f) return 0.0f;
+    if (sceneIsEstimate()) return 0.0f;
     vec3 ro = u_camPos;
     vec3 rc = cameraRay(0.5f * (lo + hi));
     float alpha = length(cameraRay(lo) - rc);

@@ -326,6 +326,9 @@ float ditherNoise(vec2 fragCoord) {
                                      0.1f * float(u_frame % 16))) - 0.5f;
 }
 
+// The step budget of a ray: a reflection's is BOUNCE_STEPS where it sets one.
+int rayMaxSteps(int bounce) { return bounce == 0 || BOUNCE_STEPS <= 0 ? u_maxSteps : min(u_maxSteps, BOUNCE_STEPS); }
+
 // The primary ray (from `ro` along `rd`) and each mirror bounce run one loop body: one copy of the
 // march, the normal and the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the
 // cost per map() call, and it doubled what the driver compiles); the trip count reads a uniform, so
@@ -337,7 +340,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     for (int bounce = 0; bounce <= bounces; bounce++) {
-        Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f, bounce == 0 || BOUNCE_STEPS <= 0 ? u_maxSteps : min(u_maxSteps, BOUNCE_STEPS));
+        Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f, rayMaxSteps(bounce));
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
         if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
 #if DEBUG_VIEW == 1

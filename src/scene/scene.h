@@ -21,6 +21,9 @@ using Vec3f = std::array<float, 3>;
 
 // The effects a program is compiled with. Zero-initialised means "nothing": no shadows, no AO.
 // Every field becomes a #define; an effect that is 0 is not in the program at all.
+// A reflection's step budget under `direct_reflections` (render.glsl BOUNCE_STEPS).
+constexpr int kDirectReflectionSteps = 48;
+
 struct EffectSet {
     int shadows = 0;        // 0 none, 1 hard, 2 soft, 3 improved soft
     bool ao = false;

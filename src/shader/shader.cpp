@@ -125,8 +125,9 @@ std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
         "NORMALS " + std::to_string(e.normals),
         "MARCH_FIXED " + std::to_string(e.marchFixed ? 1 : 0),
         "SUPERSAMPLE " + std::to_string(e.supersample),
+        // direct_reflections: the reflected surface lit without its shadow ray or AO, in at most 48 steps
         "BOUNCE_LIGHT " + std::to_string(e.directReflections ? 2 : 0),
-        "BOUNCE_STEPS " + std::to_string(e.directReflections ? 48 : 0),
+        "BOUNCE_STEPS " + std::to_string(e.directReflections ? kDirectReflectionSteps : 0),
     };
     d.push_back(path == RenderPath::Compute ? "SDFVJ_COMPUTE 1" : "SDFVJ_FRAGMENT 1");
     return d;

@@ -202,10 +202,10 @@ TEST_CASE("render: the compute path dispatches by the program's work-group size"
 
 // Over-relaxed sphere tracing (render.glsl OVERRELAX, on by default for distance bounds;
 // docs/performance.md; field150 declares it off): the scenes as shipped find the surfaces plain
-// sphere tracing (a copy with OVERRELAX 0) finds. Its gap test steps back wherever the over-long step could have jumped a
-// surface, so the frames differ only where a ray stops at another point within the hit epsilon: at
-// most 0.5 % of pixels past 8/255. With the step back left out (a bare 1.2x step) rays tunnel
-// through thin parts and the test fails.
+// sphere tracing (a copy with OVERRELAX 0) finds. Its gap test steps back wherever the over-long
+// step could have jumped a surface, so the frames differ only where a ray stops at another point
+// within the hit epsilon: at most 0.5 % of pixels past 8/255. With the step back left out (a bare
+// 1.2x step) rays tunnel through thin parts and the test fails.
 TEST_CASE("render: over-relaxed sphere tracing finds the surfaces plain sphere tracing finds", "[render]") {
     const fs::path dir = fs::path(SDFVJ_TEST_OUTPUT_DIR) / "overrelax";
     fs::create_directories(dir);
