@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -28,6 +28,9 @@
 #                                 reflections in the 8K show, the accuracy sweep; needs `AB_RENDER_OK=1 prepare-ab REV`)
 #                                 `final13` (issue 13: session 13's figures as shipped: 1080p, 4K, the 8K show with
 #                                 full and direct reflections, accuracy, character's and field150's effects)
+#                                 `handover` (issue 12: the server's reply as a sign, the show compiling the text for
+#                                 the driver's disk cache, against its binary and the driver alone)
+#                                 `stage` (issue 12: each program drawn by the thread that finished it, against process and warm)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -257,6 +260,31 @@ case "${1:-}" in
         --driver-cache fresh --rounds 3 > "$out/reload_${s}_fresh.txt" 2>&1 || true
       timeout 150 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process \
         --driver-cache off --rounds 3 > "$out/reload_${s}_off.txt" 2>&1 || true
+    done
+    fi
+    if [ "$part" = handover ]; then
+    # Issue 12, session 14: the compile process's reply as a sign only (process-source), the
+    # render thread compiling the same text for NVIDIA's disk cache (shared with the server) to
+    # serve, against loading the server's binary (process) and the driver alone; caches on but
+    # empty at the start, every save a new program, tiered as `live` is, rounds interleaved.
+    for s in midi character; do
+      timeout 200 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute \
+        --modes process,process-source,driver --driver-cache fresh --rounds 3 > "$out/reload_${s}_handover.txt" 2>&1 || true
+      grep -A6 'modes side by side' "$out/reload_${s}_handover.txt" || tail -5 "$out/reload_${s}_handover.txt"
+      grep -h 'driver disk cache' "$out/reload_${s}_handover.txt" || true
+    done
+    fi
+    if [ "$part" = stage ]; then
+    # Issue 12, session 14: each program drawn by a stage (the thread and shared context that
+    # loaded the compile process's binary, used it once and drew its first frame while the stage
+    # on screen went on drawing) against the process mode (binary loaded and first drawn on the
+    # render thread) and warm (a loader thread uses it first, the render thread draws it): does a
+    # first use on one thread stall the others? Driver caches off, untiered, rounds interleaved.
+    for s in ${STAGE_SCENES:-midi character}; do
+      timeout 250 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --modes process,stage,warm \
+        --tiered off --driver-cache ${STAGE_CACHE:-off} --rounds 3 > "$out/reload_${s}_stage.txt" 2>&1 || true
+      grep -h -A1 'median:' "$out/reload_${s}_stage.txt" | cut -c1-240 || true
+      grep -h -A3 '^| round' "$out/reload_${s}_stage.txt" | cut -c1-200 || true
     done
     fi
     if [ "$part" = s13 ]; then

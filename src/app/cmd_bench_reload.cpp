@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "app/bench_adopt.h"
+#include "app/bench_stage.h"
 #include "app/bench_support.h"
 #include "app/commands.h"
 #include "render/compile_process.h"
@@ -80,6 +81,7 @@ void SaveLikeAnEditor(const fs::path& file, const std::string& text) {
 
 struct Round {
     double beginCall = 0, finishCall = 0;   // the optimized program's Begin and Finish on the render thread
+    double longestBefore = 0;   // longest frame before the first swap (the program built or loaded elsewhere)
     double firstMs = 0, optimizedMs = 0, longestFrame = 0, longestUpdate = 0, firstDraw = 0, compileMs = 0;
     int frames = 0;
     std::vector<double> quickFrames;   // frame times while the quick tier was on screen
@@ -231,6 +233,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::unique_ptr<LiveProgram> live;
         std::unique_ptr<FrameRenderer> fr;
         std::unique_ptr<AdoptRun> adopt;   // mode adopt: programs drawn on the context that finished them
+        std::unique_ptr<StageRun> stage;   // mode stage: each program drawn by the thread that finished it
         FrameInputs in;
         RenderPath path = RenderPath::Fragment;
         double steadyMedian = 0;
@@ -260,19 +263,24 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     bool workerMeasured = false;
     while (std::getline(modeList, modeName, ',')) {
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
-                   : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6 : -1;
-        if (mode < 0) return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, warm, adopt or adopt-process");
+                   : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6
+                   : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : -1;
+        if (mode < 0)
+            return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, adopt-process or stage");
         ModeRun m;
         m.name = modeName;
         // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
         // same, but a loader thread (shared context) loads the binary and uses it once before the
         // hand-over. A driver without binaries cannot serve either: measured as the fallback.
-        if (mode == 3 || mode == 4 || mode == 6) {
+        // process-source: the same server, but its reply only says the program is built, and the
+        // render thread compiles the same text for the drivers' disk caches to serve.
+        if (mode == 3 || mode == 4 || mode == 6 || mode == 7 || mode == 8) {
             m.process = std::make_unique<CompileProcess>();
             if (!m.process->Start(&error)) {
                 m.note = "compile process: " + error + ": measured in-process instead";
                 m.process.reset();
             }
+            if (m.process) m.process->SetHandOverSource(mode == 7);
         }
         if (mode == 2 && binaryFormats == 0) {
             // A mode the driver cannot serve falls back instead of failing the bench.
@@ -318,6 +326,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             m.adopt = std::make_unique<AdoptRun>(m.process.get());
             if (!m.adopt->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
         }
+        if (mode == 8) {
+            m.stage = std::make_unique<StageRun>(m.process.get());
+            if (!m.stage->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
+            gl.MakeCurrent();
+        }
         for (const ParamDecl& d : scene.params) m.in.params.emplace_back(d.name, d.defaultValue);
         runs.push_back(std::move(m));
     }
@@ -327,7 +340,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::string adoptError;
     auto frameOnce = [&](ModeRun& m, bool* swapped) {
         const auto t0 = Clock::now();
-        if (m.adopt) {
+        if (m.stage) {
+            *swapped = m.stage->Update(m.watcher->Poll(), sceneFile.string(), m.path, &adoptError);
+            updateMs = MsSince(t0);
+            m.stage->Draw(m.in);
+        } else if (m.adopt) {
             *swapped = m.adopt->Update(m.watcher->Poll(), sceneFile.string(), m.path, &adoptError);
             updateMs = MsSince(t0);
             m.adopt->Draw(m.in);
@@ -360,19 +377,21 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             ++r.frames;
             r.longestFrame = std::max(r.longestFrame, ms);
             r.longestUpdate = std::max(r.longestUpdate, updateMs);
-            if (m.adopt) {
+            if (m.adopt || m.stage) {
                 if (!swapped) {
+                    if (r.firstMs == 0) r.longestBefore = std::max(r.longestBefore, ms);
                     if (!adoptError.empty()) break;
                     continue;
                 }
                 r.firstMs = r.optimizedMs = MsSince(saved);
                 r.firstDraw = ms - updateMs;
-                r.compileMs = m.adopt->Current().Origin().buildMs;
+                r.compileMs = m.stage ? m.stage->LastStageMs() : m.adopt->Current().Origin().buildMs;
                 r.usedBefore = true;   // used once on its context before it went on screen
                 r.ok = true;
                 break;
             }
             if (!swapped) {
+                if (r.firstMs == 0) r.longestBefore = std::max(r.longestBefore, ms);
                 if (r.firstMs > 0 && live.Current()->QuickTier()) r.quickFrames.push_back(ms);
                 if (!live.Error().empty() && !live.Pending()) break;
                 continue;
@@ -417,7 +436,12 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::vector<Summary> summary;
     for (ModeRun& m : runs) {
         LiveProgram& live = *m.live;
-        const char* how = m.mode == 6 && m.process ? "in a compile process, its binary loaded and used on a new shared context per save, the program then drawn on that context (adopt-process)"
+        const char* how = m.mode == 8 ? "in a compile process, its binary loaded, used once and drawn by a new stage (a thread with a shared context) "
+                                        "while the stage on screen draws; every frame then drawn by that stage's thread, presented here (stage; "
+                                        "compile column: the new stage's load + first use + first frame)"
+                          : m.mode == 7 && m.process ? "in a compile process, then again from the same text on the render thread for the driver's disk cache to serve (process-source)"
+                          : m.mode == 7 ? "by the driver (the compile process did not start)"
+                          : m.mode == 6 && m.process ? "in a compile process, its binary loaded and used on a new shared context per save, the program then drawn on that context (adopt-process)"
                           : m.mode >= 5 ? "on a new shared context per save, the program then drawn on that context (adopt)"
                           : m.process && m.mode == 4
                               ? "in a compile process (sdfvj compile-server); a loader thread loads its binary and uses it once before the hand-over"
@@ -434,10 +458,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
                     "compile ms (its own) | used before the hand-over (load + first use ms) | from program cache |\n"
                     "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
-        std::vector<double> first, optimized, longest, compile;
+        std::vector<double> first, optimized, longest, compile, before;
         for (int round : m.failedRounds)
             std::printf("| %d | no new program on screen: %s |\n", round,
-                        !adoptError.empty() && m.adopt ? adoptError.c_str()
+                        !adoptError.empty() && (m.adopt || m.stage) ? adoptError.c_str()
                         : live.Error().empty()         ? "timed out after 120 s"
                                                        : live.Error().c_str());
         int round = 0;
@@ -446,6 +470,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             first.push_back(r.firstMs);
             optimized.push_back(r.optimizedMs);
             longest.push_back(r.longestFrame);
+            before.push_back(r.longestBefore);
             compile.push_back(r.compileMs);
             char quick[32] = "-";
             if (!r.quickFrames.empty()) std::snprintf(quick, sizeof quick, "%.2f", MedianMs(r.quickFrames));
@@ -462,9 +487,21 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::printf("median: save -> first tier %.1f ms, -> optimized %.1f ms; longest frame during a reload %.1f ms "
                     "= %.1fx the steady median %.2f ms (target <= 2x); compile %.1f ms\n",
                     MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(compile));
+        std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds\n",
+                    MedianMs(before));
         summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian});
     }
-    if (summary.size() > 1) {
+    if (o.driverCache == "fresh") {   // what the drivers' disk caches hold after the run (both processes wrote there)
+        for (const char* d : {"nv", "mesa"}) {
+            size_t files = 0, bytes = 0;
+            std::error_code ec;
+            for (auto it = fs::recursive_directory_iterator(root / "driver-cache" / d, ec); !ec && it != fs::recursive_directory_iterator();
+                 it.increment(ec))
+                if (it->is_regular_file(ec)) ++files, bytes += (size_t)it->file_size(ec);
+            if (files) std::printf("\ndriver disk cache %s after the run: %zu files, %zu bytes\n", d, files, bytes);
+        }
+    }
+if (summary.size() > 1) {
         std::printf("\n## modes side by side (rounds interleaved; medians)\n| mode | save -> first tier ms | save -> optimized ms | "
                     "longest frame ms | x steady median | steady median ms |\n|---|---:|---:|---:|---:|---:|\n");
         for (const Summary& s : summary)

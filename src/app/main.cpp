@@ -133,7 +133,8 @@ int main(int argc, char** argv) {
                           "(on, empty folders of this run) or warm (as set, warmed by an untimed pass)")
         ->capture_default_str();
     cmdReload->add_flag_callback("--warm-cache", [&] { reloadBench.driverCache = "warm"; }, "same as --driver-cache warm");
-    cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary, process, warm (process + a loader thread that uses each binary once "
+    cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary, process, process-source (the server builds it, the render thread then "
+                          "compiles the same text for the drivers' disk caches to serve), warm (process + a loader thread that uses each binary once "
                           "before the hand-over), adopt (a new shared context per save compiles and uses the program, which is then "
                           "drawn on that context and presented on the render context); comma-separated, rounds interleaved; "
                           "--first-frame: warm = with the loader")

@@ -63,6 +63,11 @@ public:
     bool Poll(uint64_t ticket, Result* result);
     // The caller no longer wants this ticket; its reply is dropped when it comes.
     void Forget(uint64_t ticket);
+    // Source hand-over (an experiment for issue 12, `bench reload --modes process-source`): a
+    // reply only says the program is built; the show compiles the same text itself, for the
+    // driver's disk cache (shared with the server) to serve, instead of loading the binary.
+    void SetHandOverSource(bool on) { handOverSource_ = on; }
+    bool HandOverSource() const { return handOverSource_; }
 
 private:
     void Pump();                         // write what is queued, read what arrived, parse replies
@@ -70,6 +75,7 @@ private:
     int fd_ = -1;
     pid_t pid_ = -1;
     bool dead_ = false;
+    bool handOverSource_ = false;
     uint64_t next_ = 1;
     std::string outbox_, inbox_;
     // One job at a time goes to the server; the rest wait here, so a job forgotten before it was

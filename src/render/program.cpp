@@ -200,7 +200,7 @@ void PendingProgram::Begin(const ShaderSource& src, RenderPath path, BuildTier t
     }
     if (ParallelCompileAvailable()) glMaxShaderCompilerThreadsKHR(0xFFFFFFFFu);   // driver's choice
     id_ = glCreateProgram();
-    if (store) glProgramParameteri(id_, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+    if (store || retrievable_) glProgramParameteri(id_, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     auto stage = [&](GLenum kind, const char* stageText) {
         GLuint s = glCreateShader(kind);
         glShaderSource(s, 1, &stageText, nullptr);
@@ -242,6 +242,22 @@ bool PendingProgram::Ready() const {
             self->process_ = nullptr;
             self->Begin(source_, path_, origin_.quickTier ? BuildTier::Quick : BuildTier::Optimized);
             self->process_ = process;
+            return Ready();
+        }
+        if (procDone_ && !workerNoBinary_ && process_ && process_->HandOverSource()) {
+            // Source hand-over: built in the server (and in the driver's disk cache); compiled
+            // here from the same text, as the server did (retrievable), for that cache to serve.
+            auto* self = const_cast<PendingProgram*>(this);
+            CompileProcess* process = self->process_;
+            self->process_ = nullptr;
+            self->procTicket_ = 0;
+            procDone_ = false;
+            self->workerBinary_.clear();
+            self->retrievable_ = true;
+            self->Begin(source_, path_, origin_.quickTier ? BuildTier::Quick : BuildTier::Optimized);
+            self->retrievable_ = false;
+            self->process_ = process;
+            self->origin_.fromProcess = true;
             return Ready();
         }
         if (procDone_ && g_loader && !workerNoBinary_ && !workerBinary_.empty()) {

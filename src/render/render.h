@@ -191,6 +191,7 @@ private:
     mutable double workerMs_ = 0.0;
     mutable bool workerNoBinary_ = false;         // binary hand-over refused: Finish() compiles here
     CompileProcess* process_ = nullptr;
+    bool retrievable_ = false;                    // ask for a binary even when not storing (source hand-over)
     uint64_t procTicket_ = 0;                     // job on the compile process
     mutable bool procDone_ = false;
     mutable bool procDied_ = false;               // the server died first: Finish() compiles here
