@@ -135,48 +135,24 @@ bool StageRun::Update(const std::vector<std::string>& changed, const std::string
         if (LoadScene(scenePath, &sc, error) && AssembleProgram(sc, VariantKey{scenePath, sc.effects, path}, &src, error)) {
             if (ticket_) process_->Forget(ticket_);
             ticket_ = process_ && process_->Usable() ? process_->Submit(src.text, path, false) : 0;
-            if (!ticket_) {
-                *error = "the stage mode needs the compile process (a driver with program binaries)";
-                return false;
-            }
             pendingSrc_ = src;
             pendingScene_ = sc;
+            // No compile process (Mesa with its disk cache off gives no binaries): the new stage's
+            // thread compiles it on its own context, which holds no lock of the render thread's there.
+            if (!ticket_ && !StartStage(0, {}, path, error)) return false;
         }
     }
     if (ticket_) {
         CompileProcess::Result r;
         if (!process_->Poll(ticket_, &r)) return false;
         ticket_ = 0;
-        if (!r.linked || r.noBinary || r.died) {
-            *error = r.died ? "the compile process died" : r.noBinary ? "the driver gave no binary" : r.log;
+        if (!r.linked && !r.died && !r.noBinary) {
+            *error = r.log;
             return false;
         }
-        if (next_) retired_.push_back(std::move(next_));   // superseded before it was shown
-        if (!NewStage(&next_, error)) return false;
-        Stage* s = next_.get();
-        s->scene = pendingScene_;
-        const ShaderSource src = pendingSrc_;
-        const FrameInputs in = lastInputs_;
-        const int w = w_, h = h_;
-        auto binary = std::make_shared<std::vector<uint8_t>>(std::move(r.binary));
-        const unsigned format = r.format;
-        s->thread->Post([s, src, in, w, h, binary, format, path] {
-            const auto t0 = std::chrono::steady_clock::now();
-            const unsigned id = LoadProgramBinary(format, binary->data(), binary->size());
-            if (!id) {
-                s->error = "the driver refused the compile process's binary";
-            } else {
-                PrimeProgram(id, path, src.text.find("rgba32f") != std::string::npos);
-                s->program = std::make_unique<Program>();
-                s->program->Adopt(id, path, src, ProgramOrigin{});
-                s->renderer = std::make_unique<FrameRenderer>();
-                if (!s->renderer->Resize(w, h, &s->error)) s->error = "stage target: " + s->error;
-                else s->renderer->Draw(*s->program, s->scene, in);   // its first real frame, here
-                glFinish();
-            }
-            s->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-            s->ready = true;
-        });
+        // A server that died or gave no binary: the stage compiles it.
+        const bool binary = r.linked && !r.noBinary && !r.died;
+        if (!StartStage(binary ? r.format : 0, binary ? std::move(r.binary) : std::vector<uint8_t>(), path, error)) return false;
         return false;
     }
     if (!next_ || !next_->ready) return false;
@@ -190,6 +166,43 @@ bool StageRun::Update(const std::vector<std::string>& changed, const std::string
     old->thread->Post([old] { old->renderer.reset(); old->program.reset(); });
     retired_.push_back(std::move(onScreen_));
     onScreen_ = std::move(next_);
+    return true;
+}
+
+bool StageRun::StartStage(unsigned format, std::vector<uint8_t> binaryBytes, RenderPath path, std::string* error) {
+    if (next_) retired_.push_back(std::move(next_));   // superseded before it was shown
+    if (!NewStage(&next_, error)) return false;
+    Stage* s = next_.get();
+    s->scene = pendingScene_;
+    const ShaderSource src = pendingSrc_;
+    const FrameInputs in = lastInputs_;
+    const int w = w_, h = h_;
+    auto binary = std::make_shared<std::vector<uint8_t>>(std::move(binaryBytes));
+    s->thread->Post([s, src, in, w, h, binary, format, path] {
+        const auto t0 = std::chrono::steady_clock::now();
+        s->program = std::make_unique<Program>();
+        if (binary->empty()) {
+            if (!s->program->Build(src, path, &s->error)) s->program.reset();
+        } else {
+            const unsigned id = LoadProgramBinary(format, binary->data(), binary->size());
+            if (id) {
+                PrimeProgram(id, path, src.text.find("rgba32f") != std::string::npos);
+                s->program->Adopt(id, path, src, ProgramOrigin{});
+            } else if (!s->program->Build(src, path, &s->error)) {   // refused: compiled here
+                s->program.reset();
+            }
+        }
+        if (s->program) {
+            s->renderer = std::make_unique<FrameRenderer>();
+            if (!s->renderer->Resize(w, h, &s->error)) s->error = "stage target: " + s->error;
+            else s->renderer->Draw(*s->program, s->scene, in);   // its first real frame, here
+            glFinish();
+        } else if (s->error.empty()) {
+            s->error = "the stage could not build the program";
+        }
+        s->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        s->ready = true;
+    });
     return true;
 }
 

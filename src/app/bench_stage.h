@@ -9,7 +9,8 @@
 // thread goes on drawing through the stage on screen. Then the new stage goes on screen: every
 // frame the render thread asks the stage on screen to draw (its thread, its context, the program
 // it finished), waits for its fence on the GPU (glWaitSync) and blits the shared texture into the
-// target it presents, as `live` would on its window. The old stage's thread ends.
+// target it presents, as `live` would on its window. The old stage's thread ends. Without a
+// compile process (a driver with no binaries) the new stage's thread compiles the program itself.
 // Render thread only; each stage's GL calls run on that stage's thread.
 #pragma once
 #include <epoxy/gl.h>
@@ -83,6 +84,9 @@ public:
 
 private:
     bool NewStage(std::unique_ptr<Stage>* out, std::string* error);
+    // A new stage that loads (format, binary), or compiles pendingSrc_ when binary is empty, uses
+    // the program once and draws its first frame, on its own thread.
+    bool StartStage(unsigned format, std::vector<uint8_t> binary, RenderPath path, std::string* error);
 
     CompileProcess* process_ = nullptr;
     uint64_t ticket_ = 0;

@@ -436,7 +436,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::vector<Summary> summary;
     for (ModeRun& m : runs) {
         LiveProgram& live = *m.live;
-        const char* how = m.mode == 8 ? "in a compile process, its binary loaded, used once and drawn by a new stage (a thread with a shared context) "
+        const char* how = m.mode == 8 && !m.process ? "on a new stage's thread (its own shared context), which draws its first frame there while the "
+                                                     "stage on screen draws; every frame then drawn by that stage's thread, presented here (stage, "
+                                                     "no compile process: the driver gives no binaries)"
+                          : m.mode == 8 ? "in a compile process, its binary loaded, used once and drawn by a new stage (a thread with a shared context) "
                                         "while the stage on screen draws; every frame then drawn by that stage's thread, presented here (stage; "
                                         "compile column: the new stage's load + first use + first frame)"
                           : m.mode == 7 && m.process ? "in a compile process, then again from the same text on the render thread for the driver's disk cache to serve (process-source)"
