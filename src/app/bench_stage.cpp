@@ -162,6 +162,7 @@ bool StageRun::Update(const std::vector<std::string>& changed, const std::string
         return false;
     }
     lastStageMs_ = next_->ms;
+    stageTimes_.emplace_back(next_->useMs, next_->firstFrameMs);
     Stage* old = onScreen_.get();
     old->thread->Post([old] { old->renderer.reset(); old->program.reset(); });
     retired_.push_back(std::move(onScreen_));
@@ -192,6 +193,8 @@ bool StageRun::StartStage(unsigned format, std::vector<uint8_t> binaryBytes, Ren
                 s->program.reset();
             }
         }
+        glFinish();
+        s->useMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (s->program) {
             s->renderer = std::make_unique<FrameRenderer>();
             if (!s->renderer->Resize(w, h, &s->error)) s->error = "stage target: " + s->error;
@@ -201,6 +204,7 @@ bool StageRun::StartStage(unsigned format, std::vector<uint8_t> binaryBytes, Ren
             s->error = "the stage could not build the program";
         }
         s->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        s->firstFrameMs = s->ms - s->useMs;
         s->ready = true;
     });
     return true;

@@ -24,6 +24,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "render/compile_process.h"
@@ -69,6 +70,8 @@ public:
     void Draw(const FrameInputs& in);
     const Program& Current() const;
     double LastStageMs() const { return lastStageMs_; }   // the new stage's load + first use + first frame
+    // Every stage that went on screen: its load (or compile) + first use, and its first real frame, ms.
+    const std::vector<std::pair<double, double>>& StageTimes() const { return stageTimes_; }
 
     // A program with the thread and context that finished it, and its renderer there.
     struct Stage {
@@ -80,6 +83,7 @@ public:
         std::atomic<bool> ready{false};
         std::string error;   // set on the stage's thread before `ready`
         double ms = 0;
+        double useMs = 0, firstFrameMs = 0;   // its load (or compile) + first use; its first real frame
     };
 
 private:
@@ -99,6 +103,7 @@ private:
     GLuint presentTex_ = 0, presentFbo_ = 0, readFbo_ = 0, readTex_ = 0;   // on main_
     int w_ = 0, h_ = 0;
     double lastStageMs_ = 0;
+    std::vector<std::pair<double, double>> stageTimes_;
 };
 
 }  // namespace sdfvj

@@ -492,6 +492,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(compile));
         std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds\n",
                     MedianMs(before));
+        if (m.stage) {
+            std::printf("stages on screen, on their own threads: load (or compile) + first use / first real frame ms:");
+            for (const auto& [use, frame] : m.stage->StageTimes()) std::printf(" %.1f / %.1f;", use, frame);
+            std::printf("\n");
+        }
         summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian});
     }
     if (o.driverCache == "fresh") {   // what the drivers' disk caches hold after the run (both processes wrote there)
