@@ -136,7 +136,8 @@ int main(int argc, char** argv) {
     cmdReload->add_option("--modes", reloadBench.modes, "compile modes: driver, worker, binary, process, process-source (the server builds it, the render thread then "
                           "compiles the same text for the drivers' disk caches to serve), warm (process + a loader thread that uses each binary once "
                           "before the hand-over), adopt (a new shared context per save compiles and uses the program, which is then "
-                          "drawn on that context and presented on the render context); comma-separated, rounds interleaved; "
+                          "drawn on that context and presented on the render context), adopt-process (the same with the compile in the compile process), "
+                          "stage (each program loaded, used and drawn by a thread of its own with a shared context); comma-separated, rounds interleaved; "
                           "--first-frame: warm = with the loader")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();
