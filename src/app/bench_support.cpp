@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <thread>
 
@@ -73,6 +74,42 @@ bool BenchCsv::Write(const std::string& file, std::string* error) const {
 void PaceFrame(double frameMs, double fps) {
     if (fps > 0 && frameMs < 1000.0 / fps)
         std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / fps - frameMs) * 1000)));
+}
+
+std::string SetDriverCaches(const std::string& mode, const std::filesystem::path& scratch, bool oneLaunch) {
+    if (mode == "off") {
+        setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
+        setenv("__GL_SHADER_DISK_CACHE", "0", 1);
+        return "off (MESA_SHADER_CACHE_DISABLE=true, __GL_SHADER_DISK_CACHE=0)";
+    }
+    if (mode == "fresh") {
+        unsetenv("MESA_SHADER_CACHE_DISABLE");
+        setenv("MESA_SHADER_CACHE_DIR", (scratch / "mesa").c_str(), 1);
+        setenv("__GL_SHADER_DISK_CACHE", "1", 1);
+        setenv("__GL_SHADER_DISK_CACHE_PATH", (scratch / "nv").c_str(), 1);
+        std::filesystem::create_directories(scratch / "nv");
+        return "on, in empty folders of this run (MESA_SHADER_CACHE_DIR, __GL_SHADER_DISK_CACHE_PATH): cold";
+    }
+    const char* mesa = std::getenv("MESA_SHADER_CACHE_DISABLE");
+    const char* nv = std::getenv("__GL_SHADER_DISK_CACHE");
+    return std::string("as the environment has them (MESA_SHADER_CACHE_DISABLE=") + (mesa ? mesa : "unset") +
+           ", __GL_SHADER_DISK_CACHE=" + (nv ? nv : "unset") + ")" +
+           (oneLaunch ? ", kept from earlier launches" : ", warmed by an untimed pass of the same saves");
+}
+
+std::string DriverCacheContents(const std::filesystem::path& scratch) {
+    namespace fs = std::filesystem;
+    std::string out;
+    for (const char* d : {"nv", "mesa"}) {
+        size_t files = 0, bytes = 0;
+        std::error_code ec;
+        for (auto it = fs::recursive_directory_iterator(scratch / d, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+            if (it->is_regular_file(ec)) ++files, bytes += (size_t)it->file_size(ec);
+        if (files)
+            out += "\ndriver disk cache " + std::string(d) + " after the run: " + std::to_string(files) + " files, " + std::to_string(bytes) +
+                   " bytes\n";
+    }
+    return out;
 }
 
 }  // namespace sdfvj

@@ -10,6 +10,7 @@
 // Benches also interleave the settings they compare (each round draws every setting once), so a
 // clock change lands on all of them alike.
 #pragma once
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -46,6 +47,16 @@ struct BenchCsv {
     bool Write(const std::string& file, std::string* error) const;
 };
 std::string CsvField(const std::string& s);
+
+// The drivers' disk caches for the compile benches (bench reload): sets their variables (must run
+// before the first context exists: drivers read them when they load) and returns a line saying how.
+// off: both off. fresh: on, in empty folders under `scratch` (cold, but Mesa can hand a worker's JIT
+// to the render context through it). warm: left as the user has them (warmed by the bench's untimed
+// pass of the same saves, or for one launch by earlier launches).
+std::string SetDriverCaches(const std::string& mode, const std::filesystem::path& scratch, bool oneLaunch);
+// What the caches of SetDriverCaches("fresh", scratch) hold: a line per non-empty folder
+// ("driver disk cache nv after the run: N files, B bytes"), or nothing.
+std::string DriverCacheContents(const std::filesystem::path& scratch);
 std::string SizeName(int w, int h);   // "1920x1080"
 
 }  // namespace sdfvj

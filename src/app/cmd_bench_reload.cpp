@@ -47,31 +47,6 @@ int Fail(const std::string& what, int code = 2) {
     return code;
 }
 
-// Sets the drivers' disk-cache variables; must run before the first context exists (drivers read
-// them when they load). off: both off. fresh: on, in empty folders under `scratch` (cold, but
-// Mesa can hand a worker's JIT to the render context through it). warm: left as the user has them
-// (warmed by the bench's untimed pass of the same saves, or for one launch by earlier launches).
-std::string SetDriverCaches(const std::string& mode, const fs::path& scratch, bool oneLaunch) {
-    if (mode == "off") {
-        setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
-        setenv("__GL_SHADER_DISK_CACHE", "0", 1);
-        return "off (MESA_SHADER_CACHE_DISABLE=true, __GL_SHADER_DISK_CACHE=0)";
-    }
-    if (mode == "fresh") {
-        unsetenv("MESA_SHADER_CACHE_DISABLE");
-        setenv("MESA_SHADER_CACHE_DIR", (scratch / "mesa").c_str(), 1);
-        setenv("__GL_SHADER_DISK_CACHE", "1", 1);
-        setenv("__GL_SHADER_DISK_CACHE_PATH", (scratch / "nv").c_str(), 1);
-        fs::create_directories(scratch / "nv");
-        return "on, in empty folders of this run (MESA_SHADER_CACHE_DIR, __GL_SHADER_DISK_CACHE_PATH): cold";
-    }
-    const char* mesa = std::getenv("MESA_SHADER_CACHE_DISABLE");
-    const char* nv = std::getenv("__GL_SHADER_DISK_CACHE");
-    return std::string("as the environment has them (MESA_SHADER_CACHE_DISABLE=") + (mesa ? mesa : "unset") +
-           ", __GL_SHADER_DISK_CACHE=" + (nv ? nv : "unset") + ")" +
-           (oneLaunch ? ", kept from earlier launches" : ", warmed by an untimed pass of the same saves");
-}
-
 // Writes like an editor: a temp file renamed over the original.
 void SaveLikeAnEditor(const fs::path& file, const std::string& text) {
     const fs::path tmp = file.string() + ".sdfvj-save~";
@@ -499,17 +474,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         }
         summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian});
     }
-    if (o.driverCache == "fresh") {   // what the drivers' disk caches hold after the run (both processes wrote there)
-        for (const char* d : {"nv", "mesa"}) {
-            size_t files = 0, bytes = 0;
-            std::error_code ec;
-            for (auto it = fs::recursive_directory_iterator(root / "driver-cache" / d, ec); !ec && it != fs::recursive_directory_iterator();
-                 it.increment(ec))
-                if (it->is_regular_file(ec)) ++files, bytes += (size_t)it->file_size(ec);
-            if (files) std::printf("\ndriver disk cache %s after the run: %zu files, %zu bytes\n", d, files, bytes);
-        }
-    }
-if (summary.size() > 1) {
+    if (o.driverCache == "fresh") std::printf("%s", DriverCacheContents(root / "driver-cache").c_str());
+    if (summary.size() > 1) {
         std::printf("\n## modes side by side (rounds interleaved; medians)\n| mode | save -> first tier ms | save -> optimized ms | "
                     "longest frame ms | x steady median | steady median ms |\n|---|---:|---:|---:|---:|---:|\n");
         for (const Summary& s : summary)
