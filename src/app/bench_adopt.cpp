@@ -5,6 +5,37 @@
 
 namespace sdfvj {
 
+PresentTarget::~PresentTarget() {
+    if (readFbo_) glDeleteFramebuffers(1, &readFbo_);
+    if (fbo_) glDeleteFramebuffers(1, &fbo_);
+    if (tex_) glDeleteTextures(1, &tex_);
+}
+
+void PresentTarget::Create(int width, int height) {
+    w_ = width;
+    h_ = height;
+    glGenTextures(1, &tex_);
+    glBindTexture(GL_TEXTURE_2D, tex_);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w_, h_);
+    glGenFramebuffers(1, &fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex_, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void PresentTarget::Blit(unsigned sharedTexture) {
+    if (readTex_ != sharedTexture) {   // a framebuffer here that reads the other context's texture
+        if (!readFbo_) glGenFramebuffers(1, &readFbo_);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, sharedTexture, 0);
+        readTex_ = sharedTexture;
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+    glBlitFramebuffer(0, 0, w_, h_, 0, 0, w_, h_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 AdoptRun::~AdoptRun() {
     worker_.reset();
     for (auto& [context, renderer] : renderers_) {   // container objects belong to their context
@@ -13,9 +44,7 @@ AdoptRun::~AdoptRun() {
     }
     if (main_) {
         main_->MakeCurrent();
-        if (readFbo_) glDeleteFramebuffers(1, &readFbo_);
-        if (presentFbo_) glDeleteFramebuffers(1, &presentFbo_);
-        if (presentTex_) glDeleteTextures(1, &presentTex_);
+        present_.reset();
     }
     program_.reset();
 }
@@ -29,12 +58,8 @@ bool AdoptRun::Start(HeadlessContext& gl, const std::string& scenePath, RenderPa
         return false;
     program_ = std::make_unique<Program>();
     if (!program_->Build(src, path, error) || !UseContext(&gl, error)) return false;
-    glGenTextures(1, &presentTex_);
-    glBindTexture(GL_TEXTURE_2D, presentTex_);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w_, h_);
-    glGenFramebuffers(1, &presentFbo_);
-    glBindFramebuffer(GL_FRAMEBUFFER, presentFbo_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, presentTex_, 0);
+    present_ = std::make_unique<PresentTarget>();
+    present_->Create(w_, h_);
     return true;
 }
 
@@ -112,16 +137,7 @@ void AdoptRun::Draw(const FrameInputs& in) {
     if (context != main_) main_->MakeCurrent();
     glWaitSync(done, 0, GL_TIMEOUT_IGNORED);
     glDeleteSync(done);
-    if (readTex_ != renderer->Texture()) {   // a framebuffer on main_ that reads the shared texture
-        if (!readFbo_) glGenFramebuffers(1, &readFbo_);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
-        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, renderer->Texture(), 0);
-        readTex_ = renderer->Texture();
-    }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, presentFbo_);
-    glBlitFramebuffer(0, 0, w_, h_, 0, 0, w_, h_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    present_->Blit(renderer->Texture());
 }
 
 }  // namespace sdfvj

@@ -25,6 +25,18 @@
 
 namespace sdfvj {
 
+// The target a bench presents into on the render context, as `live` presents on its window: a
+// texture of another context of the share group is blitted into it (after the caller's fence).
+class PresentTarget {
+public:
+    ~PresentTarget();   // the render context must be current
+    void Create(int width, int height);
+    void Blit(unsigned sharedTexture);
+private:
+    GLuint tex_ = 0, fbo_ = 0, readFbo_ = 0, readTex_ = 0;
+    int w_ = 0, h_ = 0;
+};
+
 class AdoptRun {
 public:
     // process: adopt-process (compiles there, loads on the new context); nullptr: adopt.
@@ -60,7 +72,7 @@ private:
     uint64_t ticket_ = 0;
     ShaderSource pendingSrc_;
     SceneInfo pendingScene_;
-    GLuint presentTex_ = 0, presentFbo_ = 0, readFbo_ = 0, readTex_ = 0;   // on main_
+    std::unique_ptr<PresentTarget> present_;   // on main_
     int w_ = 0, h_ = 0;
 };
 

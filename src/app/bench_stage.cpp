@@ -77,9 +77,7 @@ StageRun::~StageRun() {
     for (auto& s : retired_) end(s);
     if (main_) {
         main_->MakeCurrent();
-        if (readFbo_) glDeleteFramebuffers(1, &readFbo_);
-        if (presentFbo_) glDeleteFramebuffers(1, &presentFbo_);
-        if (presentTex_) glDeleteTextures(1, &presentTex_);
+        present_.reset();
     }
 }
 
@@ -118,13 +116,8 @@ bool StageRun::Start(HeadlessContext& gl, const std::string& scenePath, RenderPa
     });
     if (!ok) return false;
     main_->MakeCurrent();
-    glGenTextures(1, &presentTex_);
-    glBindTexture(GL_TEXTURE_2D, presentTex_);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w_, h_);
-    glGenFramebuffers(1, &presentFbo_);
-    glBindFramebuffer(GL_FRAMEBUFFER, presentFbo_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, presentTex_, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    present_ = std::make_unique<PresentTarget>();
+    present_->Create(w_, h_);
     return true;
 }
 
@@ -221,16 +214,7 @@ void StageRun::Draw(const FrameInputs& in) {
     });
     glWaitSync(done, 0, GL_TIMEOUT_IGNORED);
     glDeleteSync(done);
-    if (readTex_ != s->renderer->Texture()) {   // a framebuffer here that reads the stage's texture
-        if (!readFbo_) glGenFramebuffers(1, &readFbo_);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
-        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->renderer->Texture(), 0);
-        readTex_ = s->renderer->Texture();
-    }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, presentFbo_);
-    glBlitFramebuffer(0, 0, w_, h_, 0, 0, w_, h_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    present_->Blit(s->renderer->Texture());
 }
 
 }  // namespace sdfvj

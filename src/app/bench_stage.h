@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/bench_adopt.h"
 #include "render/compile_process.h"
 #include "render/render.h"
 
@@ -100,7 +101,7 @@ private:
     ShaderSource pendingSrc_;
     SceneInfo pendingScene_;
     FrameInputs lastInputs_;
-    GLuint presentTex_ = 0, presentFbo_ = 0, readFbo_ = 0, readTex_ = 0;   // on main_
+    std::unique_ptr<PresentTarget> present_;   // on main_
     int w_ = 0, h_ = 0;
     double lastStageMs_ = 0;
     std::vector<std::pair<double, double>> stageTimes_;
