@@ -117,6 +117,22 @@ struct LiveShow {
         for (const auto& [name, v] : frames.back().second) s += " " + name + "=" + std::to_string(v);
         return s;
     }
+    // Each change of the set of logged names, with the frame index and that frame's values: shows
+    // when a header reached the parameters (and whether an older one came back).
+    std::string NameHistory() const {
+        const std::vector<Frame> frames = Frames();
+        std::string s, names, prev;
+        for (size_t i = 0; i < frames.size(); ++i) {
+            names.clear();
+            for (const auto& [name, v] : frames[i].second) names += name + " ";
+            if (names == prev) continue;
+            prev = names;
+            s += "  frame " + std::to_string(i) + ":";
+            for (const auto& [name, v] : frames[i].second) s += " " + name + "=" + std::to_string(v);
+            s += "\n";
+        }
+        return s + "  (" + std::to_string(frames.size()) + " frames logged)\n";
+    }
     // At least `more` frames are logged after frame index `from` (the loop went on).
     bool WaitForFramesAfter(size_t from, size_t more, double seconds) const {
         return PollFor(seconds, [&] { return Frames().size() >= from + 1 + more; });
@@ -131,7 +147,8 @@ const double kDeadline = 10.0;   // generous: software GL on a loaded machine
     do {                                                                                           \
         const bool ok_ = (cond);                                                                   \
         if (!ok_) {                                                                                \
-            INFO("live log:\n" << (show).Log() << "last frame: " << (show).LastFrame());           \
+            INFO("live log:\n" << (show).Log() << "parameter sets:\n" << (show).NameHistory()        \
+                                << "last frame: " << (show).LastFrame());                          \
             INFO(#cond);                                                                           \
             REQUIRE(ok_);                                                                          \
         }                                                                                          \

@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Prints, last, what each failed ctest test printed: the tail of its output.
+
+CI's record keeps the beginning and the end of a run's output; a failure's details sit in the
+middle, between the suite's progress lines and the fuzz smoke, and were cut there. .ci/run calls
+this at the very end so the reason is in what is kept.
+
+    scripts/ci_failures.py build [build-asan ...]   # ctest's Testing/Temporary/LastTest.log
+"""
+import os
+import re
+import sys
+
+TAIL_LINES = 40
+
+
+def failed_outputs(build):
+    log = os.path.join(build, "Testing", "Temporary", "LastTest.log")
+    failed = os.path.join(build, "Testing", "Temporary", "LastTestsFailed.log")
+    if not os.path.exists(failed) or not os.path.exists(log):
+        return []
+    names = set()
+    with open(failed, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            _, _, name = line.strip().partition(":")
+            if name:
+                names.add(name)
+    if not names:
+        return []
+    with open(log, encoding="utf-8", errors="replace") as f:
+        text = f.read()
+    out = []
+    # Each test's record: "N/M Testing: NAME" ... "Output:" dashes, the output, dashes, "Test Failed." / "Test Passed."
+    for m in re.finditer(r"^\d+/\d+ Testing: (.*)$", text, re.M):
+        name = m.group(1).strip()
+        if name not in names:
+            continue
+        start = text.find("Output:", m.end())
+        end = text.find("\n<end of output>", start)
+        if start < 0 or end < 0:
+            continue
+        body = text[start:end].splitlines()[2:]
+        out.append((name, body[-TAIL_LINES:]))
+    return out
+
+
+def main():
+    any_failed = False
+    for build in sys.argv[1:]:
+        for name, tail in failed_outputs(build):
+            any_failed = True
+            print(f"ci: FAILED in {build}: {name} (last {len(tail)} lines of its output)")
+            for line in tail:
+                print("    " + line[:300])
+    if not any_failed:
+        print("ci: no failed test recorded")
+
+
+if __name__ == "__main__":
+    main()
