@@ -36,6 +36,8 @@ struct BenchOptions {
     std::string csv;                   // and as CSV (scene,lighting,size,path,ms,gpu)
 };
 int RunBench(const BenchOptions& o);
+// `sdfvj info`: the GL context, driver features, the shader caches and sdfvj's folders (cmd_info.cpp).
+int RunInfo();
 
 // `sdfvj bench effects --scene S`: each effect (a) compiled out, (b) compiled in but switched
 // off by a uniform, (c) on — GPU time of each, interleaved in one run.

@@ -159,6 +159,7 @@ int main(int argc, char** argv) {
 #endif
 
     app.add_subcommand("list", "list scenes, presets and MIDI ports");
+    app.add_subcommand("info", "the GL driver and what it offers sdfvj, the shader caches, the data and cache folders");
 
 #ifdef SDFVJ_HAS_LIVE
     LiveOptions live;
@@ -250,6 +251,7 @@ int main(int argc, char** argv) {
     if (cmdLive->parsed()) return RunLive(live);
     if (cmdLearn->parsed()) return RunLearn(learnParam, learnMapping, learnTimeout);
 #endif
+    if (app.got_subcommand("info")) return RunInfo();
     if (app.got_subcommand("list")) {
         int rc = RunList();
 #ifdef SDFVJ_HAS_LIVE

@@ -87,6 +87,10 @@ bool HeadlessContext::CreateShared(const HeadlessContext& main, std::string* err
     return true;
 }
 
+bool HeadlessContext::HasEglExtension(const char* name) const {
+    return display_ && epoxy_has_egl_extension((EGLDisplay)display_, name);
+}
+
 bool HeadlessContext::MakeCurrent() {
     return display_ && eglMakeCurrent((EGLDisplay)display_, EGL_NO_SURFACE, EGL_NO_SURFACE, (EGLContext)context_);
 }

@@ -33,6 +33,8 @@ public:
     // thread calls this before it ends).
     void ReleaseCurrent();
     std::string Description() const { return description_; }  // "EGL device platform: llvmpipe (...)"
+    // Whether this context's EGL display has an extension (EGL_KHR_fence_sync, say).
+    bool HasEglExtension(const char* name) const;
 private:
     void* display_ = nullptr;
     void* context_ = nullptr;

@@ -131,7 +131,11 @@ struct LiveShow {
             for (const auto& [name, v] : frames[i].second) s += " " + name + "=" + std::to_string(v);
             s += "\n";
         }
-        return s + "  (" + std::to_string(frames.size()) + " frames logged)\n";
+        // Whether the loop still runs (a hung show logs nothing more) and the process lives.
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+        const size_t later = Frames().size();
+        return s + "  (" + std::to_string(frames.size()) + " frames logged, " + std::to_string(later - frames.size()) +
+               " more in the next second; process " + (pid > 0 && kill(pid, 0) == 0 ? "alive" : "gone") + ")\n";
     }
     // At least `more` frames are logged after frame index `from` (the loop went on).
     bool WaitForFramesAfter(size_t from, size_t more, double seconds) const {
