@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Prints, last, what each failed ctest test printed: the tail of its output.
+"""Prints, last, what each failed ctest test printed (the tail of its output), and the warnings of
+tests that passed (a retry that saved one says what went wrong the first time).
 
 CI's record keeps the beginning and the end of a run's output; a failure's details sit in the
 middle, between the suite's progress lines and the fuzz smoke, and were cut there. .ci/run calls
@@ -44,6 +45,27 @@ def failed_outputs(build):
     return out
 
 
+def warned_outputs(build):
+    """Tests that passed but printed a Catch2 WARN (a retry that saved them, say): its lines."""
+    log = os.path.join(build, "Testing", "Temporary", "LastTest.log")
+    if not os.path.exists(log):
+        return []
+    with open(log, encoding="utf-8", errors="replace") as f:
+        text = f.read()
+    out = []
+    for m in re.finditer(r"^\d+/\d+ Testing: (.*)$", text, re.M):
+        start = text.find("Output:", m.end())
+        end = text.find("\n<end of output>", start)
+        if start < 0 or end < 0:
+            continue
+        body = text[start:end].splitlines()[2:]
+        verdict = text.find("Test Passed.", end, end + 400)
+        at = [i for i, line in enumerate(body) if line.rstrip().endswith("warning:")]
+        if verdict >= 0 and at:
+            out.append((m.group(1).strip(), body[at[0]:at[0] + TAIL_LINES]))
+    return out
+
+
 def main():
     any_failed = False
     for build in sys.argv[1:]:
@@ -51,6 +73,10 @@ def main():
             any_failed = True
             print(f"ci: FAILED in {build}: {name} (last {len(tail)} lines of its output)")
             for line in tail:
+                print("    " + line[:300])
+        for name, lines in warned_outputs(build):
+            print(f"ci: passed with a warning in {build}: {name}")
+            for line in lines:
                 print("    " + line[:300])
     if not any_failed:
         print("ci: no failed test recorded")

@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s15]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -31,6 +31,7 @@
 #                                 `handover` (issue 12: the server's reply as a sign, the show compiling the text for
 #                                 the driver's disk cache, against its binary and the driver alone)
 #                                 `stage` (issue 12: each program drawn by the thread that finished it, against process and warm)
+#                                 `s15` (`sdfvj info` there; primitives from the eye against its cone pre-pass; its accuracy)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -286,6 +287,28 @@ case "${1:-}" in
       grep -h -A1 'median:' "$out/reload_${s}_stage.txt" | cut -c1-240 || true
       grep -h -A3 '^| round' "$out/reload_${s}_stage.txt" | cut -c1-200 || true
     done
+    fi
+    if [ "$part" = s15 ]; then
+    # Session 15: (1) `sdfvj info` (does the driver offer GL_EXT_memory_object_fd / semaphore_fd, the
+    # way two render processes would share frames: issue 12); (2) primitives marching from the eye as
+    # it ships now (CONE_PREPASS 0) against a copy with the cone pre-pass (_cone), character beside
+    # them, 1080p and 4K full lighting and the 7680x4320 show, interleaved; (3) primitives' accuracy
+    # report at 1080p (the 0.1 % image budget it missed with the cone pre-pass, issue 13).
+    timeout 30 bash "$0" remote info > "$out/s15_info.txt" 2>&1 || true
+    grep -E 'GL_RENDERER|GL_VERSION|memory_object|semaphore|dma_buf|fence|stream|binary formats|parallel' "$out/s15_info.txt" || true
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"
+    variant "$root" primitives cone "CONE_PREPASS 1"
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 120 bash "$0" remote bench --scenes primitives primitives_cone character \
+      --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 20 --warmup 5 --markdown "$out/s15_frames.md" \
+      --csv "$out/s15_frames.csv" > "$out/s15_frames.txt" 2>&1 || true
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 90 bash "$0" remote bench --scenes primitives primitives_cone --sizes 7680x4320 \
+      --tests show --paths compute --frames 8 --warmup 2 --markdown "$out/s15_show.md" --csv "$out/s15_show.csv" \
+      > "$out/s15_show.txt" 2>&1 || true
+    timeout 120 bash "$0" remote bench accuracy --scene primitives --size 1920x1080 --ref-size 960x540 --path compute \
+      --sweep tiny --frames 12 --warmup 4 --out "$out/s15_accuracy" --csv "$out/s15_accuracy.csv" > "$out/s15_accuracy.txt" 2>&1 || true
+    cat "$out/s15_frames.md" "$out/s15_show.md" 2>/dev/null || true
+    grep -h -E 'drift|\| sdfvj default|no cone' "$out"/s15*.txt || true
+    rm -rf "$root"
     fi
     if [ "$part" = s13 ]; then
     # Issue 13, session 13, one call: (1) every scene as it ships against copies (NAME_SUFFIX, each
