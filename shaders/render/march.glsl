@@ -78,6 +78,31 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
 // (The C++ reference's whole-field march, scene_instance.inc marchWhole.)
 Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax) { return marchRange(ro, rd, tmin, tmax, u_maxSteps); }
 
+// GROUND_SNAP 0: floor hits stay where the march stopped (the renderer before session 15; a scene
+// copy can define it to measure the difference).
+#ifndef GROUND_SNAP
+#define GROUND_SNAP 1
+#endif
+#if USE_GROUND && GROUND_SNAP
+// A hit on the bare floor lands on the plane itself. The march stops anywhere up to eps short of
+// a surface; on the floor that moved the edges of its albedo (a checker, grid lines) by a fraction
+// of a pixel wherever a march started elsewhere (the compute path's cone pre-pass) or stepped
+// otherwise, and those pixels flipped colour. Where map() returned the ground (its albedo, and a
+// point within eps of y = 0) the hit is the plane's, analytic, with the albedo read there. A
+// surface blended into the floor (a smooth union) returns an albedo of its own: left as marched.
+Hit onGround(vec3 ro, vec3 rd, Hit h) {
+    if (!h.hit || rd.y >= 0.0f || ro.y < 0.0f) return h;
+    vec3 p = ro + rd * h.t;
+    if (p.y > hitEpsilon(h.t)) return h;
+    vec4 g = mapGround(p);
+    // (to 1e-4, not exactly: the two map() call sites may round differently, FMA contraction)
+    if (max(abs(g.x - h.albedo.x), max(abs(g.y - h.albedo.y), abs(g.z - h.albedo.z))) > 1e-4f) return h;
+    float tg = -ro.y / rd.y;
+    vec4 at = mapGround(ro + rd * tg);
+    return Hit(tg, h.steps, true, vec3(at.x, at.y, at.z));
+}
+#endif
+
 // The primary (and reflection) ray: with the scene's bound only the stretch inside the sphere
 // is marched, and the ground is met analytically. One marchRange call site: one inlined loop.
 // maxSteps: the march's step budget (traceRay gives a reflection BOUNCE_STEPS).
@@ -101,7 +126,11 @@ Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
     float steps = 0.0f;
     if (a <= b) {
         Hit h = marchRange(ro, rd, a, b, maxSteps);
+#if USE_GROUND && GROUND_SNAP
+        if (h.hit) return onGround(ro, rd, h);
+#else
         if (h.hit) return h;
+#endif
         steps = h.steps;
     }
 #if SCENE_GROUND

@@ -26,15 +26,6 @@ vec3 floorAlbedo(vec3 p) {
     return mix(vec3(0.28f), vec3(0.42f), checker);
 }
 
-// Every primary ray from the eye (render/main_comp.glsl CONE_PREPASS): with the compute path's cone
-// pre-pass 0.168 % of this scene's pixels were more than 8/255 off its 4096-step render on the H200,
-// past the accuracy report's 0.1 % budget (the lines where the shapes meet the floor and the prism's
-// edge, where a march that starts later lands elsewhere within eps); from the eye 0.049 %, for
-// 0.222 -> 0.247 ms at 1920x1080 (docs/accuracy.md). Guarded, so a copy can measure it again.
-#ifndef CONE_PREPASS
-#define CONE_PREPASS 0
-#endif
-
 // Bounding volume for the renderer (render.glsl BOUNDS): the shapes and the floor apart.
 #define SCENE_BOUND 1
 #define SCENE_GROUND 1
