@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s15]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s15|s15b]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -32,6 +32,7 @@
 #                                 the driver's disk cache, against its binary and the driver alone)
 #                                 `stage` (issue 12: each program drawn by the thread that finished it, against process and warm)
 #                                 `s15` (`sdfvj info` there; primitives from the eye against its cone pre-pass; its accuracy)
+#                                 `s15b` (floor hits on the plane against GROUND_SNAP 0 copies; the 8K show; accuracy report)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -309,6 +310,25 @@ case "${1:-}" in
     cat "$out/s15_frames.md" "$out/s15_show.md" 2>/dev/null || true
     grep -h -E 'drift|\| sdfvj default|no cone' "$out"/s15*.txt || true
     rm -rf "$root"
+    fi
+    if [ "$part" = s15b ]; then
+    # Session 15, floor hits on the plane (render/march.glsl onGround): every scene as it ships against
+    # a copy without it (_nosnap, GROUND_SNAP 0) at 1080p and 4K full lighting, interleaved; the
+    # 7680x4320 show as shipped; the accuracy report for docs/accuracy.md (its command line).
+    # (more than the 8 files a device call brings back: all in one archive, s15b.tgz)
+    w="$(mktemp -d)"; root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc=""
+    for s in $all; do variant "$root" $s nosnap "GROUND_SNAP 0"; sc="$sc $s ${s}_nosnap"; done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 150 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 20 --warmup 5 --markdown "$w/s15b_frames.md" --csv "$w/s15b_frames.csv" > "$w/s15b_frames.txt" 2>&1 || true
+    rm -rf "$root"
+    cat "$w/s15b_frames.md" 2>/dev/null || true
+    timeout 100 bash "$0" remote bench --scenes $all --sizes 7680x4320 --tests show --paths compute --frames 8 --warmup 2 \
+      --markdown "$w/s15b_show.md" --csv "$w/s15b_show.csv" > "$w/s15b_show.txt" 2>&1 || true
+    cat "$w/s15b_show.md" 2>/dev/null || true
+    timeout 200 bash "$0" remote bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 15 \
+      --warmup 5 --out "$w/s15b_accuracy" --markdown "$w/s15b_accuracy.md" > "$w/s15b_accuracy.txt" 2>&1 || true
+    grep -h -E 'drift|\| sdfvj default' "$w"/s15b*.txt | cut -c1-220 || true
+    tar czf "$out/s15b.tgz" -C "$w" . && rm -rf "$w"
     fi
     if [ "$part" = s13 ]; then
     # Issue 13, session 13, one call: (1) every scene as it ships against copies (NAME_SUFFIX, each
