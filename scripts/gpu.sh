@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s15|s15b]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s15|s15b|s15c]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -33,6 +33,7 @@
 #                                 `stage` (issue 12: each program drawn by the thread that finished it, against process and warm)
 #                                 `s15` (`sdfvj info` there; primitives from the eye against its cone pre-pass; its accuracy)
 #                                 `s15b` (floor hits on the plane against GROUND_SNAP 0 copies; the 8K show; accuracy report)
+#                                 `s15c` (character's part skip against CHARACTER_SKIP 0; its effects; its accuracy)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -329,6 +330,28 @@ case "${1:-}" in
       --warmup 5 --out "$w/s15b_accuracy" --markdown "$w/s15b_accuracy.md" > "$w/s15b_accuracy.txt" 2>&1 || true
     grep -h -E 'drift|\| sdfvj default' "$w"/s15b*.txt | cut -c1-220 || true
     tar czf "$out/s15b.tgz" -C "$w" . && rm -rf "$w"
+    fi
+    if [ "$part" = s15c ]; then
+    # Session 15: character's part skip (a limb whose bounding sphere is more than the blend radius
+    # beyond the body so far is not evaluated; exact) against a copy without it (_noskip,
+    # CHARACTER_SKIP 0): 1080p and 4K full lighting, its effects at 4K, the 7680x4320 show,
+    # interleaved; its accuracy rows.
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"
+    variant "$root" character noskip "CHARACTER_SKIP 0"
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 100 bash "$0" remote bench --scenes character character_noskip \
+      --sizes 1920x1080 3840x2160 --tests full show --paths compute --frames 30 --warmup 5 --markdown "$out/s15c_frames.md" \
+      --csv "$out/s15c_frames.csv" > "$out/s15c_frames.txt" 2>&1 || true
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 80 bash "$0" remote bench --scenes character character_noskip --sizes 7680x4320 \
+      --tests show --paths compute --frames 8 --warmup 2 --markdown "$out/s15c_show.md" --csv "$out/s15c_show.csv" \
+      > "$out/s15c_show.txt" 2>&1 || true
+    timeout 60 bash "$0" remote bench effects --scene character --size 3840x2160 --path compute --csv "$out/s15c_effects.csv" \
+      > "$out/s15c_effects.txt" 2>&1 || true
+    timeout 90 bash "$0" remote bench accuracy --scene character --size 1920x1080 --ref-size 960x540 --path compute \
+      --sweep tiny --frames 12 --warmup 4 --out "$out/s15c_accuracy" > "$out/s15c_accuracy.txt" 2>&1 || true
+    rm -rf "$root" "$out/s15c_accuracy"
+    cat "$out/s15c_frames.md" "$out/s15c_show.md" 2>/dev/null || true
+    grep -h '^|' "$out/s15c_effects.txt" || true
+    grep -h -E 'drift|\| sdfvj default' "$out"/s15c*.txt | cut -c1-220 || true
     fi
     if [ "$part" = s13 ]; then
     # Issue 13, session 13, one call: (1) every scene as it ships against copies (NAME_SUFFIX, each

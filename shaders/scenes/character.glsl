@@ -57,6 +57,12 @@ SCENE_STATE vec3 g_handR;
 SCENE_STATE vec3 g_pelvis;
 SCENE_STATE vec3 g_chest;
 SCENE_STATE vec3 g_head;
+// Each limb's bounding sphere (centre: its middle joint; radius: the farther end's reach plus that
+// part's radius), for map()'s part skip.
+SCENE_STATE float g_armRadiusL;
+SCENE_STATE float g_armRadiusR;
+SCENE_STATE float g_legRadiusL;
+SCENE_STATE float g_legRadiusR;
 // The skeleton for this frame (u_time, u_speed, u_wave): once per invocation (render.glsl's
 // SCENE_SETUP), not in every map() call. NVIDIA H200, 4K: 1.34 -> 1.05 ms (docs/performance.md).
 void sceneSetup() {
@@ -91,8 +97,32 @@ void sceneSetup() {
     g_pelvis = vec3(0.0f, 0.98f, 0.0f) + up;
     g_chest = vec3(0.0f, 1.36f, 0.0f) + up;
     g_head = vec3(0.0f, 1.70f, 0.0f) + up;
+
+    g_armRadiusL = max(length(g_shoulderL - g_elbowL) + 0.065f, length(g_handL - g_elbowL) + 0.06f) + 1e-3f;
+    g_armRadiusR = max(length(g_shoulderR - g_elbowR) + 0.065f, length(g_handR - g_elbowR) + 0.06f) + 1e-3f;
+    vec3 toe = vec3(0.0f, -0.02f, -0.14f);
+    g_legRadiusL = max(max(length(g_hipL - g_kneeL) + 0.085f, length(g_ankleL - g_kneeL) + 0.07f),
+                       length(g_ankleL + toe - g_kneeL) + 0.06f) + 1e-3f;
+    g_legRadiusR = max(max(length(g_hipR - g_kneeR) + 0.085f, length(g_ankleR - g_kneeR) + 0.07f),
+                       length(g_ankleR + toe - g_kneeR) + 0.06f) + 1e-3f;
 }
 #define SCENE_SETUP 1
+
+// The part skip (CHARACTER_SKIP, on by default): the polynomial smooth union of two distances k
+// or more apart is the nearer one, colour included (sminPoly, blendWeight), and the running
+// distance only falls, so a limb whose bounding sphere is more than k beyond the body so far
+// changes nothing and is not evaluated. The field is the same; each limb is unioned in one piece
+// (upper part, lower part, end), which orders the unions by limb.
+#ifndef CHARACTER_SKIP
+#define CHARACTER_SKIP 1
+#endif
+bool farPart(vec3 p, vec3 centre, float radius, float body, float k) {
+#if CHARACTER_SKIP
+    return length(p - centre) - radius > body + max(k, 0.0f);
+#else
+    return false;
+#endif
+}
 
 vec4 map(vec3 p) {
     const vec3 skin = vec3(0.80f, 0.52f, 0.38f);
@@ -104,18 +134,26 @@ vec4 map(vec3 p) {
     vec4 body = vec4(skin, fSphere(p - g_head, 0.14f));
     body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_pelvis + vec3(0.0f, 0.1f, 0.0f), g_chest, 0.19f)), k);
     body = fOpUnionSmoothColor(body, vec4(jeans, fSphere(p - g_pelvis, 0.17f)), k);
-    body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_shoulderL, g_elbowL, 0.065f)), k);
-    body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_shoulderR, g_elbowR, 0.065f)), k);
-    body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, g_elbowL, g_handL, 0.05f)), k);
-    body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, g_elbowR, g_handR, 0.05f)), k);
-    body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - g_handL, 0.06f)), k);
-    body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - g_handR, 0.06f)), k);
-    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_hipL, g_kneeL, 0.085f)), k);
-    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_hipR, g_kneeR, 0.085f)), k);
-    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_kneeL, g_ankleL, 0.07f)), k);
-    body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_kneeR, g_ankleR, 0.07f)), k);
-    body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, g_ankleL, g_ankleL + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
-    body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, g_ankleR, g_ankleR + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
+    if (!farPart(p, g_elbowL, g_armRadiusL, body.w, k)) {
+        body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_shoulderL, g_elbowL, 0.065f)), k);
+        body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, g_elbowL, g_handL, 0.05f)), k);
+        body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - g_handL, 0.06f)), k);
+    }
+    if (!farPart(p, g_elbowR, g_armRadiusR, body.w, k)) {
+        body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_shoulderR, g_elbowR, 0.065f)), k);
+        body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, g_elbowR, g_handR, 0.05f)), k);
+        body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - g_handR, 0.06f)), k);
+    }
+    if (!farPart(p, g_kneeL, g_legRadiusL, body.w, k)) {
+        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_hipL, g_kneeL, 0.085f)), k);
+        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_kneeL, g_ankleL, 0.07f)), k);
+        body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, g_ankleL, g_ankleL + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
+    }
+    if (!farPart(p, g_kneeR, g_legRadiusR, body.w, k)) {
+        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_hipR, g_kneeR, 0.085f)), k);
+        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_kneeR, g_ankleR, 0.07f)), k);
+        body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, g_ankleR, g_ankleR + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
+    }
 
     return fOpUnionSmoothColor(mapGround(p), body, u_floorBlend);
 }
