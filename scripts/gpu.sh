@@ -31,7 +31,7 @@
 #                                 `handover` (issue 12: the server's reply as a sign, the show compiling the text for
 #                                 the driver's disk cache, against its binary and the driver alone)
 #                                 `stage` (issue 12: each program drawn by the thread that finished it, against process and warm)
-#                                 `s15` (`sdfvj info` there; primitives from the eye against its cone pre-pass; its accuracy)
+#                                 `s15` (`sdfvj info` there: what the driver offers two render processes)
 #                                 `s15b` (floor hits on the plane against GROUND_SNAP 0 copies; the 8K show; accuracy report)
 #                                 `s15c` (character's part skip against CHARACTER_SKIP 0; its effects; its accuracy)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
@@ -291,26 +291,11 @@ case "${1:-}" in
     done
     fi
     if [ "$part" = s15 ]; then
-    # Session 15: (1) `sdfvj info` (does the driver offer GL_EXT_memory_object_fd / semaphore_fd, the
-    # way two render processes would share frames: issue 12); (2) primitives marching from the eye as
-    # it ships now (CONE_PREPASS 0) against a copy with the cone pre-pass (_cone), character beside
-    # them, 1080p and 4K full lighting and the 7680x4320 show, interleaved; (3) primitives' accuracy
-    # report at 1080p (the 0.1 % image budget it missed with the cone pre-pass, issue 13).
+    # Session 15: `sdfvj info` there (does the driver offer GL_EXT_memory_object_fd / semaphore_fd,
+    # dma-buf EGL images: the way two render processes would share frames, issue 12). At eb255bd
+    # this part also timed primitives marching from the eye against its cone pre-pass (dropped).
     timeout 30 bash "$0" remote info > "$out/s15_info.txt" 2>&1 || true
     grep -E 'GL_RENDERER|GL_VERSION|memory_object|semaphore|dma_buf|fence|stream|binary formats|parallel' "$out/s15_info.txt" || true
-    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"
-    variant "$root" primitives cone "CONE_PREPASS 1"
-    SDFVJ_ROOT_OVERRIDE="$root" timeout 120 bash "$0" remote bench --scenes primitives primitives_cone character \
-      --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 20 --warmup 5 --markdown "$out/s15_frames.md" \
-      --csv "$out/s15_frames.csv" > "$out/s15_frames.txt" 2>&1 || true
-    SDFVJ_ROOT_OVERRIDE="$root" timeout 90 bash "$0" remote bench --scenes primitives primitives_cone --sizes 7680x4320 \
-      --tests show --paths compute --frames 8 --warmup 2 --markdown "$out/s15_show.md" --csv "$out/s15_show.csv" \
-      > "$out/s15_show.txt" 2>&1 || true
-    timeout 120 bash "$0" remote bench accuracy --scene primitives --size 1920x1080 --ref-size 960x540 --path compute \
-      --sweep tiny --frames 12 --warmup 4 --out "$out/s15_accuracy" --csv "$out/s15_accuracy.csv" > "$out/s15_accuracy.txt" 2>&1 || true
-    cat "$out/s15_frames.md" "$out/s15_show.md" 2>/dev/null || true
-    grep -h -E 'drift|\| sdfvj default|no cone' "$out"/s15*.txt || true
-    rm -rf "$root"
     fi
     if [ "$part" = s15b ]; then
     # Session 15, floor hits on the plane (render/march.glsl onGround): every scene as it ships against
