@@ -8,7 +8,7 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s15|s15b|s15c]  there: every figure docs/ quotes into $OUT;
+#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s16|s15b|s15c]  there: every figure docs/ quotes into $OUT;
 #                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
 #                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
 #                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
@@ -31,7 +31,7 @@
 #                                 `handover` (issue 12: the server's reply as a sign, the show compiling the text for
 #                                 the driver's disk cache, against its binary and the driver alone)
 #                                 `stage` (issue 12: each program drawn by the thread that finished it, against process and warm)
-#                                 `s15` (`sdfvj info` there: what the driver offers two render processes)
+#                                 `s16` (issue 12: render processes, GPU-shared image or shared memory, against the compile process)
 #                                 `s15b` (floor hits on the plane against GROUND_SNAP 0 copies; the 8K show; accuracy report)
 #                                 `s15c` (character's part skip against CHARACTER_SKIP 0; its effects; its accuracy)
 #                                 (its timeouts add up past one 600 s call: a part per call is safe)
@@ -290,12 +290,17 @@ case "${1:-}" in
       grep -h -A3 '^| round' "$out/reload_${s}_stage.txt" | cut -c1-200 || true
     done
     fi
-    if [ "$part" = s15 ]; then
-    # Session 15: `sdfvj info` there (does the driver offer GL_EXT_memory_object_fd / semaphore_fd,
-    # dma-buf EGL images: the way two render processes would share frames, issue 12). At eb255bd
-    # this part also timed primitives marching from the eye against its cone pre-pass (dropped).
-    timeout 30 bash "$0" remote info > "$out/s15_info.txt" 2>&1 || true
-    grep -E 'GL_RENDERER|GL_VERSION|memory_object|semaphore|dma_buf|fence|stream|binary formats|parallel' "$out/s15_info.txt" || true
+    if [ "$part" = s16 ]; then
+    # Session 16 (issue 12): each program compiled, used and drawn by a render process of its own, its
+    # frames handed over on the GPU (render-process; -sync: every frame a round trip) or by shared memory (-shm), against the compile
+    # process (binary loaded and first drawn here); caches off, untiered, rounds interleaved. (`sdfvj
+    # info` there, session 15's part of this name, is in docs/performance/nvidia-h200/s15/.)
+    for s in ${S16_SCENES:-midi character}; do
+      timeout ${S16_TIMEOUT:-200} bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered off \
+        --modes process,render-process,render-process-sync,render-process-shm --driver-cache off --rounds 3 > "$out/reload_${s}_render_process.txt" 2>&1 || true
+      grep -h -A5 'modes side by side' "$out/reload_${s}_render_process.txt" || tail -5 "$out/reload_${s}_render_process.txt"
+      grep -h -E '^render processes|^longest frame before' "$out/reload_${s}_render_process.txt" | cut -c1-300 || true
+    done
     fi
     if [ "$part" = s15b ]; then
     # Session 15, floor hits on the plane (render/march.glsl onGround): every scene as it ships against
@@ -478,6 +483,7 @@ case "${1:-}" in
     for f in .gl/*.deb; do dpkg -x "$f" /; done
     ldconfig
     export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+    vk=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json; [ -f $vk ] && export VK_DRIVER_FILES=$vk   # render processes' shared image
     export LD_LIBRARY_PATH="$PWD/.devbuild/lib:${LD_LIBRARY_PATH:-}"
     export SDFVJ_ROOT="${SDFVJ_ROOT_OVERRIDE:-$PWD}"
     nvidia-smi --query-gpu=name,driver_version --format=csv,noheader || true

@@ -8,7 +8,8 @@ PACKAGES=(build-essential cmake pkg-config
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev mesa-utils xvfb xauth xfonts-base libxtst-dev
   jackd2 libjack-jackd2-dev libaubio-dev libfftw3-dev
   libtomlplusplus-dev nlohmann-json3-dev libstb-dev libcli11-dev libmuparser-dev ffmpeg parallel python3
-  clang-14 libclang-rt-14-dev)
+  clang-14 libclang-rt-14-dev
+  libvulkan-dev mesa-vulkan-drivers)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -37,7 +37,27 @@ private:
     int w_ = 0, h_ = 0;
 };
 
-class AdoptRun {
+// What the bench's hand-over modes (adopt, stage, render-process) give its frame loop: the
+// program on screen is drawn elsewhere and presented on the render context.
+class HandOverRun {
+public:
+    virtual ~HandOverRun() = default;
+    // The scene's first program, and the target the frames are presented into on `gl` (the render
+    // context, current; it is current again on return).
+    virtual bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) = 0;
+    // The reload step: a save starts a build elsewhere; a finished one goes on screen. True when
+    // the program on screen changed.
+    virtual bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) = 0;
+    // One frame: drawn where the program on screen lives, presented on the render context.
+    virtual void Draw(const FrameInputs& in) = 0;
+    // The program that went on screen last: its build, ms (with its load, first use and first
+    // frame where the mode does those elsewhere).
+    virtual double LastBuildMs() const = 0;
+    // A line of the mode's own figures for the report, or "".
+    virtual std::string Details() const { return ""; }
+};
+
+class AdoptRun : public HandOverRun {
 public:
     // process: adopt-process (compiles there, loads on the new context); nullptr: adopt.
     explicit AdoptRun(CompileProcess* process) : process_(process) {}
@@ -46,13 +66,13 @@ public:
     AdoptRun& operator=(const AdoptRun&) = delete;
     // The scene's first program, built on `gl` (the render context, current), and the target the
     // frames are presented into there.
-    bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error);
+    bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) override;
     // The reload step: a save starts a build on a new context; a finished one goes on screen.
     // True when the program on screen changed. Runs with the render context current, leaves it so.
-    bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error);
+    bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) override;
     // One frame: the scene on its program's context, then presented on the render context.
-    void Draw(const FrameInputs& in);
-    const Program& Current() const { return *program_; }
+    void Draw(const FrameInputs& in) override;
+    double LastBuildMs() const override { return program_->Origin().buildMs; }
 
 private:
     bool UseContext(HeadlessContext* c, std::string* error);   // draw from now on with a renderer made on `c`

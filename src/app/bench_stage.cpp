@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 
 #include "render/compile_worker.h"
 #include "render/program_cache.h"
@@ -81,7 +82,15 @@ StageRun::~StageRun() {
     }
 }
 
-const Program& StageRun::Current() const { return *onScreen_->program; }
+std::string StageRun::Details() const {
+    std::string line = "stages on screen, on their own threads: load (or compile) + first use / first real frame ms:";
+    char buf[64];
+    for (const auto& [use, frame] : stageTimes_) {
+        std::snprintf(buf, sizeof buf, " %.1f / %.1f;", use, frame);
+        line += buf;
+    }
+    return line;
+}
 
 bool StageRun::NewStage(std::unique_ptr<Stage>* out, std::string* error) {
     auto s = std::make_unique<Stage>();

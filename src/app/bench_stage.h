@@ -55,7 +55,7 @@ private:
     std::thread thread_;
 };
 
-class StageRun {
+class StageRun : public HandOverRun {
 public:
     explicit StageRun(CompileProcess* process) : process_(process) {}
     ~StageRun();
@@ -63,16 +63,14 @@ public:
     StageRun& operator=(const StageRun&) = delete;
     // The first program, compiled and drawn on the first stage; `gl` (the render context,
     // current) holds the target frames are presented into.
-    bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error);
+    bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) override;
     // The reload step: a save goes to the compile process; its binary to a new stage; a stage
     // that has drawn its first frame goes on screen. True when the program on screen changed.
-    bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error);
+    bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) override;
     // One frame: drawn by the stage on screen, presented on the render context.
-    void Draw(const FrameInputs& in);
-    const Program& Current() const;
-    double LastStageMs() const { return lastStageMs_; }   // the new stage's load + first use + first frame
-    // Every stage that went on screen: its load (or compile) + first use, and its first real frame, ms.
-    const std::vector<std::pair<double, double>>& StageTimes() const { return stageTimes_; }
+    void Draw(const FrameInputs& in) override;
+    double LastBuildMs() const override { return lastStageMs_; }
+    std::string Details() const override;
 
     // A program with the thread and context that finished it, and its renderer there.
     struct Stage {

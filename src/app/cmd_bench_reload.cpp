@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "app/bench_adopt.h"
+#include "app/bench_render_process.h"
 #include "app/bench_stage.h"
 #include "app/bench_support.h"
 #include "app/commands.h"
@@ -207,8 +208,9 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::unique_ptr<FolderWatcher> watcher;
         std::unique_ptr<LiveProgram> live;
         std::unique_ptr<FrameRenderer> fr;
-        std::unique_ptr<AdoptRun> adopt;   // mode adopt: programs drawn on the context that finished them
-        std::unique_ptr<StageRun> stage;   // mode stage: each program drawn by the thread that finished it
+        // adopt: programs drawn on the context that finished them; stage: by the thread that finished
+        // them; render-process: by the process that finished them.
+        std::unique_ptr<HandOverRun> handover;
         FrameInputs in;
         RenderPath path = RenderPath::Fragment;
         double steadyMedian = 0;
@@ -239,9 +241,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     while (std::getline(modeList, modeName, ',')) {
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
                    : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6
-                   : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : -1;
+                   : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : modeName == "render-process" ? 9
+                   : modeName == "render-process-shm" ? 10 : modeName == "render-process-sync" ? 11 : -1;
         if (mode < 0)
-            return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, adopt-process or stage");
+            return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
+                        "adopt-process, stage, render-process, render-process-sync or render-process-shm");
         ModeRun m;
         m.name = modeName;
         // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
@@ -297,13 +301,12 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                      std::to_string((int)m.live->LiteralPrimeMs()) + " ms (in `live` a frame that long after each structural save)";
         m.fr = std::make_unique<FrameRenderer>();
         if (!m.fr->Resize(w, h, &error)) return Fail(error);
-        if (mode == 5 || mode == 6) {
-            m.adopt = std::make_unique<AdoptRun>(m.process.get());
-            if (!m.adopt->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
-        }
-        if (mode == 8) {
-            m.stage = std::make_unique<StageRun>(m.process.get());
-            if (!m.stage->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
+        if (mode == 5 || mode == 6) m.handover = std::make_unique<AdoptRun>(m.process.get());
+        if (mode == 8) m.handover = std::make_unique<StageRun>(m.process.get());
+        if (mode >= 9)
+            m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11);
+        if (m.handover) {
+            if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();
         }
         for (const ParamDecl& d : scene.params) m.in.params.emplace_back(d.name, d.defaultValue);
@@ -315,14 +318,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::string adoptError;
     auto frameOnce = [&](ModeRun& m, bool* swapped) {
         const auto t0 = Clock::now();
-        if (m.stage) {
-            *swapped = m.stage->Update(m.watcher->Poll(), sceneFile.string(), m.path, &adoptError);
+        if (m.handover) {
+            *swapped = m.handover->Update(m.watcher->Poll(), sceneFile.string(), m.path, &adoptError);
             updateMs = MsSince(t0);
-            m.stage->Draw(m.in);
-        } else if (m.adopt) {
-            *swapped = m.adopt->Update(m.watcher->Poll(), sceneFile.string(), m.path, &adoptError);
-            updateMs = MsSince(t0);
-            m.adopt->Draw(m.in);
+            m.handover->Draw(m.in);
         } else {
             *swapped = m.live->Update(m.watcher->Poll());
             updateMs = MsSince(t0);
@@ -352,7 +351,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             ++r.frames;
             r.longestFrame = std::max(r.longestFrame, ms);
             r.longestUpdate = std::max(r.longestUpdate, updateMs);
-            if (m.adopt || m.stage) {
+            if (m.handover) {
                 if (!swapped) {
                     if (r.firstMs == 0) r.longestBefore = std::max(r.longestBefore, ms);
                     if (!adoptError.empty()) break;
@@ -360,7 +359,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                 }
                 r.firstMs = r.optimizedMs = MsSince(saved);
                 r.firstDraw = ms - updateMs;
-                r.compileMs = m.stage ? m.stage->LastStageMs() : m.adopt->Current().Origin().buildMs;
+                r.compileMs = m.handover->LastBuildMs();
                 r.usedBefore = true;   // used once on its context before it went on screen
                 r.ok = true;
                 break;
@@ -411,7 +410,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::vector<Summary> summary;
     for (ModeRun& m : runs) {
         LiveProgram& live = *m.live;
-        const char* how = m.mode == 8 && !m.process ? "on a new stage's thread (its own shared context), which draws its first frame there while the "
+        const char* how = m.mode >= 9 ? "in a render process of its own (sdfvj render-server, started ahead as a spare), which compiles, uses "
+                                        "and draws it while the one on screen draws; every frame then drawn there and handed over "
+                                        "(compile column: its compile + link, first use and first frame)"
+                          : m.mode == 8 && !m.process ? "on a new stage's thread (its own shared context), which draws its first frame there while the "
                                                      "stage on screen draws; every frame then drawn by that stage's thread, presented here (stage, "
                                                      "no compile process: the driver gives no binaries)"
                           : m.mode == 8 ? "in a compile process, its binary loaded, used once and drawn by a new stage (a thread with a shared context) "
@@ -439,7 +441,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::vector<double> first, optimized, longest, compile, before;
         for (int round : m.failedRounds)
             std::printf("| %d | no new program on screen: %s |\n", round,
-                        !adoptError.empty() && (m.adopt || m.stage) ? adoptError.c_str()
+                        !adoptError.empty() && m.handover ? adoptError.c_str()
                         : live.Error().empty()         ? "timed out after 120 s"
                                                        : live.Error().c_str());
         int round = 0;
@@ -467,11 +469,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(compile));
         std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds\n",
                     MedianMs(before));
-        if (m.stage) {
-            std::printf("stages on screen, on their own threads: load (or compile) + first use / first real frame ms:");
-            for (const auto& [use, frame] : m.stage->StageTimes()) std::printf(" %.1f / %.1f;", use, frame);
-            std::printf("\n");
-        }
+        if (m.handover && !m.handover->Details().empty()) std::printf("%s\n", m.handover->Details().c_str());
         summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian});
     }
     if (o.driverCache == "fresh") std::printf("%s", DriverCacheContents(root / "driver-cache").c_str());

@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "render/compile_process.h"
+#include "render/render_process.h"
 #ifdef SDFVJ_HAS_LIVE
 #include "control/control.h"
 #endif
@@ -47,6 +48,8 @@ int main(int argc, char** argv) {
     // Hidden: the compile process the show spawns of itself (render/compile_process.h); its
     // stdin and stdout are the job socket, so nothing else may print to stdout here.
     if (argc == 2 && std::string(argv[1]) == "compile-server") return RunCompileServer(0, 1);
+    // Hidden: a render process (render/render_process.h); fd 3 is its socket.
+    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3);
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
     CLI::App app{
         "sdfvj — raymarch signed-distance-field scenes live from MIDI/OSC, or offline from a recorded take.\n\n"
@@ -137,7 +140,10 @@ int main(int argc, char** argv) {
                           "compiles the same text for the drivers' disk caches to serve), warm (process + a loader thread that uses each binary once "
                           "before the hand-over), adopt (a new shared context per save compiles and uses the program, which is then "
                           "drawn on that context and presented on the render context), adopt-process (the same with the compile in the compile process), "
-                          "stage (each program loaded, used and drawn by a thread of its own with a shared context); comma-separated, rounds interleaved; "
+                          "stage (each program loaded, used and drawn by a thread of its own with a shared context), render-process (each program compiled, "
+                          "used and drawn by a process of its own, its frames handed over on the GPU: a Vulkan-allocated image both "
+                          "processes import, or a dma-buf; by shared memory where the driver offers neither; the frame shown one behind its inputs, so the server draws while "
+                          "the show waits for the display), render-process-sync (the same, every frame a round trip), render-process-shm (by shared memory always); comma-separated, rounds interleaved; "
                           "--first-frame: warm = with the loader")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();

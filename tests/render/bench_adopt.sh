@@ -7,7 +7,8 @@
 # two modes' longest frames in one interleaved run, not a time, so a slow machine does not fail it.
 # $2 = stage: the same for `--modes stage`, the program compiled, first used and drawn by a thread
 # of its own (with no compile process here, Mesa giving no binaries with its cache off), which
-# then draws every frame of it.
+# then draws every frame of it. $2 = render-process: each program compiled, used and drawn by a
+# process of its own (shared memory here: llvmpipe cannot export a dma-buf, so the fallback runs).
 bin=$1
 mode=${2:-adopt}
 out=$("$bin" bench reload --scene midi --size 160x90 --path fragment --driver-cache off --modes worker,$mode --rounds 3 \

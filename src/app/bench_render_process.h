@@ -1,0 +1,57 @@
+// RenderProcessRun: `sdfvj bench reload --modes render-process[-shm]` (issue 12, session 16): each
+// program drawn by a process of its own (render/render_process.h), its frames shown here.
+//
+// A save goes to the spare render server (started ahead, its GL context already open), which
+// compiles the scene, uses the program once and draws its first frame while the server on screen
+// goes on drawing; then the new server goes on screen and the old one is ended (reaped later, never
+// waited for on a frame). Every frame: the server on screen draws with this frame's inputs and
+// hands the frame over (an image both processes import, allocated through Vulkan; a dma-buf; or
+// shared memory with -shm or where the drivers offer neither), and the render thread blits it into
+// the target it presents, as `live` would on its window. Pipelined (render-process and -shm; not
+// render-process-sync): the frame presented is the one asked for the frame before, so the server
+// draws while this thread waits for the display.
+// Render thread only.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/bench_adopt.h"
+#include "render/render_process.h"
+
+namespace sdfvj {
+
+class RenderProcessRun : public HandOverRun {
+public:
+    // pipelined: the server draws frame N+1 while this thread paces and presents frame N (the frame
+    // on screen one behind its inputs); otherwise every frame waits for the server's round trip.
+    RenderProcessRun(FrameTransport transport, bool pipelined) : transport_(transport), pipelined_(pipelined) {}
+    ~RenderProcessRun() override;
+    RenderProcessRun(const RenderProcessRun&) = delete;
+    RenderProcessRun& operator=(const RenderProcessRun&) = delete;
+    bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) override;
+    bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) override;
+    void Draw(const FrameInputs& in) override;
+    double LastBuildMs() const override { return lastMs_; }
+    std::string Details() const override;
+    FrameTransport Transport() const { return transport_; }
+
+private:
+    std::unique_ptr<RenderProcess> Spawn(std::string* error);
+    void Retire(std::unique_ptr<RenderProcess> p);
+    FrameTransport transport_;
+    bool pipelined_;
+    std::unique_ptr<RenderProcess> onScreen_, next_, spare_;
+    std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
+    std::unique_ptr<PresentTarget> present_;
+    int w_ = 0, h_ = 0;
+    double lastMs_ = 0;
+    std::string note_;
+    std::vector<RenderProcess::Ready> shown_;   // every server that went on screen after the first
+    int failedFrames_ = 0;
+    FrameInputs lastInputs_;
+    bool nextAsked_ = false;   // pipelined: the new server's first frame is asked for; it goes on screen when that arrives
+    bool fresh_ = false;       // the frame in onScreen_'s texture is collected and not yet shown
+};
+
+}  // namespace sdfvj

@@ -1,0 +1,117 @@
+// RenderProcess: a scene drawn by a child process, `sdfvj render-server`, its frames shown here
+// (issue 12, session 16: `bench reload --modes render-process`, a lever measured before `live`
+// uses it).
+//
+// Why another process: on NVIDIA a new program's first use stalls every thread of the process that
+// makes it for 100-300 ms (docs/performance.md, session 14: stages), and a running process never
+// gets another's program through the driver's disk cache. A compile process's builds (and its
+// priming draws) did not stall the show's frames at all. So the process that finishes a program
+// must be the one that draws it: each program gets a render server of its own, which compiles,
+// uses and draws it while the server on screen goes on drawing; then the show switches servers.
+//
+// The server draws into its own target and hands each frame over by one of three transports:
+//   vkmem   it copies the frame into an image both processes import (render/shared_image.h:
+//           Vulkan-allocated, GL_EXT_memory_object_fd): the frame never leaves the GPU.
+//   dmabuf  the same through a texture exported as a dma-buf (EGL_MESA_image_dma_buf_export) and
+//           imported by the show (EGL_EXT_image_dma_buf_import); the NVIDIA H200's EGL lists it
+//           but its export failed there (no DRM device in that container).
+//   shm     it reads the pixels into shared memory (a memfd) and the show uploads them: a copy
+//           each way, works on every driver.
+// Asked for the GPU (any transport but shm), the server tries vkmem, then dmabuf, then shm, and
+// says why each one it passed over failed.
+// A frame is synchronous: the show sends the inputs, the server draws and finishes (glFinish,
+// before it answers) and says done; the show then reads the frame before it asks for the next.
+//
+// Wire format (a stream socket, the server's fd 3; native byte order; each message
+// u32 type, u32 payload length, payload):
+//   show -> server  1 load:  u32 path, i32 width, i32 height, u32 transport (0 shm, else the GPU), scene path
+//                   2 frame: FrameInputs (f64 time, i32 frame, f32 beat, f32 bpm, Quality's bytes,
+//                            i32 effectsOff, f32 yaw, f32 pitch, u32 n, n x (u32 len, name, f32))
+//   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
+//                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
+//                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
+//                            Vulkan memory or dma-buf)
+//                   2 done:  f64 the server's draw + hand-over ms
+// Render thread only (the show's side), except RunRenderServer (the child's main).
+#pragma once
+#include <sys/types.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/render.h"
+
+namespace sdfvj {
+
+enum class FrameTransport { Shm = 0, DmaBuf = 1, VkMemory = 2 };
+const char* FrameTransportName(FrameTransport t);
+
+class RenderProcess {
+public:
+    struct Ready {
+        bool ok = false;
+        FrameTransport transport = FrameTransport::Shm;
+        double buildMs = 0, useMs = 0, firstFrameMs = 0;   // in the server: compile + link, first use, first real frame
+        std::string text;                                  // the error, or a note (a transport refused)
+    };
+    RenderProcess() = default;
+    ~RenderProcess();   // Stop(), then waits for the server to end
+    // Closes the socket and ends the server, frees what was imported (GL current); does not wait.
+    void Stop();
+    // After Stop(): true once the server has ended (never blocks).
+    bool TryReap();
+    RenderProcess(const RenderProcess&) = delete;
+    RenderProcess& operator=(const RenderProcess&) = delete;
+
+    // Spawns `exe render-server`; it opens its own GL context and waits for Load. Never blocks on it.
+    bool Start(std::string* error, const std::string& exe = "/proc/self/exe");
+    // Asks the server to build and draw a scene (from its file, as the show would). Never blocks.
+    bool Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport);
+    // True once the server answered Load (or died: then ready->ok is false). Never blocks; with
+    // a timeout > 0 it waits up to that long. On success the frame is importable: Texture().
+    bool PollReady(Ready* ready, int timeoutMs = 0);
+    // One frame: sends the inputs, waits for the server (up to timeoutMs), makes the frame this
+    // process's Texture(). False when the server died or timed out: the caller keeps what it had.
+    bool DrawFrame(const FrameInputs& in, int timeoutMs = 5000) { return Request(in) && Collect(timeoutMs); }
+    // The same in two halves, for a frame loop that lets the server draw while it waits for the
+    // display (the frame shown is then one behind the inputs): Request sends the inputs and returns;
+    // Collect waits for that frame. Texture() must not be read by the GPU while a request is out:
+    // wait for what read it (a fence) before the next Request.
+    bool Request(const FrameInputs& in);
+    bool Collect(int timeoutMs = 5000);
+    bool Outstanding() const { return outstanding_; }
+    // True when the frame asked for has arrived (Collect will not wait). Never blocks.
+    bool Arrived();
+    unsigned Texture() const { return texture_; }   // this context's texture holding the last frame
+    double LastServerMs() const { return lastServerMs_; }
+    bool Usable() const { return fd_ >= 0 && !dead_; }
+    pid_t Pid() const { return pid_; }
+
+private:
+    bool Send(const std::string& message);
+    bool Receive(int timeoutMs);                 // reads what arrived (fds too) into inbox_/fds_
+    bool TakeMessage(uint32_t* type, std::string* payload);
+    bool Import(const std::string& payload, Ready* ready);
+    void MarkDead();
+    int fd_ = -1;
+    pid_t pid_ = -1;
+    bool dead_ = false, killed_ = false;
+    std::string inbox_;
+    std::vector<int> fds_;
+    int width_ = 0, height_ = 0;
+    FrameTransport transport_ = FrameTransport::Shm;
+    unsigned texture_ = 0;
+    void* image_ = nullptr;   // EGLImage of the dma-buf
+    unsigned memory_ = 0;     // GL memory object of the Vulkan image
+    void* shm_ = nullptr;
+    size_t shmBytes_ = 0;
+    double lastServerMs_ = 0;
+    bool outstanding_ = false;
+};
+
+// The child's main: a headless context of its own, then Load and frames from `fd` until it closes.
+// `sdfvj render-server` calls this with fd 3. Returns the exit code.
+int RunRenderServer(int fd);
+
+}  // namespace sdfvj

@@ -1,0 +1,139 @@
+// The render process (render/render_process.h) on llvmpipe: a scene drawn by `render-server` and
+// handed over shows what this process draws from the same inputs; a broken scene comes back with
+// its reason; a server that dies fails its frame at once instead of hanging the show; frames go
+// over on the GPU (a Vulkan-allocated image both processes import) where the drivers can, by
+// shared memory where not, the same image either way. This binary is its own server
+// (/proc/self/exe render-server), as sdfvj is.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+
+#include "gl_fixture.h"
+#include "render/render_process.h"
+#include "scene/scene.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+
+namespace {
+
+constexpr int kW = 64, kH = 48;
+
+FrameInputs Inputs(const SceneInfo& scene, double time) {
+    FrameInputs in;
+    in.time = time;
+    for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+    return in;
+}
+
+// The render process's frame as this context sees it, top row first (as FrameRenderer::ReadPixels).
+Image ReadTexture(unsigned texture) {
+    GLuint fbo = 0;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    std::vector<uint8_t> raw((size_t)kW * kH * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    Image img{kW, kH, std::vector<uint8_t>(raw.size())};
+    for (int y = 0; y < kH; ++y)
+        std::copy_n(raw.begin() + (long)y * kW * 4, kW * 4, img.rgba.begin() + (long)(kH - 1 - y) * kW * 4);
+    return img;
+}
+
+RenderProcess::Ready StartAndLoad(RenderProcess* proc, const std::string& scenePath, RenderPath path, FrameTransport t) {
+    RequireGl();
+    std::string error;
+    INFO(error);
+    REQUIRE(proc->Start(&error));
+    REQUIRE(proc->Load(scenePath, path, kW, kH, t));
+    RenderProcess::Ready ready;
+    REQUIRE(proc->PollReady(&ready, 120000));
+    return ready;
+}
+
+}  // namespace
+
+TEST_CASE("render process: the server draws what this process draws, frame by frame", "[render_process]") {
+    const RenderPath path = GENERATE(RenderPath::Fragment, RenderPath::Compute);
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    RenderProcess proc;
+    const RenderProcess::Ready ready = StartAndLoad(&proc, scene.path, path, FrameTransport::Shm);
+    INFO(ready.text);
+    REQUIRE(ready.ok);
+    CHECK(ready.transport == FrameTransport::Shm);
+    CHECK(ready.buildMs > 0);
+    Image first;
+    for (double time : {1.0, 2.5}) {
+        REQUIRE(proc.DrawFrame(Inputs(scene, time)));
+        const Image got = ReadTexture(proc.Texture());
+        const Image want = RenderScene("midi", scene.effects, path, kW, kH, time);
+        const ImageDiff d = CompareImages(got, want, 1);
+        INFO("time " << time << ": max channel difference " << d.maxAbs << ", mean " << d.meanAbs);
+        CHECK(d.fractionOver == 0.0);   // same driver, same program, same inputs: the same image
+        if (first.rgba.empty()) first = got;
+        else CHECK(CompareImages(got, first, 8).fractionOver > 0.01);   // the inputs reached it: the frame moved
+    }
+}
+
+TEST_CASE("render process: a broken scene comes back with its reason", "[render_process]") {
+    RenderProcess proc;
+    const RenderProcess::Ready ready = StartAndLoad(&proc, "/nonexistent/nosuch.glsl", RenderPath::Fragment, FrameTransport::Shm);
+    CHECK_FALSE(ready.ok);
+    INFO(ready.text);
+    CHECK(ready.text.find("nosuch.glsl") != std::string::npos);
+    CHECK_FALSE(proc.DrawFrame(FrameInputs{}, 1000));
+}
+
+TEST_CASE("render process: a server that dies fails its frame at once, never hangs the show", "[render_process]") {
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("primitives", &scene, &error));
+    RenderProcess proc;
+    const RenderProcess::Ready ready = StartAndLoad(&proc, scene.path, RenderPath::Fragment, FrameTransport::Shm);
+    REQUIRE(ready.ok);
+    REQUIRE(proc.DrawFrame(Inputs(scene, 1.0)));
+    ::kill(proc.Pid(), SIGKILL);
+    const auto t0 = std::chrono::steady_clock::now();
+    CHECK_FALSE(proc.DrawFrame(Inputs(scene, 2.0), 30000));
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    CHECK(ms < 10000);   // noticed by the closed socket, not by the 30 s timeout
+    CHECK_FALSE(proc.Usable());
+    CHECK(proc.Texture() != 0);   // the last frame is still there to show
+}
+
+TEST_CASE("render process: frames handed over on the GPU where it can, by shared memory where not, the same image", "[render_process]") {
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    RenderProcess proc;
+    const RenderProcess::Ready ready = StartAndLoad(&proc, scene.path, RenderPath::Compute, FrameTransport::VkMemory);
+    INFO("transport " << FrameTransportName(ready.transport) << ": " << ready.text);
+    REQUIRE(ready.ok);
+    // scripts/setup.sh installs lavapipe (Mesa's Vulkan on the CPU): with it and llvmpipe's
+    // GL_EXT_memory_object_fd the Vulkan-allocated image is what runs here.
+    const bool lavapipe = std::ifstream("/usr/share/vulkan/icd.d/lvp_icd.x86_64.json").good();
+    if (lavapipe && epoxy_has_gl_extension("GL_EXT_memory_object_fd")) CHECK(ready.transport == FrameTransport::VkMemory);
+    if (ready.transport == FrameTransport::Shm) CHECK(ready.text.find("shared memory instead") != std::string::npos);   // says why
+    for (double time : {1.0, 3.0}) {
+        REQUIRE(proc.DrawFrame(Inputs(scene, time)));
+        const ImageDiff d = CompareImages(ReadTexture(proc.Texture()), RenderScene("midi", scene.effects, RenderPath::Compute, kW, kH, time), 1);
+        INFO("time " << time << ": max channel difference " << d.maxAbs);
+        CHECK(d.fractionOver == 0.0);
+    }
+}
+
+int main(int argc, char** argv) {
+    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3);
+    return Catch::Session().run(argc, argv);
+}
