@@ -296,10 +296,12 @@ case "${1:-}" in
     # process (binary loaded and first drawn here); caches off, untiered, rounds interleaved. (`sdfvj
     # info` there, session 15's part of this name, is in docs/performance/nvidia-h200/s15/.)
     for s in ${S16_SCENES:-midi character}; do
-      timeout ${S16_TIMEOUT:-200} bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered off \
-        --modes process,render-process,render-process-sync,render-process-shm --driver-cache off --rounds 3 > "$out/reload_${s}_render_process.txt" 2>&1 || true
-      grep -h -A5 'modes side by side' "$out/reload_${s}_render_process.txt" || tail -5 "$out/reload_${s}_render_process.txt"
-      grep -h -E '^render processes|^longest frame before' "$out/reload_${s}_render_process.txt" | cut -c1-300 || true
+      # S16_TIERED=on S16_MODES=process,render-process: the quick tier too (in a second server)
+      f="$out/reload_${s}_render_process${S16_TIERED:+_tiered_$S16_TIERED}.txt"
+      timeout ${S16_TIMEOUT:-200} bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered ${S16_TIERED:-off} \
+        --modes ${S16_MODES:-process,render-process,render-process-sync,render-process-shm} --driver-cache off --rounds 3 > "$f" 2>&1 || true
+      grep -h -A6 'modes side by side' "$f" || tail -5 "$f"
+      grep -h -E '^render processes|^longest frame before|^median' "$f" | cut -c1-300 || true
     done
     fi
     if [ "$part" = s15b ]; then

@@ -55,6 +55,8 @@ public:
     virtual double LastBuildMs() const = 0;
     // A line of the mode's own figures for the report, or "".
     virtual std::string Details() const { return ""; }
+    // The program on screen is a quick first tier (an optimized one follows).
+    virtual bool OnScreenQuick() const { return false; }
 };
 
 class AdoptRun : public HandOverRun {

@@ -9,8 +9,9 @@ namespace sdfvj {
 RenderProcessRun::~RenderProcessRun() {
     // The render context is current (the bench ends on it): textures and images are freed here.
     onScreen_.reset();
-    next_.reset();
-    spare_.reset();
+    next_.process.reset();
+    quick_.process.reset();
+    spares_.clear();
     retired_.clear();
     present_.reset();
 }
@@ -62,8 +63,46 @@ bool RenderProcessRun::Start(HeadlessContext& gl, const std::string& scenePath, 
     gl.MakeCurrent();
     present_ = std::make_unique<PresentTarget>();
     present_->Create(w_, h_);
-    spare_ = Spawn(error);   // a spare opens its context now, off the save's path
-    return spare_ != nullptr;
+    for (int i = 0; i < (tiered_ ? 2 : 1); ++i) {   // spares open their contexts now, off the save's path
+        spares_.push_back(Spawn(error));
+        if (!spares_.back()) return false;
+    }
+    return true;
+}
+
+std::unique_ptr<RenderProcess> RenderProcessRun::TakeSpare(std::string* error) {
+    if (spares_.empty()) return Spawn(error);
+    auto p = std::move(spares_.back());
+    spares_.pop_back();
+    return p;
+}
+
+bool RenderProcessRun::Promote(Candidate& c, std::string* error) {
+    if (!c.process) return false;
+    if (!c.asked) {
+        RenderProcess::Ready r;
+        if (!c.process->PollReady(&r, 0)) return false;
+        if (!r.ok) {
+            *error = r.text;
+            Retire(std::move(c.process));
+            return false;
+        }
+        lastMs_ = r.buildMs + r.useMs + r.firstFrameMs;
+        shown_.push_back(r);
+        shownQuick_.push_back(c.quick);
+        if (pipelined_) {   // its first frame with the inputs of now, drawn while the one on screen goes on
+            c.asked = c.process->Request(lastInputs_);
+            if (c.asked) return false;
+        }
+    } else {
+        if (!c.process->Arrived()) return false;
+        c.asked = false;
+        fresh_ = c.process->Collect(0);
+    }
+    Retire(std::move(onScreen_));
+    onScreen_ = std::move(c.process);
+    onScreenQuick_ = c.quick;
+    return true;
 }
 
 bool RenderProcessRun::Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) {
@@ -71,38 +110,30 @@ bool RenderProcessRun::Update(const std::vector<std::string>& changed, const std
         if (retired_[i]->TryReap()) retired_.erase(retired_.begin() + (long)i);
         else ++i;
     if (!changed.empty()) {
-        Retire(std::move(next_));   // superseded before it was shown
-        nextAsked_ = false;
-        next_ = spare_ ? std::move(spare_) : Spawn(error);
-        if (!next_ || !next_->Load(scenePath, path, w_, h_, transport_)) {
-            if (error->empty()) *error = "the render process for the save did not start";
-            return false;
+        for (Candidate* c : {&next_, &quick_}) {   // superseded before they were shown
+            Retire(std::move(c->process));
+            c->asked = false;
         }
-        spare_ = Spawn(error);
+        for (Candidate* c : {&next_, &quick_}) {
+            if (c == &quick_ && !tiered_) break;
+            c->process = TakeSpare(error);
+            if (!c->process || !c->process->Load(scenePath, path, w_, h_, transport_, c->quick)) {
+                if (error->empty()) *error = "the render process for the save did not start";
+                return false;
+            }
+        }
+        while ((int)spares_.size() < (tiered_ ? 2 : 1)) {   // for the next save, opening their contexts now
+            auto p = Spawn(error);
+            if (!p) break;
+            spares_.push_back(std::move(p));
+        }
     }
-    if (!next_) return false;
-    if (!nextAsked_) {
-        RenderProcess::Ready r;
-        if (!next_->PollReady(&r, 0)) return false;
-        if (!r.ok) {
-            *error = r.text;
-            Retire(std::move(next_));
-            return false;
-        }
-        lastMs_ = r.buildMs + r.useMs + r.firstFrameMs;
-        shown_.push_back(r);
-        if (pipelined_) {   // its first frame with the inputs of now, drawn while this one goes on
-            nextAsked_ = next_->Request(lastInputs_);
-            if (nextAsked_) return false;
-        }
-    } else {
-        if (!next_->Arrived()) return false;
-        nextAsked_ = false;
-        fresh_ = next_->Collect(0);
+    if (Promote(next_, error)) {
+        Retire(std::move(quick_.process));   // the optimized program came first or follows: the quick one is done
+        quick_.asked = false;
+        return true;
     }
-    Retire(std::move(onScreen_));
-    onScreen_ = std::move(next_);
-    return true;
+    return Promote(quick_, error);
 }
 
 void RenderProcessRun::Draw(const FrameInputs& in) {
@@ -128,10 +159,12 @@ std::string RenderProcessRun::Details() const {
     std::string line = std::string("render processes: ") + (pipelined_ ? "pipelined (the frame shown is the one asked for a frame before)" : "synchronous") + "; frames handed over by " +
                        (transport_ == FrameTransport::VkMemory ? "a Vulkan-allocated image both import (on the GPU)"
                         : transport_ == FrameTransport::DmaBuf ? "dma-buf (on the GPU)" : "shared memory (a copy each way)") +
-                       (note_.empty() ? "" : "; " + note_) + "; each one on screen: compile + link / first use / first frame ms:";
+                       (note_.empty() ? "" : "; " + note_) + "; " + (tiered_ ? "tiered (a quick build in one process, the optimized one in another)" : "untiered") +
+                       "; each one on screen: compile + link / first use / first frame ms:";
     char buf[80];
-    for (const RenderProcess::Ready& r : shown_) {
-        std::snprintf(buf, sizeof buf, " %.1f / %.1f / %.1f;", r.buildMs, r.useMs, r.firstFrameMs);
+    for (size_t i = 0; i < shown_.size(); ++i) {
+        const RenderProcess::Ready& r = shown_[i];
+        std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f;", shownQuick_[i] ? "quick " : "", r.buildMs, r.useMs, r.firstFrameMs);
         line += buf;
     }
     if (failedFrames_) line += " frames the server did not deliver: " + std::to_string(failedFrames_);
