@@ -8,33 +8,15 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
-#   scripts/gpu.sh measure [reload|frames|field|cone|lit|ab|toggle|loops|ssaa|wg|launch|fresh|overrelax|s13|final13|handover|stage|s16|s15b|s15c]  there: every figure docs/ quotes into $OUT;
-#                                 `reload` (issue 12), `frames` (4K, accuracy, effects, scaling),
-#                                 `field` (issue 13: the fields' box bound on/off, their accuracy) and
-#                                 `cone` (issue 13: the cone pre-pass on/off at 1080p and 4K) each fit a call;
-#                                 `retune` (issue 12: a numbers-only save through the literal tier, and a nudge);
-#                                 `lit` (issue 13: the n.l shadow skip against the shaders before it);
-#                                 `adopt` (issue 12: the program drawn on the context that finished it);
-#                                 `pending` = adopt + field + cone, what session 7 (no GPU lent) left unmeasured;
-#                                 `ab` (issue 13: scenes now against `prepare-ab REV`'s, and the show lighting at 8K);
-#                                 `toggle` (issue 12: effect pad hits, cold against built ahead)
-#                                 `loops` (issues 13 and 12: all scenes twice, the show at 8K, compiles against `prepare-rev`)
-#                                 `ssaa` (issue 13: the show at 7680x4320 against show_ssaa / show_ssaa_exact at 4K)
-#                                 `wg` (issue 13: work-group shapes, each scene's own against copies, interleaved)
-#                                 `launch` (issue 12: second launch with the driver's disk cache on, program cache on/off)
-#                                 `fresh` (issue 12: reloads with the driver caches on but empty, against off)
-#                                 `overrelax` (issue 13: over-relaxed sphere tracing against plain, every scene)
-#                                 `s13` (issue 13: over-relaxation, 4x4 cone tiles, the fields' cell skip, cheaper
-#                                 reflections in the 8K show, the accuracy sweep; needs `AB_RENDER_OK=1 prepare-ab REV`)
-#                                 `final13` (issue 13: session 13's figures as shipped: 1080p, 4K, the 8K show with
-#                                 full and direct reflections, accuracy, character's and field150's effects)
-#                                 `handover` (issue 12: the server's reply as a sign, the show compiling the text for
-#                                 the driver's disk cache, against its binary and the driver alone)
-#                                 `stage` (issue 12: each program drawn by the thread that finished it, against process and warm)
-#                                 `s16` (issue 12: render processes, GPU-shared image or shared memory, against the compile process)
-#                                 `s15b` (floor hits on the plane against GROUND_SNAP 0 copies; the 8K show; accuracy report)
-#                                 `s15c` (character's part skip against CHARACTER_SKIP 0; its effects; its accuracy)
-#                                 (its timeouts add up past one 600 s call: a part per call is safe)
+#   scripts/gpu.sh measure PART   there: the figures docs/ quotes, into $OUT (a part per call: the
+#                                 timeouts of several add up past one 600 s call). Each part's comment
+#                                 below says what it measures. Issue 12 (reloads): reload, retune,
+#                                 adopt, toggle, launch, fresh, handover, stage, s16 (render processes).
+#                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
+#                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
+#                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13,
+#                                 s15b, s15c, define (DEFINE="NAME VALUE": every scene against a copy
+#                                 with it, frames and compiles); pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -303,6 +285,18 @@ case "${1:-}" in
       grep -h -A6 'modes side by side' "$f" || tail -5 "$f"
       grep -h -E '^render processes|^longest frame before|^median' "$f" | cut -c1-300 || true
     done
+    fi
+    if [ "$part" = define ]; then
+    # A render lever against the shaders before it: every scene against a copy with DEFINE="NAME VALUE"
+    # (_off), 1080p and 4K full lighting interleaved, and midi's and character's compile (untiered).
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc=""
+    for s in $all; do variant "$root" $s off "${DEFINE:?DEFINE=NAME VALUE}"; sc="$sc $s ${s}_off"; done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 150 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 20 --warmup 5 --markdown "$out/define_frames.md" --csv "$out/define_frames.csv" > "$out/define_frames.txt" 2>&1 || true
+    cat "$out/define_frames.md" 2>/dev/null; grep -h drift "$out/define_frames.txt" || true
+    for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
+      --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; grep -h '^median' "$out/define_reload_$s.txt" | cut -c1-200; done
+    rm -rf "$root"
     fi
     if [ "$part" = s15b ]; then
     # Session 15, floor hits on the plane (render/march.glsl onGround): every scene as it ships against

@@ -9,6 +9,12 @@
 // it being one (the over-relaxed step, the cone pre-pass).
 bool sceneIsEstimate() { return sceneLipschitz() > 1.0f; }
 
+// ALBEDO_AT_HIT 0: the albedo carried through every step (before session 16; a scene copy can
+// define it to measure the difference).
+#ifndef ALBEDO_AT_HIT
+#define ALBEDO_AT_HIT 1
+#endif
+
 // Marches the whole field from tmin in at most maxSteps steps; past tmax the ray has missed.
 Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
     float t = tmin;
@@ -32,6 +38,40 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
         prevT = t;
         t += max(u_fixedStep, 1e-4f);
         if (t > tmax) break;
+    }
+#elif ALBEDO_AT_HIT
+    // The loop reads the distance alone, so the compiler drops the albedo's work (colour blends,
+    // the floor's grid) from every step; the albedo is read once, where the march stopped.
+    float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
+    bool stopped = false;
+#if OVERRELAX
+    float omega = sceneIsEstimate() ? 1.0f : OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
+#endif
+    for (int i = 0; i < maxSteps; i++) {
+        steps += 1.0f;
+        float d = map(ro + rd * t).w;
+#if OVERRELAX
+        float r = d * stepScale;
+        bool gap = omega > 1.0f && abs(r) + prevR < stepLen;
+        if (gap) {
+            stepLen -= omega * stepLen;
+            omega = 1.0f;
+        } else {
+            if (d < hitEpsilon(t)) { stopped = true; break; }
+            stepLen = r * omega;
+            prevR = abs(r);
+        }
+        t += stepLen;
+#else
+        if (d < hitEpsilon(t)) { stopped = true; break; }
+        t += d * stepScale;
+#endif
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
+    }
+    // A hit, or out of steps short of the far plane (creeping along a surface: called a hit, as below).
+    if (stopped || steps > 0.0f) {
+        vec4 m = map(ro + rd * t);
+        return Hit(t, steps, true, vec3(m.x, m.y, m.z));
     }
 #else
     float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
