@@ -1,0 +1,236 @@
+// `sdfvj render-server`: the render process's side (render_process.h): its own context, a
+// scene built, used and drawn on request, each frame handed over to the show.
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+#include <signal.h>
+#include <sys/mman.h>
+
+#include "render/compile_worker.h"
+#include "render/render_process.h"
+#include "render/render_wire.h"
+#include "render/shared_image.h"
+#include "scene/scene.h"
+#include "shader/shader.h"
+
+namespace sdfvj {
+
+using namespace render_wire;
+
+namespace {
+
+struct ServerTarget {
+    FrameTransport transport = FrameTransport::Shm;
+    GLuint tex = 0;
+    EGLImageKHR image = EGL_NO_IMAGE_KHR;
+    void* shm = nullptr;
+    size_t bytes = 0;
+    int fd = -1;
+    uint32_t fourcc = 0;
+    uint64_t modifier = kModInvalid;
+    int32_t stride = 0, offset = 0;
+    uint64_t memorySize = 0;
+    SharedImage shared;
+    GLuint memoryObject = 0;
+    std::string note;
+
+    bool ShareVulkan(int w, int h, std::string* why) {
+        if (!shared.Create(w, h, why)) return false;
+        const int mine = shared.ExportFd();
+        if (mine < 0) {
+            *why = "vkGetMemoryFdKHR failed";
+            return false;
+        }
+        tex = ImportSharedTexture(mine, shared.Size(), w, h, &memoryObject, why);
+        fd = tex ? shared.ExportFd() : -1;
+        if (!tex || fd < 0) {
+            if (why->empty()) *why = "vkGetMemoryFdKHR failed";
+            return false;
+        }
+        memorySize = shared.Size();
+        transport = FrameTransport::VkMemory;
+        return true;
+    }
+
+    bool ExportDmaBuf(int w, int h, std::string* why) {
+        EGLDisplay dpy = eglGetCurrentDisplay();
+        for (const char* ext : {"EGL_KHR_gl_texture_2D_image", "EGL_MESA_image_dma_buf_export"})
+            if (!epoxy_has_egl_extension(dpy, ext)) {
+                *why = std::string("the driver's EGL has no ") + ext;
+                return false;
+            }
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+        glFinish();
+        const EGLint attrs[] = {EGL_GL_TEXTURE_LEVEL_KHR, 0, EGL_NONE};
+        image = eglCreateImageKHR(dpy, eglGetCurrentContext(), EGL_GL_TEXTURE_2D_KHR, (EGLClientBuffer)(uintptr_t)tex, attrs);
+        int fcc = 0, planes = 0;
+        EGLuint64KHR mod = 0;
+        if (image == EGL_NO_IMAGE_KHR) *why = "eglCreateImageKHR of the texture failed";
+        else if (!eglExportDMABUFImageQueryMESA(dpy, image, &fcc, &planes, &mod)) *why = "eglExportDMABUFImageQueryMESA failed";
+        else if (planes != 1) *why = "the texture exports as " + std::to_string(planes) + " planes, expected 1";
+        else if (!eglExportDMABUFImageMESA(dpy, image, &fd, &stride, &offset) || fd < 0) *why = "eglExportDMABUFImageMESA failed (EGL error " + std::to_string(eglGetError()) + ")";
+        else {
+            fourcc = (uint32_t)fcc;
+            modifier = mod;
+            transport = FrameTransport::DmaBuf;
+            return true;
+        }
+        return false;
+    }
+    bool MakeShm(int w, int h, std::string* why) {
+        bytes = (size_t)w * (size_t)h * 4;
+        fd = memfd_create("sdfvj-frame", MFD_CLOEXEC);
+        if (fd < 0 || ::ftruncate(fd, (off_t)bytes) != 0) {
+            *why = std::string("memfd: ") + std::strerror(errno);
+            return false;
+        }
+        shm = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+        if (shm == MAP_FAILED) {
+            shm = nullptr;
+            *why = std::string("mmap: ") + std::strerror(errno);
+            return false;
+        }
+        transport = FrameTransport::Shm;
+        return true;
+    }
+    // The frame in `fr` handed over; done on the GPU when this returns.
+    void HandOver(const FrameRenderer& fr) {
+        if (transport != FrameTransport::Shm) {
+            glCopyImageSubData(fr.Texture(), GL_TEXTURE_2D, 0, 0, 0, 0, tex, GL_TEXTURE_2D, 0, 0, 0, 0, fr.Width(), fr.Height(), 1);
+            glFinish();
+            return;
+        }
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, fr.Framebuffer());
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glReadPixels(0, 0, fr.Width(), fr.Height(), GL_RGBA, GL_UNSIGNED_BYTE, shm);   // waits for the frame
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    }
+};
+
+// The driver's compiler is loaded and set up at a process's first compile (NVIDIA: 100-200 ms):
+// a spare server compiles, links and runs a small program first, so a save pays only its own.
+void WarmCompiler() {
+    static const char* kText =
+        "#version 430\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+        "layout(rgba8, binding = 0) uniform writeonly image2D u_out;\nuniform float u_t;\n"
+        "float f(vec3 p) { return length(p) - 1.0 + 0.1 * sin(p.x * u_t); }\n"
+        "void main() { vec3 p = vec3(gl_GlobalInvocationID, u_t); float d = 0.0;\n"
+        "  for (int i = 0; i < 16; ++i) d += f(p + d);\n"
+        "  imageStore(u_out, ivec2(gl_GlobalInvocationID.xy), vec4(d)); }\n";
+    const GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(sh, 1, &kText, nullptr);
+    glCompileShader(sh);
+    const GLuint prog = glCreateProgram();
+    glAttachShader(prog, sh);
+    glLinkProgram(prog);
+    GLint linked = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+    if (linked) {
+        GLuint tex = 0;
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, 8, 8);
+        glBindImageTexture(0, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        glUseProgram(prog);
+        glDispatchCompute(1, 1, 1);
+        glFinish();
+        glUseProgram(0);
+        glDeleteTextures(1, &tex);
+    }
+    glDeleteProgram(prog);
+    glDeleteShader(sh);
+}
+
+}  // namespace
+
+int RunRenderServer(int fd) {
+    ::signal(SIGPIPE, SIG_IGN);
+    HeadlessContext gl;
+    std::string glError;
+    const bool glOk = gl.Create(&glError);
+    if (glOk) WarmCompiler();   // a spare does this while it waits, off the save's path
+    SceneInfo scene;
+    Program program;
+    FrameRenderer fr;
+    ServerTarget target;
+    bool loaded = false;
+    for (;;) {
+        uint32_t header[2];
+        if (!ReadAll(fd, header, sizeof header) || header[1] > kMaxPayload) return 0;
+        std::string payload(header[1], '\0');
+        if (!ReadAll(fd, payload.data(), payload.size())) return 0;
+        if (header[0] == 2 && loaded) {
+            FrameInputs in;
+            if (!DecodeInputs(payload, &in)) return 3;
+            const auto t0 = Clock::now();
+            fr.Draw(program, scene, in);
+            target.HandOver(fr);
+            std::string p;
+            Put(&p, MsSince(t0));
+            if (!SendAll(fd, Message(2, p))) return 0;
+            continue;
+        }
+        if (header[0] != 1 || loaded) return 3;   // out of turn: the show is not ours
+        size_t at = 0;
+        uint32_t path = 0, transport = 0, quick = 0;
+        int32_t w = 0, h = 0;
+        std::string scenePath, error;
+        if (!Take(payload, &at, &path) || !Take(payload, &at, &w) || !Take(payload, &at, &h) ||
+            !Take(payload, &at, &transport) || !Take(payload, &at, &quick) || !TakeText(payload, &at, &scenePath))
+            return 3;
+        const RenderPath rp = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
+        double buildMs = 0, useMs = 0, frameMs = 0;
+        bool ok = glOk;
+        if (!glOk) error = glError;
+        ShaderSource src;
+        if (ok) ok = LoadScene(scenePath, &scene, &error) && AssembleProgram(scene, VariantKey{scenePath, scene.effects, rp}, &src, &error);
+        if (ok && quick) src.text = QuickTierText(src.text);
+        auto t0 = Clock::now();
+        if (ok) ok = program.Build(src, rp, &error);
+        buildMs = MsSince(t0);
+        FrameInputs in;
+        for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+        if (ok) ok = fr.Resize(w, h, &error);
+        if (ok) {
+            t0 = Clock::now();
+            PrimeProgram(program.Id(), rp, false);   // the driver's first use, here
+            glFinish();
+            useMs = MsSince(t0);
+            t0 = Clock::now();
+            fr.Draw(program, scene, in);
+            glFinish();
+            frameMs = MsSince(t0);
+            std::string why, why2;
+            if (transport != 0 && !target.ShareVulkan(w, h, &why) && !target.ExportDmaBuf(w, h, &why2))
+                target.note = "GPU hand-over refused (Vulkan image: " + why + "; dma-buf: " + why2 + "): shared memory instead";
+            else if (transport != 0 && target.transport == FrameTransport::DmaBuf)
+                target.note = "Vulkan image refused (" + why + "): dma-buf";
+            if (target.transport == FrameTransport::Shm && !target.MakeShm(w, h, &error)) ok = false;
+            if (ok) target.HandOver(fr);
+        }
+        std::string p;
+        Put<uint32_t>(&p, ok ? 1 : 0);
+        Put<uint32_t>(&p, (uint32_t)target.transport);
+        Put(&p, buildMs);
+        Put(&p, useMs);
+        Put(&p, frameMs);
+        Put<uint32_t>(&p, target.fourcc);
+        Put<uint64_t>(&p, target.modifier);
+        Put<int32_t>(&p, target.stride);
+        Put<int32_t>(&p, target.offset);
+        Put<uint64_t>(&p, target.memorySize);
+        PutText(&p, ok ? target.note : error);
+        if (!SendAll(fd, Message(1, p), ok ? target.fd : -1)) return 0;
+        if (!ok) return 1;
+        if (target.transport != FrameTransport::Shm) {
+            ::close(target.fd);   // the show holds it now
+            target.fd = -1;
+        }
+        loaded = true;
+    }
+}
+
+
+}  // namespace sdfvj
