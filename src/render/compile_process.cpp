@@ -18,39 +18,17 @@
 #include "render/compile_worker.h"
 #include "render/program_cache.h"
 #include "render/render.h"
+#include "render/render_wire.h"
 
 extern char** environ;
 
 namespace sdfvj {
 
+using render_wire::Put;
+using render_wire::ReadAll;
+using render_wire::Take;
+
 namespace {
-
-template <typename T>
-void Put(std::string* out, T v) {
-    out->append(reinterpret_cast<const char*>(&v), sizeof v);
-}
-
-// Reads a T at `*at` of `in` when enough bytes are there.
-template <typename T>
-bool Take(const std::string& in, size_t* at, T* v) {
-    if (in.size() < *at + sizeof(T)) return false;
-    std::memcpy(v, in.data() + *at, sizeof(T));
-    *at += sizeof(T);
-    return true;
-}
-
-// Blocking read/write of exactly n bytes (the server's side only). False on EOF or error.
-bool ReadAll(int fd, void* buf, size_t n) {
-    char* p = static_cast<char*>(buf);
-    while (n > 0) {
-        const ssize_t got = ::read(fd, p, n);
-        if (got < 0 && errno == EINTR) continue;
-        if (got <= 0) return false;
-        p += got;
-        n -= (size_t)got;
-    }
-    return true;
-}
 
 bool WriteAll(int fd, const std::string& bytes) {
     size_t at = 0;

@@ -1,6 +1,6 @@
 // The render process's wire (render_process.h has the format): framing, the values it carries,
 // and socket reads and writes with a file descriptor riding along. Internal to render_process.cpp
-// (the show's side) and render_server.cpp (the server's).
+// (the show's side) and render_server.cpp (the server's); compile_process.cpp shares its helpers.
 #pragma once
 #include <poll.h>
 #include <sys/socket.h>
