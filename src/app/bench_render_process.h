@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "app/bench_adopt.h"
-#include "render/render_process.h"
+#include "render/server_show.h"
 
 namespace sdfvj {
 
@@ -27,8 +27,7 @@ public:
     // on screen one behind its inputs); otherwise every frame waits for the server's round trip.
     // tiered: every save also goes to a second server that builds the quick tier (QuickTierText),
     // on screen until the optimized program's server is ready.
-    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered)
-        : transport_(transport), pipelined_(pipelined), tiered_(tiered) {}
+    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered) : servers_(transport, pipelined, tiered), pipelined_(pipelined), tiered_(tiered) {}
     ~RenderProcessRun() override;
     RenderProcessRun(const RenderProcessRun&) = delete;
     RenderProcessRun& operator=(const RenderProcessRun&) = delete;
@@ -37,37 +36,15 @@ public:
     void Draw(const FrameInputs& in) override;
     double LastBuildMs() const override { return lastMs_; }
     std::string Details() const override;
-    bool OnScreenQuick() const override { return onScreenQuick_; }
-    FrameTransport Transport() const { return transport_; }
+    bool OnScreenQuick() const override { return servers_.OnScreenQuick(); }
+    FrameTransport Transport() const { return servers_.Transport(); }
 
 private:
-    // A server building a save's program; asked: its first frame is asked for (pipelined), and it
-    // goes on screen when that arrives.
-    struct Candidate {
-        std::unique_ptr<RenderProcess> process;
-        bool quick = false;
-        bool asked = false;
-    };
-    std::unique_ptr<RenderProcess> Spawn(std::string* error);
-    std::unique_ptr<RenderProcess> TakeSpare(std::string* error);
-    bool Promote(Candidate& c, std::string* error);   // true when c went on screen
-    void Retire(std::unique_ptr<RenderProcess> p);
-    FrameTransport transport_;
+    ServerShow servers_;
     bool pipelined_, tiered_;
-    std::unique_ptr<RenderProcess> onScreen_;
-    Candidate next_, quick_{nullptr, true, false};
-    std::vector<std::unique_ptr<RenderProcess>> spares_;   // started ahead, their contexts open
-    bool onScreenQuick_ = false;
-    std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
     std::unique_ptr<PresentTarget> present_;
     int w_ = 0, h_ = 0;
     double lastMs_ = 0;
-    std::string note_;
-    std::vector<RenderProcess::Ready> shown_;   // every server that went on screen after the first
-    std::vector<bool> shownQuick_;
-    int failedFrames_ = 0;
-    FrameInputs lastInputs_;
-    bool fresh_ = false;       // the frame in onScreen_'s texture is collected and not yet shown
 };
 
 }  // namespace sdfvj

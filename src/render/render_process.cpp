@@ -88,7 +88,8 @@ bool RenderProcess::Send(const std::string& message) {
     return Usable();
 }
 
-bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick) {
+bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick,
+                         const std::string& effects) {
     std::string p;
     Put<uint32_t>(&p, (uint32_t)path);
     Put<int32_t>(&p, width);
@@ -96,6 +97,7 @@ bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int widt
     Put<uint32_t>(&p, (uint32_t)transport);
     Put<uint32_t>(&p, quick ? 1 : 0);
     PutText(&p, scenePath);
+    PutText(&p, effects);
     width_ = width;
     height_ = height;
     return Send(Message(1, p));

@@ -1,0 +1,176 @@
+#include "render/server_show.h"
+
+#include <epoxy/gl.h>
+#include <poll.h>
+
+#include "render/render_wire.h"
+
+namespace sdfvj {
+
+ServerShow::~ServerShow() {
+    // The show's context is current: textures and imported images are freed here.
+    onScreen_.reset();
+    lastFrame_.reset();
+    next_.process.reset();
+    quick_.process.reset();
+    spares_.clear();
+    retired_.clear();
+}
+
+std::unique_ptr<RenderProcess> ServerShow::Spawn(std::string* error) {
+    auto p = std::make_unique<RenderProcess>();
+    if (!p->Start(error)) return nullptr;
+    return p;
+}
+
+std::unique_ptr<RenderProcess> ServerShow::TakeSpare(std::string* error) {
+    while (!spares_.empty()) {
+        auto p = std::move(spares_.back());
+        spares_.pop_back();
+        if (p->Usable()) return p;
+        Retire(std::move(p));   // a spare that died while it waited
+    }
+    return Spawn(error);
+}
+
+// Spares open their contexts and warm their compilers now, off the next load's path.
+void ServerShow::FillSpares() {
+    std::string ignored;
+    while ((int)spares_.size() < (tiered_ ? 2 : 1)) {
+        auto p = Spawn(&ignored);
+        if (!p) break;
+        spares_.push_back(std::move(p));
+    }
+}
+
+void ServerShow::Retire(std::unique_ptr<RenderProcess> p) {
+    if (!p) return;
+    p->Stop();
+    retired_.push_back(std::move(p));
+}
+
+bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) {
+    c.asked = false;
+    c.process = TakeSpare(error);
+    if (c.process && c.process->Load(load.scenePath, load.path, load.width, load.height, transport_, c.quick, load.effects)) return true;
+    if (error->empty()) *error = "the render process did not start";
+    Retire(std::move(c.process));
+    return false;
+}
+
+bool ServerShow::Start(const ServerLoad& load, std::string* error, int timeoutMs) {
+    if (!Load(load, error)) return false;
+    const auto t0 = render_wire::Clock::now();
+    while (!onScreen_) {
+        if (Poll(error)) break;
+        if (!error->empty() && !Building()) return false;   // it did not build: *error says why
+        if (render_wire::MsSince(t0) >= timeoutMs) {
+            *error = "the render process did not answer in " + std::to_string(timeoutMs / 1000) + " s";
+            return false;
+        }
+        ::poll(nullptr, 0, 2);
+    }
+    FillSpares();
+    return true;
+}
+
+bool ServerShow::Load(const ServerLoad& load, std::string* error) {
+    error->clear();
+    for (Candidate* c : {&next_, &quick_}) Retire(std::move(c->process));   // superseded before they were shown
+    building_ = load;
+    if (!Send(next_, load, error)) return false;
+    if (tiered_ && !Send(quick_, load, error)) return false;
+    FillSpares();
+    return true;
+}
+
+bool ServerShow::Promote(Candidate& c, std::string* error) {
+    if (!c.process) return false;
+    if (!c.asked) {
+        RenderProcess::Ready r;
+        if (!c.process->PollReady(&r, 0)) return false;
+        if (!r.ok) {
+            Retire(std::move(c.process));
+            if (r.transport != FrameTransport::Shm && transport_ != FrameTransport::Shm) {
+                // The server shared an image this context could not import: shared memory from now on.
+                note_ = std::string(FrameTransportName(r.transport)) + " import refused here (" + r.text + "): shared memory instead";
+                transport_ = FrameTransport::Shm;
+                Send(c, building_, error);
+                return false;
+            }
+            *error = r.text;
+            return false;
+        }
+        if (!r.text.empty() && note_.empty()) note_ = r.text;
+        transport_ = r.transport;
+        shown_.push_back(r);
+        shownQuick_.push_back(c.quick);
+        if (pipelined_) {   // its first frame with the inputs of now, drawn while the one on screen goes on
+            c.asked = c.process->Request(lastInputs_);
+            if (c.asked) return false;
+        }
+    } else {
+        if (!c.process->Arrived() && c.process->Usable()) return false;
+        c.asked = false;
+        fresh_ = c.process->Collect(0);
+    }
+    Retire(std::move(onScreen_));
+    Retire(std::move(lastFrame_));
+    onScreen_ = std::move(c.process);
+    onScreenLoad_ = building_;
+    onScreenQuick_ = c.quick;
+    return true;
+}
+
+bool ServerShow::Poll(std::string* error) {
+    error->clear();
+    for (size_t i = 0; i < retired_.size();)
+        if (retired_[i]->TryReap()) retired_.erase(retired_.begin() + (long)i);
+        else ++i;
+    if (onScreen_ && !onScreen_->Usable() && !next_.process) {
+        // Died or stopped answering: its last frame stays on screen while a spare builds its program.
+        ++replaced_;
+        *error = "the render server on screen ended; a new one builds the same program";
+        lastFrame_ = std::move(onScreen_);
+        const ServerLoad same = onScreenLoad_;
+        std::string why;
+        if (!Load(same, &why)) *error += " (" + why + ")";
+        return false;
+    }
+    if (Promote(next_, error)) {
+        Retire(std::move(quick_.process));   // the optimized program came first or follows: the quick one is done
+        quick_.asked = false;
+        return true;
+    }
+    std::string quickError;
+    const bool quick = Promote(quick_, &quickError);
+    if (error->empty() && !next_.process) *error = quickError;
+    return quick;
+}
+
+unsigned ServerShow::Texture() const {
+    if (onScreen_ && onScreen_->Texture()) return onScreen_->Texture();
+    return lastFrame_ ? lastFrame_->Texture() : 0;
+}
+
+bool ServerShow::Frame(const FrameInputs& in, int timeoutMs) {
+    lastInputs_ = in;
+    if (!onScreen_) return false;
+    RenderProcess& p = *onScreen_;
+    // A server just put on screen: its first frame is here already (pipelined), or drawn now.
+    const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs) : p.DrawFrame(in, timeoutMs));
+    fresh_ = false;
+    if (!ok) ++failedFrames_;   // the last frame stays on screen
+    return ok;
+}
+
+void ServerShow::AfterRead(const FrameInputs& in) {
+    if (!pipelined_ || !onScreen_) return;
+    // What read the shared image must have finished before the server writes the next frame into it.
+    GLsync read = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    glClientWaitSync(read, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000);
+    glDeleteSync(read);
+    if (!onScreen_->Request(in)) ++failedFrames_;
+}
+
+}  // namespace sdfvj

@@ -1,0 +1,105 @@
+// ServerShow: the render servers behind a show (issue 12; render_process.h says why a program is
+// drawn by a process of its own). `bench reload --modes render-process*` and `live
+// --render-process` both run on it.
+//
+// It holds the server on screen; the ones building a save (the optimized program, and with
+// tiering a quick first tier beside it); spares started ahead, whose GL contexts and compilers are
+// warm before a save needs them; and ended servers not yet reaped (never waited for on a frame).
+// A save goes to a spare while the server on screen goes on drawing; a build that finishes goes on
+// screen, one that fails says why and the one on screen stays. A server on screen that dies or
+// stops answering is replaced by a spare building the same program, while the last frame it
+// delivered stays on screen: a crash in a shader ends a server, never the show.
+// Render thread only (the show's GL context current in every call and in the destructor).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/render_process.h"
+
+namespace sdfvj {
+
+// What a server builds and draws.
+struct ServerLoad {
+    std::string scenePath;
+    std::string effects;   // ParseEffectList's text ("none", "shadows,ao", ...); "" the scene's own
+    RenderPath path = RenderPath::Fragment;
+    int width = 0, height = 0;
+    bool operator==(const ServerLoad&) const = default;
+};
+
+class ServerShow {
+public:
+    // transport: how frames come over (FrameTransport::Shm, or the GPU where both sides can: the
+    // server says which it could, and an import this side refuses falls back to Shm).
+    // pipelined: the server draws the next frame while the show presents this one (Request after
+    // the frame was read, AfterRead). tiered: every load also builds the quick tier (QuickTierText).
+    ServerShow(FrameTransport transport, bool pipelined, bool tiered)
+        : transport_(transport), pipelined_(pipelined), tiered_(tiered) {}
+    ~ServerShow();
+    ServerShow(const ServerShow&) = delete;
+    ServerShow& operator=(const ServerShow&) = delete;
+
+    // The first program, waited for (up to timeoutMs), and the spares opened for the next load.
+    // False with *error when it did not build (the show may go on: a later Load that builds goes on
+    // screen) or no server could start.
+    bool Start(const ServerLoad& load, std::string* error, int timeoutMs = 120000);
+    // A new program: a spare builds it while the one on screen goes on; a build still running for an
+    // earlier Load is ended. Never blocks. False when no server could start.
+    bool Load(const ServerLoad& load, std::string* error);
+    // Reaps ended servers; puts a finished build on screen; replaces a dead server on screen.
+    // True when the server on screen changed. *error: why a build failed or a server was replaced
+    // ("" when nothing went wrong); the one on screen stays.
+    bool Poll(std::string* error);
+    // This frame's image into Texture(): drawn now (synchronous) or the one asked for a frame
+    // before (pipelined). False when there is none to show this frame (no server on screen, or it
+    // failed: Texture() still holds the last frame delivered, if any).
+    bool Frame(const FrameInputs& in, int timeoutMs = 1000);
+    // Pipelined: the show has read Texture() (a fence waited for); the server may draw the next.
+    void AfterRead(const FrameInputs& in);
+
+    unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
+    bool OnScreen() const { return onScreen_ != nullptr; }
+    const ServerLoad& OnScreenLoad() const { return onScreenLoad_; }
+    bool OnScreenQuick() const { return onScreenQuick_; }
+    bool Building() const { return next_.process != nullptr || quick_.process != nullptr; }
+    const ServerLoad& BuildingLoad() const { return building_; }
+    FrameTransport Transport() const { return transport_; }
+    // Every server that went on screen, its figures in its process: build, first use, first frame.
+    const std::vector<RenderProcess::Ready>& Shown() const { return shown_; }
+    const std::vector<bool>& ShownQuick() const { return shownQuick_; }
+    const std::string& Note() const { return note_; }   // a transport refused, and why
+    int FailedFrames() const { return failedFrames_; }
+    int Replaced() const { return replaced_; }          // servers on screen that died and were replaced
+
+private:
+    struct Candidate {
+        std::unique_ptr<RenderProcess> process;
+        bool quick = false;
+        bool asked = false;   // pipelined: its first frame was asked for; it goes on screen when that arrives
+    };
+    std::unique_ptr<RenderProcess> Spawn(std::string* error);
+    std::unique_ptr<RenderProcess> TakeSpare(std::string* error);
+    void FillSpares();
+    bool Promote(Candidate& c, std::string* error);   // true when c went on screen
+    void Retire(std::unique_ptr<RenderProcess> p);
+    bool Send(Candidate& c, const ServerLoad& load, std::string* error);
+
+    FrameTransport transport_;
+    bool pipelined_, tiered_;
+    std::unique_ptr<RenderProcess> onScreen_;
+    ServerLoad onScreenLoad_, building_;
+    Candidate next_, quick_{nullptr, true, false};
+    std::vector<std::unique_ptr<RenderProcess>> spares_;
+    std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
+    std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
+    bool onScreenQuick_ = false;
+    bool fresh_ = false;   // the frame in onScreen_'s texture is collected and not yet shown
+    FrameInputs lastInputs_;
+    std::vector<RenderProcess::Ready> shown_;
+    std::vector<bool> shownQuick_;
+    std::string note_;
+    int failedFrames_ = 0, replaced_ = 0;
+};
+
+}  // namespace sdfvj
