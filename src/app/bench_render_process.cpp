@@ -11,7 +11,7 @@ RenderProcessRun::~RenderProcessRun() { present_.reset(); }   // the render cont
 bool RenderProcessRun::Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) {
     w_ = width;
     h_ = height;
-    if (!servers_.Start(ServerLoad{scenePath, "", path, w_, h_}, error)) return false;
+    if (!servers_.Start(ServerLoad{scenePath, true, {}, path, w_, h_}, error)) return false;
     if (!servers_.Texture()) {
         *error = "the render process gave no frame: " + servers_.Note();
         return false;
@@ -23,7 +23,7 @@ bool RenderProcessRun::Start(HeadlessContext& gl, const std::string& scenePath, 
 }
 
 bool RenderProcessRun::Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) {
-    if (!changed.empty() && !servers_.Load(ServerLoad{scenePath, "", path, w_, h_}, error)) return false;
+    if (!changed.empty() && !servers_.Load(ServerLoad{scenePath, true, {}, path, w_, h_}, error)) return false;
     if (!servers_.Poll(error)) return false;
     const RenderProcess::Ready& r = servers_.Shown().back();
     lastMs_ = r.buildMs + r.useMs + r.firstFrameMs;

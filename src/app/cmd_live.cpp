@@ -69,7 +69,8 @@ bool LiveSession::Start(std::string* error) {
     // it would take the CPU the frames need (SDFVJ_LITERAL_TIER=1|0 forces it).
     live_.SetLiteralTier(!softwareGl_);
     live_.SetPrimePrefetched(o_.warmAhead);   // --warm-ahead: a pad hit shows its variant in one frame
-    if (!state_.show.isfScene) {   // an ISF generator is the post chain's first stage instead
+    if (o_.renderProcess && !state_.show.isfScene) StartServers();
+    if (!servers_ && !state_.show.isfScene) {   // an ISF generator is the post chain's first stage instead
         live_.Request(state_.wanted);
         live_.Wait();
     }
@@ -191,6 +192,16 @@ void LiveSession::Reload() {
     state_.foldersToWatch.clear();
     const std::vector<std::string> changed = watcher_.Poll();
     ApplyFileChanges(state_, changed, Now());
+    if (servers_) {   // --render-process: builds go to spare servers; no prefetch, no morph
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        std::vector<std::string> say;
+        servers_->Update(state_.wanted, changed, std::max(1, (int)std::lround(w * renderScale_)),
+                         std::max(1, (int)std::lround(h * renderScale_)), &say);
+        for (const std::string& line : say) state_.report.Say(line);
+        ReloadPost(changed);
+        return;
+    }
     if (!(state_.wanted == live_.Key()) && !state_.show.isfScene) {
         PrepareFieldMorph();
         live_.Request(state_.wanted);
@@ -222,13 +233,15 @@ void LiveSession::StartFadeIfSceneChanged(double now) {
 void LiveSession::UpdateProgram() {
     UpdatePost();
     // The scene's header alone unless a post chain adds inputs: no SceneInfo copy per frame.
-    if (live_.Current() && postDecls_.empty()) FollowScene(state_, live_.Scene());
-    else if (live_.Current()) FollowScene(state_, SceneWithPost());
+    if (HasProgram() && postDecls_.empty()) FollowScene(state_, SceneOnScreen());
+    else if (HasProgram()) FollowScene(state_, SceneWithPost());
     if (state_.sendFeedback && state_.pendingTargets.empty()) {
         input_.SendFeedback(state_.params, state_.currentPreset);
         state_.sendFeedback = false;
     }
-    if (live_.Error() != shownError_) {
+    if (servers_ && servers_->Error() != shownError_) {   // said by Reload as it came
+        shownError_ = servers_->Error();
+    } else if (!servers_ && live_.Error() != shownError_) {
         shownError_ = live_.Error();
         state_.report.Say(shownError_.empty() ? "shader reloaded" : shownError_);
     }
@@ -261,7 +274,9 @@ void LiveSession::Draw(double now) {
     DrawScene(now);
     if (timed) frameTimer_.End();
     double budgetMs = 0;   // --frame-budget: GPU time, or on a software renderer the finished draw's wall time
-    if (!softwareGl_)
+    if (servers_)   // the render process's draw and hand-over (its wall time): this process only blits
+        ui_.gpu.Add((float)(budgetMs = servers_->Servers().LastServerMs()));
+    else if (!softwareGl_)
         for (const GpuTimerRing::Sample& s : frameTimer_.Poll()) ui_.gpu.Add((float)(budgetMs = s.ms));
     else if (budget_.desc.budgetMs > 0)
         glFinish(), budgetMs = 1000.0 * (Now() - t0);
@@ -304,6 +319,12 @@ void LiveSession::DrawScene(double now) {
         in_.time = now;
         in_.frame = frame_++;
         DrawPost(0, rw, rh, now);
+        return;
+    }
+    if (servers_ && fbw_ > 0 && fbh_ > 0) {
+        in_.time = now;
+        in_.frame = frame_++;
+        DrawServerScene(now);
         return;
     }
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;

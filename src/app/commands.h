@@ -126,6 +126,7 @@ struct LiveOptions {
     std::string budgetFloor;            // never below: "scale=0.5,steps=64,shadow_steps=16,ao=2"
     std::string sync;                   // "mtc": the show clock follows MIDI Time Code; "clock": MIDI clock (live_sync.h)
     std::string forward;                // "HOST:PORT[,...]": re-send what the show applies as OSC (live_forward.h)
+    bool renderProcess = false;         // the scene drawn by render processes (live_servers.h)
 };
 int RunLive(const LiveOptions& o);
 #endif

@@ -18,6 +18,7 @@
 #include "app/frame_budget.h"
 #include "app/live_overlay.h"
 #include "app/live_forward.h"
+#include "app/live_servers.h"
 #include "app/live_session.h"
 #include "app/live_sync.h"
 #include "render/compile_worker.h"
@@ -171,6 +172,15 @@ private:
     std::vector<std::string> watched_;   // canonical folders
     LiveProgram live_;
     FrameRenderer renderer_;
+    // --render-process: the scene drawn by render servers (live_servers.h); null: drawn here by live_.
+    std::unique_ptr<LiveServers> servers_;
+    GLuint serverFbo_ = 0;   // reads the server's frame for the blit to the window
+    void StartServers();
+    void DrawServerScene(double now);
+    // The program on screen, wherever it is drawn: its scene, its variant, whether there is one.
+    const SceneInfo& SceneOnScreen() const { return servers_ ? servers_->Scene() : live_.Scene(); }
+    const VariantKey& KeyOnScreen() const { return servers_ ? servers_->Key() : live_.Key(); }
+    bool HasProgram() const { return servers_ ? servers_->OnScreen() : live_.Current() != nullptr; }
     // A scene change with a morph time fades from the old scene's frame to the new one's; the old
     // program stays alive (shared) and keeps rendering with its last values until the fade ends.
     struct Fade {

@@ -40,7 +40,7 @@ void LiveSession::UpdatePost() {
 
 // The header the show's parameters follow: the scene's inputs, then the post chain's.
 SceneInfo LiveSession::SceneWithPost() const {
-    SceneInfo s = live_.Scene();
+    SceneInfo s = SceneOnScreen();
     for (const ParamDecl& d : postDecls_)
         if (std::none_of(s.params.begin(), s.params.end(), [&](const ParamDecl& x) { return x.name == d.name; }))
             s.params.push_back(d);

@@ -93,8 +93,8 @@ void LiveSession::DrawOverlay() {
 
 OverlayModel LiveSession::OverlayModelNow() {
     OverlayModel m;
-    m.scene = live_.Scene().name;
-    m.effectsText = DescribeEffects(live_.Key().effects);
+    m.scene = SceneOnScreen().name;
+    m.effectsText = DescribeEffects(KeyOnScreen().effects);
     m.pathName = RenderPathName(state_.show.path);
     m.fps = (float)fps_;
     m.width = fbw_;
@@ -120,10 +120,10 @@ OverlayModel LiveSession::OverlayModelNow() {
     if (const std::string sync = LiveSyncStatus(sync_, Now()); !sync.empty()) m.statusLines.push_back("sync: " + sync);
     m.reportLines.assign(state_.report.recent.begin(), state_.report.recent.end());
     m.shaderError = shownError_;
-    if (live_.Pending()) m.compiling = DescribeEffects(state_.wanted.effects);
+    if (servers_ ? servers_->Servers().Building() : live_.Pending()) m.compiling = DescribeEffects(state_.wanted.effects);
     if (live_.Current() && live_.Current()->Origin().literalTier)
         m.statusLines.push_back("shader: retuned numbers read from uniforms until the optimized program is in");
-    m.hasProgram = live_.Current() != nullptr;
+    m.hasProgram = HasProgram();
     m.recording = recorder_.IsOpen();
     m.recorded = m.recording ? recorder_.Recorded() : 0;
     m.mappingFile = state_.mappingFile;

@@ -89,7 +89,7 @@ bool RenderProcess::Send(const std::string& message) {
 }
 
 bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick,
-                         const std::string& effects) {
+                         const EffectSet* effects) {
     std::string p;
     Put<uint32_t>(&p, (uint32_t)path);
     Put<int32_t>(&p, width);
@@ -97,7 +97,8 @@ bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int widt
     Put<uint32_t>(&p, (uint32_t)transport);
     Put<uint32_t>(&p, quick ? 1 : 0);
     PutText(&p, scenePath);
-    PutText(&p, effects);
+    Put<uint32_t>(&p, effects ? 1 : 0);
+    if (effects) Put(&p, *effects);
     width_ = width;
     height_ = height;
     return Send(Message(1, p));

@@ -26,7 +26,7 @@
 // u32 type, u32 payload length, payload):
 //   show -> server  1 load:  u32 path, i32 width, i32 height, u32 transport (0 shm, else the GPU), u32 quick
 //                            tier (0/1), scene path,
-//                            effects (ParseEffectList's text; empty: the scene's own)
+//                            u32 own effects (0: the scene's own; 1: an EffectSet's bytes follow)
 //                   2 frame: FrameInputs (f64 time, i32 frame, f32 beat, f32 bpm, Quality's bytes,
 //                            i32 effectsOff, f32 yaw, f32 pitch, u32 n, n x (u32 len, name, f32))
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
@@ -69,10 +69,10 @@ public:
     // Spawns `exe render-server`; it opens its own GL context and waits for Load. Never blocks on it.
     bool Start(std::string* error, const std::string& exe = "/proc/self/exe");
     // Asks the server to build and draw a scene (from its file, as the show would). Never blocks.
-    // quick: the quick first tier of the program (QuickTierText). effects: ParseEffectList's text
-    // ("none", "shadows,ao"), "" for the scene's own.
+    // quick: the quick first tier of the program (QuickTierText). effects: the variant's
+    // effects; null: the scene's own.
     bool Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick = false,
-              const std::string& effects = "");
+              const EffectSet* effects = nullptr);
     // True once the server answered Load (or died: then ready->ok is false). Never blocks; with
     // a timeout > 0 it waits up to that long. On success the frame is importable: Texture().
     bool PollReady(Ready* ready, int timeoutMs = 0);

@@ -176,21 +176,20 @@ int RunRenderServer(int fd) {
         size_t at = 0;
         uint32_t path = 0, transport = 0, quick = 0;
         int32_t w = 0, h = 0;
-        std::string scenePath, effects, error;
+        uint32_t hasEffects = 0;
+        EffectSet effects;
+        std::string scenePath, error;
         if (!Take(payload, &at, &path) || !Take(payload, &at, &w) || !Take(payload, &at, &h) ||
             !Take(payload, &at, &transport) || !Take(payload, &at, &quick) || !TakeText(payload, &at, &scenePath) ||
-            !TakeText(payload, &at, &effects))
+            !Take(payload, &at, &hasEffects) || (hasEffects && !Take(payload, &at, &effects)))
             return 3;
         const RenderPath rp = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
         double buildMs = 0, useMs = 0, frameMs = 0;
         bool ok = glOk;
         if (!glOk) error = glError;
         ShaderSource src;
-        EffectSet wanted;
-        if (ok) ok = LoadScene(scenePath, &scene, &error);
-        if (ok) wanted = scene.effects;
-        if (ok && !effects.empty()) ok = ParseEffectList(effects, &wanted, &error);
-        if (ok) ok = AssembleProgram(scene, VariantKey{scenePath, wanted, rp}, &src, &error);
+        if (ok) ok = LoadScene(scenePath, &scene, &error) &&
+                     AssembleProgram(scene, VariantKey{scenePath, hasEffects ? effects : scene.effects, rp}, &src, &error);
         if (ok && quick) src.text = QuickTierText(src.text);
         auto t0 = Clock::now();
         if (ok) ok = program.Build(src, rp, &error);

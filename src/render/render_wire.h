@@ -23,6 +23,7 @@ inline double MsSince(Clock::time_point t0) { return std::chrono::duration<doubl
 constexpr uint64_t kModInvalid = 0x00ffffffffffffffULL;   // DRM_FORMAT_MOD_INVALID
 constexpr uint32_t kMaxPayload = 1u << 20;                 // a frame's inputs or a scene path: far less
 static_assert(std::is_trivially_copyable_v<Quality>, "Quality crosses the socket as bytes");
+static_assert(std::is_trivially_copyable_v<EffectSet>, "EffectSet crosses the socket as bytes (both ends are one binary)");
 
 template <typename T>
 inline void Put(std::string* out, T v) {

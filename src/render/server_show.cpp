@@ -3,6 +3,8 @@
 #include <epoxy/gl.h>
 #include <poll.h>
 
+#include <algorithm>
+
 #include "render/render_wire.h"
 
 namespace sdfvj {
@@ -51,10 +53,14 @@ void ServerShow::Retire(std::unique_ptr<RenderProcess> p) {
 
 bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) {
     c.asked = false;
-    c.process = TakeSpare(error);
-    if (c.process && c.process->Load(load.scenePath, load.path, load.width, load.height, transport_, c.quick, load.effects)) return true;
+    for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
+        c.process = attempt == 0 ? TakeSpare(error) : Spawn(error);
+        if (c.process && c.process->Load(load.scenePath, load.path, load.width, load.height, transport_, c.quick,
+                                         load.sceneEffects ? nullptr : &load.effects))
+            return true;
+        Retire(std::move(c.process));
+    }
     if (error->empty()) *error = "the render process did not start";
-    Retire(std::move(c.process));
     return false;
 }
 
@@ -116,6 +122,7 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
     }
     Retire(std::move(onScreen_));
     Retire(std::move(lastFrame_));
+    retryS_ = 1;
     onScreen_ = std::move(c.process);
     onScreenLoad_ = building_;
     onScreenQuick_ = c.quick;
@@ -127,14 +134,22 @@ bool ServerShow::Poll(std::string* error) {
     for (size_t i = 0; i < retired_.size();)
         if (retired_[i]->TryReap()) retired_.erase(retired_.begin() + (long)i);
         else ++i;
-    if (onScreen_ && !onScreen_->Usable() && !next_.process) {
-        // Died or stopped answering: its last frame stays on screen while a spare builds its program.
-        ++replaced_;
-        *error = "the render server on screen ended; a new one builds the same program";
-        lastFrame_ = std::move(onScreen_);
-        const ServerLoad same = onScreenLoad_;
+    const bool died = onScreen_ && !onScreen_->Usable();
+    if ((died || (!onScreen_ && lastFrame_)) && !Building() && render_wire::Clock::now() >= retryAt_) {
+        // Died or stopped answering (or its replacement did): its last frame stays on screen while
+        // a spare builds its program; tried again after 1 s, 2 s, 4 s ... 32 s while it fails.
+        if (died) {
+            ++replaced_;
+            *error = "the render server on screen ended; a new one builds the same program";
+            Retire(std::move(lastFrame_));
+            lastFrame_ = std::move(onScreen_);
+        } else {
+            *error = "the render server that was to replace the one on screen failed; another one builds it";
+        }
+        retryAt_ = render_wire::Clock::now() + std::chrono::seconds(retryS_);
+        retryS_ = std::min(retryS_ * 2, 32);
         std::string why;
-        if (!Load(same, &why)) *error += " (" + why + ")";
+        if (!Load(onScreenLoad_, &why)) *error += " (" + why + ")";
         return false;
     }
     if (Promote(next_, error)) {

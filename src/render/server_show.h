@@ -11,6 +11,7 @@
 // delivered stays on screen: a crash in a shader ends a server, never the show.
 // Render thread only (the show's GL context current in every call and in the destructor).
 #pragma once
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,7 +23,8 @@ namespace sdfvj {
 // What a server builds and draws.
 struct ServerLoad {
     std::string scenePath;
-    std::string effects;   // ParseEffectList's text ("none", "shadows,ao", ...); "" the scene's own
+    bool sceneEffects = true;   // the scene's own effects, or:
+    EffectSet effects;
     RenderPath path = RenderPath::Fragment;
     int width = 0, height = 0;
     bool operator==(const ServerLoad&) const = default;
@@ -70,6 +72,7 @@ public:
     const std::vector<bool>& ShownQuick() const { return shownQuick_; }
     const std::string& Note() const { return note_; }   // a transport refused, and why
     int FailedFrames() const { return failedFrames_; }
+    double LastServerMs() const { return onScreen_ ? onScreen_->LastServerMs() : 0.0; }   // its last draw + hand-over
     int Replaced() const { return replaced_; }          // servers on screen that died and were replaced
 
 private:
@@ -100,6 +103,8 @@ private:
     std::vector<bool> shownQuick_;
     std::string note_;
     int failedFrames_ = 0, replaced_ = 0;
+    std::chrono::steady_clock::time_point retryAt_{};   // a server on screen that died: replaced no sooner
+    int retryS_ = 1;
 };
 
 }  // namespace sdfvj

@@ -1,0 +1,111 @@
+#include "app/live_servers.h"
+
+#include <cstdio>
+
+#include "scene/scene.h"
+#include "shader/shader.h"
+
+namespace sdfvj {
+
+namespace {
+
+// The load a server gets for a variant at a size: its effects as the show wants them.
+ServerLoad LoadFor(const VariantKey& key, int w, int h) { return ServerLoad{key.scenePath, false, key.effects, key.path, w, h}; }
+
+bool ShaderSaved(const std::vector<std::string>& changed) {
+    for (const std::string& f : changed)
+        if (f.size() > 5 && f.compare(f.size() - 5, 5, ".glsl") == 0) return true;
+    return false;
+}
+
+}  // namespace
+
+// Frames come over on the GPU where both ends can (the server falls back, and says why), each one
+// drawn while the show waits: a frame shown is the frame of its inputs, as in-process drawing.
+LiveServers::LiveServers() : show_(FrameTransport::VkMemory, false, false) {}
+LiveServers::~LiveServers() = default;
+
+bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error) const {
+    ShaderSource src;
+    if (!LoadScene(key.scenePath, scene, error) || !AssembleProgram(*scene, key, &src, error)) return false;
+    *hash = src.hash;
+    return true;
+}
+
+bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error) {
+    wantKey_ = key;
+    w_ = w;
+    h_ = h;
+    if (!Check(key, &buildingScene_, &buildingHash_, error)) {
+        error_ = *error;
+        return false;
+    }
+    buildingKey_ = key;
+    lastLoad_ = LoadFor(key, w, h);
+    if (!show_.Start(lastLoad_, error)) {
+        error_ = *error;
+        return false;
+    }
+    key_ = key;
+    scene_ = buildingScene_;
+    hash_ = buildingHash_;
+    const RenderProcess::Ready& r = show_.Shown().back();
+    std::fprintf(stderr, "sdfvj live: the scene is drawn by a render process (frames by %s%s; build %.0f ms, first use %.0f ms)\n",
+                 FrameTransportName(show_.Transport()), show_.Note().empty() ? "" : (": " + show_.Note()).c_str(), r.buildMs, r.useMs);
+    return true;
+}
+
+void LiveServers::Update(const VariantKey& want, const std::vector<std::string>& changed, int w, int h, std::vector<std::string>* say) {
+    std::string error;
+    if (show_.Poll(&error)) {   // a build went on screen (or a replacement of the same program)
+        if (show_.OnScreenLoad() == lastLoad_) {
+            key_ = buildingKey_;
+            scene_ = buildingScene_;
+            hash_ = buildingHash_;
+        }
+        const RenderProcess::Ready& r = show_.Shown().back();
+        char line[160];
+        std::snprintf(line, sizeof line, "shader reloaded (its render process: build %.0f ms, first use %.0f ms, first frame %.0f ms)",
+                      r.buildMs, r.useMs, r.firstFrameMs);
+        say->push_back(line);
+        error_.clear();
+    } else if (!error.empty()) {
+        error_ = error;
+        say->push_back(error);
+    }
+    if (want == wantKey_ && w == w_ && h == h_ && !ShaderSaved(changed)) return;
+    wantKey_ = want;
+    w_ = w;
+    h_ = h;
+    SceneInfo scene;
+    uint64_t hash = 0;
+    if (!Check(want, &scene, &hash, &error)) {   // a broken header or include: said once, nothing built
+        if (error != error_) say->push_back(error);
+        error_ = error;
+        return;
+    }
+    const ServerLoad load = LoadFor(want, w, h);
+    if (OnScreen() && hash == hash_ && load == show_.OnScreenLoad() && !show_.Building()) {
+        if (!error_.empty()) say->push_back("shader reloaded (the saved source is the program on screen)");
+        error_.clear();   // back to what is on screen
+        return;
+    }
+    if (show_.Building() && hash == buildingHash_ && load == show_.BuildingLoad()) return;   // already building it
+    buildingScene_ = std::move(scene);
+    buildingHash_ = hash;
+    buildingKey_ = want;
+    lastLoad_ = load;
+    if (!show_.Load(load, &error)) {
+        error_ = "sdfvj live: " + error;
+        say->push_back(error_);
+    }
+}
+
+unsigned LiveServers::Frame(const FrameInputs& in, int* w, int* h) {
+    show_.Frame(in);
+    *w = show_.OnScreenLoad().width;
+    *h = show_.OnScreenLoad().height;
+    return show_.Texture();
+}
+
+}  // namespace sdfvj

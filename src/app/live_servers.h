@@ -1,0 +1,56 @@
+// LiveServers: `live --render-process` (issue 12). The scene is drawn by render servers
+// (render/server_show.h), so a save, an effect pad or a new render size builds its program in a
+// spare process while the one on screen goes on drawing; the show's own process never compiles or
+// first uses a scene program, which is what stalled its frames on NVIDIA for 150-300 ms a save.
+//
+// The show still reads each scene itself (header and includes, no GL): its parameters, what the
+// next program's source is, and a broken header or include said as file:line before any server is
+// asked; a program that does not compile comes back from its server with the driver's log, mapped
+// to file:line. Either way the program on screen stays.
+// What it does not do yet (the show says so once): the morph of a scene change (a cut instead),
+// the field morph, the literal tier and "measure costs", which need the program in this process.
+// Render thread only.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/server_show.h"
+
+namespace sdfvj {
+
+class LiveServers {
+public:
+    LiveServers();
+    ~LiveServers();
+    // The first program at w x h, waited for. False: *error says why (a scene that does not build:
+    // the show goes on and the next save that builds goes on screen).
+    bool Start(const VariantKey& key, int w, int h, std::string* error);
+    // Each frame: the variant the show wants, the files saved since the last frame and the render
+    // size. Lines for the show's report go to *say (a build that failed, a server replaced, a
+    // program on screen).
+    void Update(const VariantKey& want, const std::vector<std::string>& changed, int w, int h, std::vector<std::string>* say);
+    // This frame's image: the texture, and its size (the size it was built for, until a build at the
+    // new size is on screen). 0 when there is none yet.
+    unsigned Frame(const FrameInputs& in, int* w, int* h);
+    void AfterRead(const FrameInputs& in) { show_.AfterRead(in); }
+
+    bool OnScreen() const { return show_.OnScreen(); }
+    const SceneInfo& Scene() const { return scene_; }    // the scene on screen
+    const VariantKey& Key() const { return key_; }       // its variant
+    const std::string& Error() const { return error_; }  // why the last save is not on screen; "" when it is
+    const ServerShow& Servers() const { return show_; }
+
+private:
+    // Reads the scene and assembles the program's source (no GL): *hash, or *error as file:line.
+    bool Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error) const;
+    ServerShow show_;
+    VariantKey key_, wantKey_, buildingKey_;
+    ServerLoad lastLoad_;   // the last program asked for
+    SceneInfo scene_, buildingScene_;
+    uint64_t hash_ = 0, buildingHash_ = 0;
+    int w_ = 0, h_ = 0;
+    std::string error_;
+};
+
+}  // namespace sdfvj

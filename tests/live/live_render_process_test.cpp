@@ -1,0 +1,130 @@
+// `sdfvj live --render-process` (issue 12, src/app/live_servers.h): the scene drawn by render
+// processes. A save builds in a spare process while the show's frames go on; a save that does not
+// compile or parse is said as file:line and the program on screen stays; a render process that is
+// killed is replaced and the show goes on. Real window under Xvfb, real llvmpipe in both processes,
+// the drivers' disk cache off so every build is a compile.
+#include <signal.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+#include <dirent.h>
+#include <string>
+#include <vector>
+
+#include "live_show.h"
+
+using namespace sdfvj::test;
+
+namespace {
+
+const std::vector<EnvChange> kNoCache = {{"MESA_SHADER_CACHE_DISABLE", "true"}};
+
+// The "build B ms, first use U ms" of the `n`th "shader reloaded" line of the log: the compile the
+// render process did for that save.
+double ReloadCompileMs(const std::string& log, int n) {
+    size_t at = 0;
+    for (int i = 0; i <= n; ++i) {
+        at = log.find("shader reloaded (its render process: build ", at + (i ? 1 : 0));
+        if (at == std::string::npos) return -1;
+    }
+    double build = -1, use = -1;
+    if (std::sscanf(log.c_str() + at, "shader reloaded (its render process: build %lf ms, first use %lf ms", &build, &use) != 2) return -1;
+    return build + use;
+}
+
+// The longest gap between two frames logged in [from, to], seconds.
+double LongestGap(const std::vector<Frame>& frames, size_t from, size_t to) {
+    double gap = 0;
+    for (size_t i = from + 1; i <= to && i < frames.size(); ++i) gap = std::max(gap, frames[i].first - frames[i - 1].first);
+    return gap;
+}
+
+// The render servers `sdfvj live` started (its children).
+std::vector<pid_t> Children(pid_t parent) {
+    std::vector<pid_t> out;
+    const std::string task = "/proc/" + std::to_string(parent) + "/task";
+    if (DIR* d = opendir(task.c_str())) {
+        while (dirent* e = readdir(d)) {
+            if (e->d_name[0] == '.') continue;
+            std::istringstream words(ReadText(task + "/" + e->d_name + "/children"));
+            for (long pid = 0; words >> pid;) out.push_back((pid_t)pid);
+        }
+        closedir(d);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("live render process: a save builds in a process of its own, its header on screen with it, and no frame waits for the compile") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-save");
+    const std::string root = CopyDataRoot(dir);
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    const std::string good = ReadAll(scene);
+    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root, kNoCache);
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+
+    // A new input in the header: its value appears when the program that declares it is on screen.
+    const size_t before = show.Frames().size() - 1;
+    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
+        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
+        "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},"));
+    size_t at = 0;
+    REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.25f}}, 60, &at));
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 1, kDeadline));
+    const double compileMs = ReloadCompileMs(show.Log(), 0);
+    const std::vector<Frame> frames = show.Frames();
+    const double gapMs = 1000.0 * LongestGap(frames, before, at);
+    INFO("the render process's compile: " << compileMs << " ms; longest gap between frames meanwhile: " << gapMs
+                                          << " ms over " << at - before << " frames\n" << show.Log());
+    REQUIRE(compileMs > 0);
+    // In this process the frame that first used the program waited for all of it (the in-process
+    // reload tests): here the frames go on while it compiles. A ratio, not a time.
+    CHECK(at - before >= 3);
+    CHECK(gapMs < 0.5 * compileMs);
+    CHECK(show.Running());
+}
+
+TEST_CASE("live render process: a broken save is said as file:line and the picture stays, a killed render process is replaced") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-broken");
+    const std::string root = CopyDataRoot(dir);
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    const std::string good = ReadAll(scene);
+    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root);
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
+
+    // A body that does not compile: the render process's driver log, mapped to the scene's line.
+    const size_t mapAt = good.find("vec4 map(vec3 p)");
+    REQUIRE(mapAt != std::string::npos);
+    const size_t brokenLine = 1 + (size_t)std::count(good.begin(), good.begin() + (long)mapAt, '\n');
+    SaveLikeAnEditor(scene, good.substr(0, mapAt) + "vec4 map(vec3 p) { return fBx(p); }\nvec4 mapUnused(vec3 p)" +
+                                good.substr(mapAt + std::string("vec4 map(vec3 p)").size()));
+    REQUIRE_LIVE(show, show.WaitForLog("midi.glsl:" + std::to_string(brokenLine) + ":", 1, 30));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+
+    // A header with a typo: said by the show itself (no process asked to build it).
+    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
+        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": 5},"));
+    REQUIRE_LIVE(show, show.WaitForLog("midi.glsl:5:", 1, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Log().find("shader reloaded") == std::string::npos);
+
+    // Fixed: the program on screen is that source, nothing to build.
+    SaveLikeAnEditor(scene, good);
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (the saved source is the program on screen)", 1, kDeadline));
+
+    // Every render process killed (the one on screen and the spare): the show says so, a new one
+    // builds the same program, and the frames never stop.
+    const std::vector<pid_t> servers = Children(show.pid);
+    INFO("render processes: " << servers.size());
+    REQUIRE(servers.size() >= 1);
+    for (pid_t p : servers) kill(p, SIGKILL);
+    REQUIRE_LIVE(show, show.WaitForLog("the render server on screen ended", 1, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Running());
+}
