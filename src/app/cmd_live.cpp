@@ -199,6 +199,7 @@ void LiveSession::Reload() {
         servers_->Update(state_.wanted, changed, std::max(1, (int)std::lround(w * renderScale_)),
                          std::max(1, (int)std::lround(h * renderScale_)), &say);
         for (const std::string& line : say) state_.report.Say(line);
+        FadeServersIfSceneChanged(Now());
         ReloadPost(changed);
         return;
     }
@@ -324,7 +325,7 @@ void LiveSession::DrawScene(double now) {
     if (servers_ && fbw_ > 0 && fbh_ > 0) {
         in_.time = now;
         in_.frame = frame_++;
-        DrawServerScene(now);
+        DrawServerScene(now, rw, rh);
         return;
     }
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;

@@ -176,7 +176,8 @@ private:
     std::unique_ptr<LiveServers> servers_;
     GLuint serverFbo_ = 0;   // reads the server's frame for the blit to the window
     void StartServers();
-    void DrawServerScene(double now);
+    void DrawServerScene(double now, int rw, int rh);
+    void FadeServersIfSceneChanged(double now);
     // The program on screen, wherever it is drawn: its scene, its variant, whether there is one.
     const SceneInfo& SceneOnScreen() const { return servers_ ? servers_->Scene() : live_.Scene(); }
     const VariantKey& KeyOnScreen() const { return servers_ ? servers_->Key() : live_.Key(); }
@@ -191,6 +192,7 @@ private:
         Easing easing = Easing::Smooth;
         bool field = false;     // the fields morph in one program (live_morph.cpp), not the frames
         bool waiting = false;   // the morph program still compiles: the old scene holds, t stays 0
+        bool server = false;    // --render-process: from the frames of the server of the scene before
     } fade_;
     FieldMorph fieldMorph_;
     // Audio through JACK (--audio): its features enter the queue each frame like a knob.

@@ -2,6 +2,7 @@
 // the post chain or blitted to the window.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "app/live_app.h"
 
@@ -27,10 +28,49 @@ void LiveSession::StartServers() {
     }
 }
 
-void LiveSession::DrawServerScene(double now) {
+// A scene change morphs as a crossfade from the frames of the scene before, whose server goes on
+// drawing with its last values until the fade ends (the field morph needs both scenes in one
+// program: not with render processes yet).
+void LiveSession::FadeServersIfSceneChanged(double now) {
+    if (!servers_->TakeSceneChange()) return;
+    const MorphDesc& how = state_.show.preset.automation.morph;
+    std::string error;
+    if (how.seconds > 0 && how.easing != Easing::Cut && crossfade_.Init(&error)) {
+        fade_ = Fade{nullptr, servers_->PreviousScene(), in_.params, now, how.seconds, how.easing};
+        fade_.server = true;
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.2f", how.seconds);
+        state_.report.Say("scene morph: " + fade_.scene.name + " -> " + servers_->Scene().name + ", a crossfade of their render processes' frames over " +
+                          seconds + " s");
+        return;
+    }
+    if (!error.empty()) state_.report.Say("sdfvj live: " + error + " — scene changes cut instead of fading");
+    fade_ = Fade{};
+    servers_->DropPrevious();
+}
+
+void LiveSession::DrawServerScene(double now, int rw, int rh) {
     int w = 0, h = 0;
     const unsigned texture = servers_->Frame(in_, &w, &h);
     if (!texture) return;
+    const double t = fade_.server ? (now - fade_.start) / fade_.seconds : 1.0;
+    if (t < 1.0) {
+        FrameInputs old = in_;
+        old.params = fade_.params;
+        if (const unsigned before = servers_->PreviousFrame(old)) {
+            std::string error;
+            const bool post = post_ && !post_->Empty() && postInput_.Resize(rw, rh, &error);
+            crossfade_.Draw(before, texture, Ease(fade_.easing, t), post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);
+            if (post) DrawPost(postInput_.Texture(), rw, rh, now);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            servers_->AfterRead(in_);
+            return;
+        }
+    }
+    if (fade_.server) {   // done, or the server before failed: it may go
+        fade_ = Fade{};
+        servers_->DropPrevious();
+    }
     if (!DrawPost(texture, w, h, now)) {
         if (!serverFbo_) glGenFramebuffers(1, &serverFbo_);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, serverFbo_);

@@ -22,7 +22,7 @@ bool ShaderSaved(const std::vector<std::string>& changed) {
 
 // Frames come over on the GPU where both ends can (the server falls back, and says why), each one
 // drawn while the show waits: a frame shown is the frame of its inputs, as in-process drawing.
-LiveServers::LiveServers() : show_(FrameTransport::VkMemory, false, false) {}
+LiveServers::LiveServers() : show_(FrameTransport::VkMemory, false, false) { show_.SetKeepPrevious(true); }
 LiveServers::~LiveServers() = default;
 
 bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error) const {
@@ -59,10 +59,13 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     std::string error;
     if (show_.Poll(&error)) {   // a build went on screen (or a replacement of the same program)
         if (show_.OnScreenLoad() == lastLoad_) {
+            sceneChanged_ = buildingKey_.scenePath != key_.scenePath;
+            previousScene_ = scene_;
             key_ = buildingKey_;
             scene_ = buildingScene_;
             hash_ = buildingHash_;
         }
+        if (!sceneChanged_) show_.DropPrevious();
         const RenderProcess::Ready& r = show_.Shown().back();
         char line[160];
         std::snprintf(line, sizeof line, "shader reloaded (its render process: build %.0f ms, first use %.0f ms, first frame %.0f ms)",

@@ -13,6 +13,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/server_show.h"
@@ -34,6 +35,13 @@ public:
     // new size is on screen). 0 when there is none yet.
     unsigned Frame(const FrameInputs& in, int* w, int* h);
     void AfterRead(const FrameInputs& in) { show_.AfterRead(in); }
+    // A build of another scene went on screen: true once, and the server of the scene before is
+    // kept (for a crossfade from its frames) until DropPrevious. A build of the same scene ends the
+    // one it replaced at once.
+    bool TakeSceneChange() { return std::exchange(sceneChanged_, false); }
+    const SceneInfo& PreviousScene() const { return previousScene_; }
+    unsigned PreviousFrame(const FrameInputs& in) { return show_.PreviousFrame(in) ? show_.PreviousTexture() : 0; }
+    void DropPrevious() { show_.DropPrevious(); }
 
     bool OnScreen() const { return show_.OnScreen(); }
     const SceneInfo& Scene() const { return scene_; }    // the scene on screen
@@ -47,7 +55,8 @@ private:
     ServerShow show_;
     VariantKey key_, wantKey_, buildingKey_;
     ServerLoad lastLoad_;   // the last program asked for
-    SceneInfo scene_, buildingScene_;
+    SceneInfo scene_, buildingScene_, previousScene_;
+    bool sceneChanged_ = false;
     uint64_t hash_ = 0, buildingHash_ = 0;
     int w_ = 0, h_ = 0;
     std::string error_;

@@ -13,6 +13,7 @@ ServerShow::~ServerShow() {
     // The show's context is current: textures and imported images are freed here.
     onScreen_.reset();
     lastFrame_.reset();
+    previous_.reset();
     next_.process.reset();
     quick_.process.reset();
     spares_.clear();
@@ -119,6 +120,11 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         if (!c.process->Arrived() && c.process->Usable()) return false;
         c.asked = false;
         fresh_ = c.process->Collect(0);
+    }
+    Retire(std::move(previous_));
+    if (keepPrevious_ && onScreen_ && onScreen_->Usable()) {
+        previous_ = std::move(onScreen_);
+        previousLoad_ = onScreenLoad_;
     }
     Retire(std::move(onScreen_));
     Retire(std::move(lastFrame_));

@@ -61,6 +61,15 @@ public:
     void AfterRead(const FrameInputs& in);
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
+    // Keep the server a build replaced (for a crossfade from its frames) until DropPrevious or the
+    // next build on screen; off by default (it is ended at once).
+    void SetKeepPrevious(bool on) { keepPrevious_ = on; }
+    bool HasPrevious() const { return previous_ && previous_->Usable(); }
+    const ServerLoad& PreviousLoad() const { return previousLoad_; }
+    // The previous server's frame for `in` into PreviousTexture(); false when it failed.
+    bool PreviousFrame(const FrameInputs& in, int timeoutMs = 1000) { return HasPrevious() && previous_->DrawFrame(in, timeoutMs); }
+    unsigned PreviousTexture() const { return previous_ ? previous_->Texture() : 0; }
+    void DropPrevious() { Retire(std::move(previous_)); }
     bool OnScreen() const { return onScreen_ != nullptr; }
     const ServerLoad& OnScreenLoad() const { return onScreenLoad_; }
     bool OnScreenQuick() const { return onScreenQuick_; }
@@ -96,6 +105,9 @@ private:
     std::vector<std::unique_ptr<RenderProcess>> spares_;
     std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
+    std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
+    ServerLoad previousLoad_;
+    bool keepPrevious_ = false;
     bool onScreenQuick_ = false;
     bool fresh_ = false;   // the frame in onScreen_'s texture is collected and not yet shown
     FrameInputs lastInputs_;

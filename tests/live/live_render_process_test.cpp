@@ -85,6 +85,38 @@ TEST_CASE("live render process: a save builds in a process of its own, its heade
     // reload tests): here the frames go on while it compiles. A ratio, not a time.
     CHECK(at - before >= 3);
     CHECK(gapMs < 0.5 * compileMs);
+
+    // An effect pad: its variant is built the same way, and the frames go on meanwhile.
+    const size_t padAt = show.Frames().size() - 1;
+    show.Osc("/sdfvj/effect/ao", 1.0f);
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 2, 60));
+    const double padMs = ReloadCompileMs(show.Log(), 1);
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    const double padGapMs = 1000.0 * LongestGap(show.Frames(), padAt, show.Frames().size() - 1);
+    INFO("the effect's variant: " << padMs << " ms to build; longest gap between frames: " << padGapMs << " ms");
+    CHECK(padMs > 0);
+    CHECK(padGapMs < 0.5 * padMs);
+    CHECK(show.Running());
+}
+
+TEST_CASE("live render process: a preset's scene change crossfades from the frames of the scene before, whose process ends with the fade") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-morph");
+    const std::string root = CopyDataRoot(dir);
+    std::ofstream(root + "/presets/to_primitives.json")
+        << R"({"scene": "primitives", "params": {"spin": 0.8}, "morph": {"seconds": 4.0, "easing": "linear"}})";
+    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root);
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
+    REQUIRE_LIVE(show, PollFor(20, [&] { return Children(show.pid).size() == 2; }));   // on screen, and a spare
+    REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "to_primitives"}, dir + "/oscsend.log", 10) == 0);
+    REQUIRE_LIVE(show, show.WaitForLog("scene morph: midi -> primitives, a crossfade of their render processes' frames over 4.00 s", 1, 60));
+    // During the fade: the new scene's values, and the scene before still drawn by its own process.
+    REQUIRE_LIVE(show, show.WaitForValues({{"spin", 0.8f}}, kDeadline));
+    CHECK(Children(show.pid).size() >= 3);
+    // After it: that process is ended, the frames go on.
+    REQUIRE_LIVE(show, PollFor(20, [&] { return Children(show.pid).size() == 2; }));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Log().find("internal error") == std::string::npos);
     CHECK(show.Running());
 }
 
