@@ -3,6 +3,7 @@
 #
 #   scripts/soak.sh [--quick] [--minutes N] [--bin PATH] [--driver PATH] [--keep]
 #                   [--only osc|midi|saves] [--rss-limit-mb N] [--rss-late-limit-mb N] [--gap-limit-ms N] [--seed N]
+#                   [--render-process]
 #
 #   --quick        at most 45 s in all (CI, `ctest -L soak`): a 15 s storm
 #   --minutes N    length of the storm (default 10)
@@ -11,6 +12,7 @@
 #   --driver PATH  tests/soak's soak_driver (default: next to --bin's build, else built here with g++)
 #   --keep         keep the work folder (it is always kept when the soak fails)
 #   --only KIND    one source alone (osc, midi or saves), to tell which one causes a finding
+#   --render-process  the show runs `live --render-process`: every save builds in a render process
 #
 # It runs `sdfvj live --preset demo` at 320x180 in an Xvfb display on Mesa llvmpipe, with
 # SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
@@ -30,7 +32,7 @@
 set -u
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
-quick=0 minutes=10 bin="" driver="" keep=0 only="" rssLimit="" rssLateLimit="" gapLimit=250 seed=$$
+quick=0 minutes=10 bin="" driver="" keep=0 only="" rssLimit="" rssLateLimit="" gapLimit=250 seed=$$ liveExtra=()
 while [ $# -gt 0 ]; do
     case $1 in
     --quick) quick=1 ;;
@@ -43,6 +45,7 @@ while [ $# -gt 0 ]; do
     --rss-late-limit-mb) rssLateLimit=${2:?}; shift ;;
     --gap-limit-ms) gapLimit=${2:?}; shift ;;
     --seed) seed=${2:?}; shift ;;
+    --render-process) liveExtra+=(--render-process) ;;
     -h|--help) sed -n '2,/^set -u/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "soak: unknown argument '$1' (see --help)"; exit 2 ;;
     esac
@@ -160,7 +163,7 @@ export SDFVJ_ROOT=$work/root
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
 echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no)), storm ${storm} s, display $display, JACK $JACK_DEFAULT_SERVER, work $work"
 (cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --size 320x180 --path fragment --midi soak-controller \
-    --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds") \
+    --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds" "${liveExtra[@]}") \
     >"$work/live.out" 2>"$work/live.err" </dev/null &
 LIVE_PID=$!
 # A copy of stderr with wall-clock stamps, to tell what happened around the longest frame gaps.
