@@ -16,6 +16,12 @@ ServerShow::~ServerShow() {
     previous_.reset();
     next_.process.reset();
     quick_.process.reset();
+    {
+        std::lock_guard<std::mutex> lock(spareMutex_);
+        stopSpawner_ = true;
+    }
+    spareWake_.notify_all();
+    if (spawner_.joinable()) spawner_.join();
     spares_.clear();
     retired_.clear();
 }
@@ -27,22 +33,44 @@ std::unique_ptr<RenderProcess> ServerShow::Spawn(std::string* error) {
 }
 
 std::unique_ptr<RenderProcess> ServerShow::TakeSpare(std::string* error) {
-    while (!spares_.empty()) {
-        auto p = std::move(spares_.back());
-        spares_.pop_back();
+    for (;;) {
+        std::unique_ptr<RenderProcess> p;
+        {
+            std::lock_guard<std::mutex> lock(spareMutex_);
+            if (spares_.empty()) break;
+            p = std::move(spares_.back());
+            spares_.pop_back();
+        }
         if (p->Usable()) return p;
         Retire(std::move(p));   // a spare that died while it waited
     }
     return Spawn(error);
 }
 
-// Spares open their contexts and warm their compilers now, off the next load's path.
+// Spares open their contexts and warm their compilers now, off the next load's path; the spawner
+// thread starts them.
 void ServerShow::FillSpares() {
-    std::string ignored;
-    while ((int)spares_.size() < (tiered_ ? 2 : 1)) {
+    {
+        std::lock_guard<std::mutex> lock(spareMutex_);
+        spawnWanted_ = std::max(0, (tiered_ ? 2 : 1) - (int)spares_.size() - spawning_);
+        if (!spawner_.joinable()) spawner_ = std::thread([this] { SpawnLoop(); });
+    }
+    spareWake_.notify_all();
+}
+
+void ServerShow::SpawnLoop() {
+    std::unique_lock<std::mutex> lock(spareMutex_);
+    for (;;) {
+        spareWake_.wait(lock, [this] { return stopSpawner_ || spawnWanted_ > 0; });
+        if (stopSpawner_) return;
+        --spawnWanted_;
+        ++spawning_;
+        lock.unlock();
+        std::string ignored;
         auto p = Spawn(&ignored);
-        if (!p) break;
-        spares_.push_back(std::move(p));
+        lock.lock();
+        --spawning_;
+        if (p) spares_.push_back(std::move(p));   // ended by the destructor when the show is over
     }
 }
 

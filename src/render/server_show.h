@@ -9,10 +9,14 @@
 // screen, one that fails says why and the one on screen stays. A server on screen that dies or
 // stops answering is replaced by a spare building the same program, while the last frame it
 // delivered stays on screen: a crash in a shader ends a server, never the show.
-// Render thread only (the show's GL context current in every call and in the destructor).
+// Render thread only (the show's GL context current in every call and in the destructor); the
+// spares are spawned on a helper thread, which touches no GL.
 #pragma once
 #include <chrono>
+#include <condition_variable>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -102,7 +106,15 @@ private:
     std::unique_ptr<RenderProcess> onScreen_;
     ServerLoad onScreenLoad_, building_;
     Candidate next_, quick_{nullptr, true, false};
-    std::vector<std::unique_ptr<RenderProcess>> spares_;
+    // Spares are spawned on a thread of their own (posix_spawn blocks its caller 1-10 ms while the
+    // child execs: not in a frame); TakeSpare spawns on the render thread only when none is ready.
+    void SpawnLoop();
+    std::mutex spareMutex_;
+    std::condition_variable spareWake_;
+    std::thread spawner_;
+    bool stopSpawner_ = false;
+    int spawnWanted_ = 0, spawning_ = 0;                    // spares asked of the spawner; being spawned
+    std::vector<std::unique_ptr<RenderProcess>> spares_;    // guarded by spareMutex_
     std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
     std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
