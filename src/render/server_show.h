@@ -86,7 +86,8 @@ public:
     const std::string& Note() const { return note_; }   // a transport refused, and why
     int FailedFrames() const { return failedFrames_; }
     double LastServerMs() const { return onScreen_ ? onScreen_->LastServerMs() : 0.0; }   // its last draw + hand-over
-    int Replaced() const { return replaced_; }          // servers on screen that died and were replaced
+    int Replaced() const { return replaced_; }
+    pid_t OnScreenPid() const { return onScreen_ ? onScreen_->Pid() : -1; }          // servers on screen that died and were replaced
 
 private:
     struct Candidate {

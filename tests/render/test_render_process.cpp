@@ -3,7 +3,8 @@
 // its reason; a server that dies fails its frame at once instead of hanging the show; frames go
 // over on the GPU (a Vulkan-allocated image both processes import) where the drivers can, by
 // shared memory where not, the same image either way. This binary is its own server
-// (/proc/self/exe render-server), as sdfvj is.
+// (/proc/self/exe render-server), as sdfvj is. ServerShow, the servers behind a show (spares, a
+// variant loaded, a failed build, a dead server replaced), is tested here too.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 #include <epoxy/egl.h>
@@ -12,10 +13,12 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "gl_fixture.h"
 #include "render/render_process.h"
+#include "render/server_show.h"
 #include "scene/scene.h"
 
 using namespace sdfvj;
@@ -131,6 +134,80 @@ TEST_CASE("render process: frames handed over on the GPU where it can, by shared
         INFO("time " << time << ": max channel difference " << d.maxAbs);
         CHECK(d.fractionOver == 0.0);
     }
+}
+
+// ServerShow (render/server_show.h): the servers behind a show.
+namespace {
+
+// Polls the show until the server on screen changes or a build fails (*error), up to 120 s.
+bool PollUntilChange(ServerShow* show, std::string* error) {
+    for (int i = 0; i < 60000; ++i) {
+        if (show->Poll(error)) return true;
+        if (!error->empty()) return false;
+        ::usleep(2000);
+    }
+    *error = "nothing changed in 120 s";
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("render process: a show's servers draw the variant a load asks for, and a failed build leaves the one on screen", "[render_process]") {
+    RequireGl();
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    ServerShow show(FrameTransport::VkMemory, false, false);
+    INFO(error);
+    REQUIRE(show.Start(ServerLoad{scene.path, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    REQUIRE(show.Frame(Inputs(scene, 1.0)));
+    const Image own = ReadTexture(show.Texture());
+    CHECK(CompareImages(own, RenderScene("midi", scene.effects, RenderPath::Fragment, kW, kH, 1.0), 1).fractionOver == 0.0);
+
+    // Effects "none": that variant, built by a spare while the first one stays on screen.
+    REQUIRE(show.Load(ServerLoad{scene.path, false, EffectSet{}, RenderPath::Fragment, kW, kH}, &error));
+    CHECK(show.Building());
+    REQUIRE(show.Frame(Inputs(scene, 1.0)));   // the one on screen still draws
+    REQUIRE(PollUntilChange(&show, &error));
+    REQUIRE(show.Frame(Inputs(scene, 1.0)));
+    const Image none = ReadTexture(show.Texture());
+    CHECK(CompareImages(none, RenderScene("midi", EffectSet{}, RenderPath::Fragment, kW, kH, 1.0), 1).fractionOver == 0.0);
+    CHECK(CompareImages(none, own, 8).fractionOver > 0.01);   // no shadows, no AO: another picture
+
+    // A scene that does not build: its reason, and the variant before stays on screen.
+    const std::string broken = (std::filesystem::temp_directory_path() / "sdfvj_broken_scene.glsl").string();
+    {
+        std::ofstream out(broken);
+        out << "/*{\"DESCRIPTION\": \"broken\"}*/\nvec4 map(vec3 p) { return fBx(p); }\n";
+    }
+    REQUIRE(show.Load(ServerLoad{broken, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    CHECK_FALSE(PollUntilChange(&show, &error));
+    CHECK(error.find("sdfvj_broken_scene.glsl:2:") != std::string::npos);
+    REQUIRE(show.Frame(Inputs(scene, 1.0)));
+    CHECK(CompareImages(ReadTexture(show.Texture()), none, 1).fractionOver == 0.0);
+}
+
+TEST_CASE("render process: a show's server that dies is replaced by one building the same program, its last frame shown meanwhile", "[render_process]") {
+    RequireGl();
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("primitives", &scene, &error));
+    ServerShow show(FrameTransport::Shm, false, false);
+    REQUIRE(show.Start(ServerLoad{scene.path, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    REQUIRE(show.Frame(Inputs(scene, 1.0)));
+    const Image last = ReadTexture(show.Texture());
+    ::kill(show.OnScreenPid(), SIGKILL);
+    CHECK_FALSE(show.Frame(Inputs(scene, 2.0)));
+    REQUIRE(show.Texture() != 0);
+    CHECK(CompareImages(ReadTexture(show.Texture()), last, 0).fractionOver == 0.0);   // the last frame stays
+    CHECK_FALSE(show.Poll(&error));
+    CHECK(error.find("ended") != std::string::npos);
+    CHECK(show.Replaced() == 1);
+    CHECK(CompareImages(ReadTexture(show.Texture()), last, 0).fractionOver == 0.0);
+    error.clear();
+    REQUIRE(PollUntilChange(&show, &error));
+    REQUIRE(show.Frame(Inputs(scene, 2.0)));
+    CHECK(CompareImages(ReadTexture(show.Texture()), RenderScene("primitives", scene.effects, RenderPath::Fragment, kW, kH, 2.0), 1).fractionOver == 0.0);
 }
 
 int main(int argc, char** argv) {
