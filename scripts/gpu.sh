@@ -11,7 +11,8 @@
 #   scripts/gpu.sh measure PART   there: the figures docs/ quotes, into $OUT (a part per call: the
 #                                 timeouts of several add up past one 600 s call). Each part's comment
 #                                 below says what it measures. Issue 12 (reloads): reload, retune,
-#                                 adopt, toggle, launch, fresh, handover, stage, s16 (render processes).
+#                                 adopt, toggle, launch, fresh, handover, stage, s16 (render processes),
+#                                 spirv (GLSL against SPIR-V builds).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
 #                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13,
@@ -30,6 +31,8 @@ case "${1:-}" in
       apt-get $o update -qq
       (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
     fi
+    # `measure spirv`: Debian's glslangValidator (one static binary) beside sdfvj-headless
+    if command -v glslangValidator >/dev/null; then cp "$(command -v glslangValidator)" .devbuild/; fi
     if ! ls .devbuild/lib/libepoxy.so.0* >/dev/null 2>&1; then
       (cd /tmp && apt-get download libepoxy0 && dpkg -x libepoxy0_*.deb /tmp/epoxy-x)
       cp -a /tmp/epoxy-x/usr/lib/x86_64-linux-gnu/libepoxy.so.0* .devbuild/lib/
@@ -284,6 +287,14 @@ case "${1:-}" in
         --modes ${S16_MODES:-process,render-process,render-process-sync,render-process-shm} --driver-cache off --rounds 3 > "$f" 2>&1 || true
       grep -h -A6 'modes side by side' "$f" || tail -5 "$f"
       grep -h -E '^render processes|^longest frame before|^median' "$f" | cut -c1-300 || true
+    done
+    fi
+    if [ "$part" = spirv ]; then
+    # Session 17 (issue 12): each scene's compute program built from GLSL and from SPIR-V (prepare
+    # copies Debian's glslangValidator beside the binary), interleaved, caches off, to its first use.
+    for s in ${SPIRV_SCENES:-midi character}; do
+      timeout 200 bash "$0" remote bench spirv --scene $s --rounds ${SPIRV_ROUNDS:-5} > "$out/spirv_$s.txt" 2>&1 || true
+      grep -h -E '^\| [0-9]|^medians|takes no SPIR-V|failed' "$out/spirv_$s.txt" | cut -c1-300 || tail -5 "$out/spirv_$s.txt"
     done
     fi
     if [ "$part" = define ]; then

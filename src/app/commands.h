@@ -83,6 +83,14 @@ struct AccuracyBenchOptions {
 };
 int RunAccuracyBench(const AccuracyBenchOptions& o);
 
+// `sdfvj bench spirv`: a scene's compute program built from GLSL and from SPIR-V (glslangValidator).
+struct SpirvBenchOptions {
+    std::string scene = "midi";
+    int rounds = 5;
+    std::string glslang;   // glslangValidator's path ("" : beside sdfvj, then /usr/bin)
+};
+int RunSpirvBench(const SpirvBenchOptions& o);
+
 // `sdfvj bench reload`: save -> first frame with the new program, and the longest frame meanwhile.
 struct ReloadBenchOptions {
     std::string scene = "midi";

@@ -125,6 +125,12 @@ int main(int argc, char** argv) {
     cmdAccuracy->add_option("--out", accuracyBench.out, "folder for accuracy.csv, plots and accuracy.md")->capture_default_str();
     cmdAccuracy->add_option("--markdown", accuracyBench.markdown, "also write the report here (docs/accuracy.md)");
     cmdAccuracy->add_option("--csv", accuracyBench.csv, "also write the rows as CSV: scene,lighting,size,path,ms,gpu + the sweep's columns");
+    SpirvBenchOptions spirvBench;
+    auto* cmdSpirv = cmdBench->add_subcommand("spirv", "a scene's compute program built from GLSL and from SPIR-V (glslangValidator), "
+                                                       "every step to its first use timed, the drivers' disk caches off");
+    cmdSpirv->add_option("--scene", spirvBench.scene, "scene")->capture_default_str();
+    cmdSpirv->add_option("--rounds", spirvBench.rounds, "builds of each form, interleaved (median)")->capture_default_str();
+    cmdSpirv->add_option("--glslang", spirvBench.glslang, "glslangValidator (default: beside sdfvj, then /usr/bin)");
     ReloadBenchOptions reloadBench;
     auto* cmdReload = cmdBench->add_subcommand("reload", "hot reload: save -> new program on screen, longest frame meanwhile");
     cmdReload->add_option("--scene", reloadBench.scene, "scene")->capture_default_str();
@@ -253,6 +259,7 @@ int main(int argc, char** argv) {
     }
     if (cmdEffects->parsed()) return RunEffectsBench(effectsBench);
     if (cmdSsaa->parsed()) return RunSsaaBench(ssaaBench);
+    if (cmdSpirv->parsed()) return RunSpirvBench(spirvBench);
     if (cmdReload->parsed()) return RunReloadBench(reloadBench);
 #ifdef SDFVJ_HAS_LIVE
     if (cmdInput->parsed()) return RunInputBench(inputSeconds);

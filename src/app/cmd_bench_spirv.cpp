@@ -1,0 +1,203 @@
+// `sdfvj bench spirv`: is a scene's program built faster from SPIR-V than from GLSL (issue 12,
+// "try SPIR-V through glslang where the driver compiles it faster")? Each round builds the scene's
+// compute program both ways, interleaved, each time with its first constant nudged (a program no
+// cache has seen; the drivers' disk caches off), and times every step to the first dispatch:
+//   glsl   glShaderSource + glCompileShader, glLinkProgram, first use (a 1x1 dispatch, glFinish)
+//   spirv  glslangValidator (-G: SPIR-V for OpenGL, locations and bindings mapped), then
+//          glShaderBinary + glSpecializeShader, glLinkProgram, first use
+// glslangValidator runs as a process of its own (Debian's glslang-tools; --glslang PATH, else next
+// to this binary, else on PATH): its time would shrink in-process, the driver's would not.
+// Timing only: whether the SPIR-V program draws the same picture is not checked here.
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "app/bench_support.h"
+#include "app/commands.h"
+#include "render/compile_worker.h"
+#include "render/live_program.h"
+#include "render/render.h"
+#include "scene/scene.h"
+#include "shader/shader.h"
+
+namespace sdfvj {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+struct Steps {
+    double front = 0, compile = 0, link = 0, use = 0;
+    bool ok = false;
+    std::string error;
+    double Total() const { return front + compile + link + use; }
+};
+
+std::string ShaderLog(GLuint sh) {
+    GLint n = 0;
+    glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &n);
+    std::string log((size_t)std::max(n, 1), '\0');
+    glGetShaderInfoLog(sh, n, nullptr, log.data());
+    return log;
+}
+
+// Links `sh` into a program, uses it once; fills link and use.
+void LinkAndUse(GLuint sh, Steps* s) {
+    GLuint prog = glCreateProgram();
+    glAttachShader(prog, sh);
+    auto t0 = Clock::now();
+    glLinkProgram(prog);
+    GLint linked = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+    s->link = MsSince(t0);
+    if (linked) {
+        t0 = Clock::now();
+        PrimeProgram(prog, RenderPath::Compute, false);
+        glFinish();
+        s->use = MsSince(t0);
+        s->ok = true;
+    } else {
+        GLint n = 0;
+        glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &n);
+        std::string log((size_t)std::max(n, 1), '\0');
+        glGetProgramInfoLog(prog, n, nullptr, log.data());
+        s->error = "link: " + log.substr(0, 400);
+    }
+    glDeleteProgram(prog);
+}
+
+Steps BuildGlsl(const std::string& text) {
+    Steps s;
+    const char* p = text.c_str();
+    auto t0 = Clock::now();
+    GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(sh, 1, &p, nullptr);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    s.compile = MsSince(t0);
+    if (ok) LinkAndUse(sh, &s);
+    else s.error = "compile: " + ShaderLog(sh).substr(0, 400);
+    glDeleteShader(sh);
+    return s;
+}
+
+Steps BuildSpirv(const std::string& text, const std::string& glslang, const fs::path& work, int round) {
+    Steps s;
+    const fs::path in = work / ("round" + std::to_string(round) + ".comp"), out = work / ("round" + std::to_string(round) + ".spv");
+    std::ofstream(in, std::ios::binary) << text;
+    const std::string cmd = "'" + glslang + "' -G --auto-map-locations --auto-map-bindings -S comp -o '" + out.string() + "' '" +
+                            in.string() + "' > '" + (work / "glslang.log").string() + "' 2>&1";
+    auto t0 = Clock::now();
+    const int rc = std::system(cmd.c_str());
+    s.front = MsSince(t0);
+    std::ifstream bin(out, std::ios::binary);
+    const std::string spirv((std::istreambuf_iterator<char>(bin)), std::istreambuf_iterator<char>());
+    if (rc != 0 || spirv.size() < 20) {
+        std::ifstream log(work / "glslang.log");
+        s.error = "glslangValidator: " + std::string((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>()).substr(0, 600);
+        return s;
+    }
+    t0 = Clock::now();
+    GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderBinary(1, &sh, GL_SHADER_BINARY_FORMAT_SPIR_V_ARB, spirv.data(), (GLsizei)spirv.size());
+    glSpecializeShaderARB(sh, "main", 0, nullptr, nullptr);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    s.compile = MsSince(t0);
+    if (ok) LinkAndUse(sh, &s);
+    else s.error = "glSpecializeShader: " + ShaderLog(sh).substr(0, 400);
+    glDeleteShader(sh);
+    return s;
+}
+
+std::string FindGlslang(const std::string& given) {
+    if (!given.empty()) return given;
+    std::error_code ec;
+    const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / "glslangValidator";
+    if (!ec && fs::exists(beside)) return beside.string();
+    for (const char* dir : {"/usr/bin", "/usr/local/bin"})
+        if (fs::exists(fs::path(dir) / "glslangValidator")) return (fs::path(dir) / "glslangValidator").string();
+    return "";
+}
+
+double Median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+}  // namespace
+
+int RunSpirvBench(const SpirvBenchOptions& o) {
+    const fs::path work = fs::temp_directory_path() / ("sdfvj-spirv-" + std::to_string(::getpid()));
+    fs::create_directories(work);
+    const std::string caches = SetDriverCaches("off", work, false);
+    HeadlessContext gl;
+    std::string error;
+    if (!gl.Create(&error)) {
+        std::fprintf(stderr, "sdfvj bench spirv: %s\n", error.c_str());
+        return 2;
+    }
+    std::printf("# sdfvj bench spirv: %s on %s, %s\n%s\n", o.scene.c_str(), (const char*)glGetString(GL_RENDERER),
+                (const char*)glGetString(GL_VERSION), caches.c_str());
+    if (!epoxy_has_gl_extension("GL_ARB_gl_spirv") && epoxy_gl_version() < 46) {
+        std::printf("this driver takes no SPIR-V (no GL_ARB_gl_spirv, OpenGL < 4.6): nothing to compare\n");
+        return 0;
+    }
+    const std::string glslang = FindGlslang(o.glslang);
+    if (glslang.empty()) {
+        std::fprintf(stderr, "sdfvj bench spirv: no glslangValidator (Debian: glslang-tools; or --glslang PATH)\n");
+        return 2;
+    }
+    SceneInfo scene;
+    ShaderSource src;
+    if (!FindScene(o.scene, &scene, &error) || !AssembleProgram(scene, VariantKey{scene.path, scene.effects, RenderPath::Compute}, &src, &error)) {
+        std::fprintf(stderr, "sdfvj bench spirv: %s\n", error.c_str());
+        return 2;
+    }
+    std::printf("each round: the scene's compute program (its own effects) with its first constant nudged, GLSL then SPIR-V "
+                "(alternating which goes first); ms\n\n| round | form | front end | compile / specialize | link | first use | total |\n"
+                "|---:|---|---:|---:|---:|---:|---:|\n");
+    std::vector<double> totals[2], links[2], fronts[2], uses[2];
+    for (int round = 1; round <= o.rounds; ++round) {
+        for (int k = 0; k < 2; ++k) {
+            const int form = (round % 2 == 0) ? 1 - k : k;   // 0 glsl, 1 spirv
+            bool nudged = false;
+            const std::string text = NudgeFirstConstant(src.text, 1e-4 * (10 * round + form + 1), &nudged);
+            const Steps s = form == 0 ? BuildGlsl(text) : BuildSpirv(text, glslang, work, round);
+            if (!s.ok) {
+                std::printf("| %d | %s | failed: %s |\n", round, form ? "spirv" : "glsl", s.error.c_str());
+                continue;
+            }
+            std::printf("| %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f |\n", round, form ? "spirv" : "glsl", s.front, s.compile, s.link,
+                        s.use, s.Total());
+            totals[form].push_back(s.Total());
+            links[form].push_back(s.compile + s.link);
+            fronts[form].push_back(s.front);
+            uses[form].push_back(s.use);
+        }
+        std::fflush(stdout);
+    }
+    std::printf("\nmedians: glsl %.1f ms (driver compile + link %.1f, first use %.1f); spirv %.1f ms (glslangValidator %.1f, "
+                "driver specialize + link %.1f, first use %.1f)\n",
+                Median(totals[0]), Median(links[0]), Median(uses[0]), Median(totals[1]), Median(fronts[1]), Median(links[1]), Median(uses[1]));
+    std::error_code ec;
+    fs::remove_all(work, ec);
+    return 0;
+}
+
+}  // namespace sdfvj
