@@ -22,7 +22,7 @@ bool ShaderSaved(const std::vector<std::string>& changed) {
 
 // Frames come over on the GPU where both ends can (the server falls back, and says why), each one
 // drawn while the show waits: a frame shown is the frame of its inputs, as in-process drawing.
-LiveServers::LiveServers() : show_(FrameTransport::VkMemory, false, false) { show_.SetKeepPrevious(true); }
+LiveServers::LiveServers(bool tiered) : show_(FrameTransport::VkMemory, false, tiered) { show_.SetKeepPrevious(true); }
 LiveServers::~LiveServers() = default;
 
 bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error) const {
@@ -57,6 +57,7 @@ bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error)
 
 void LiveServers::Update(const VariantKey& want, const std::vector<std::string>& changed, int w, int h, std::vector<std::string>* say) {
     std::string error;
+    const bool wasQuick = show_.OnScreenQuick();
     if (show_.Poll(&error)) {   // a build went on screen (or a replacement of the same program)
         if (show_.OnScreenLoad() == lastLoad_) {
             sceneChanged_ = buildingKey_.scenePath != key_.scenePath;
@@ -65,11 +66,12 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
             scene_ = buildingScene_;
             hash_ = buildingHash_;
         }
-        if (!sceneChanged_) show_.DropPrevious();
+        if (!sceneChanged_ && !wasQuick) show_.DropPrevious();   // after a quick tier: the one it replaced is gone already
         const RenderProcess::Ready& r = show_.Shown().back();
-        char line[160];
-        std::snprintf(line, sizeof line, "shader reloaded (its render process: build %.0f ms, first use %.0f ms, first frame %.0f ms)",
-                      r.buildMs, r.useMs, r.firstFrameMs);
+        char line[200];
+        std::snprintf(line, sizeof line, "shader reloaded%s (its render process: build %.0f ms, first use %.0f ms, first frame %.0f ms)%s",
+                      show_.OnScreenQuick() ? ", quick tier" : "", r.buildMs, r.useMs, r.firstFrameMs,
+                      show_.OnScreenQuick() ? "; the optimized program follows" : "");
         say->push_back(line);
         error_.clear();
     } else if (!error.empty()) {

@@ -22,7 +22,9 @@ namespace sdfvj {
 
 class LiveServers {
 public:
-    LiveServers();
+    // tiered: every build also builds the quick tier in a second spare (LiveProgram::TieredCompileDefault:
+    // NVIDIA), on screen until the optimized program is.
+    explicit LiveServers(bool tiered);
     ~LiveServers();
     // The first program at w x h, waited for. False: *error says why (a scene that does not build:
     // the show goes on and the next save that builds goes on screen).
@@ -35,9 +37,9 @@ public:
     // new size is on screen). 0 when there is none yet.
     unsigned Frame(const FrameInputs& in, int* w, int* h);
     void AfterRead(const FrameInputs& in) { show_.AfterRead(in); }
-    // A build of another scene went on screen: true once, and the server of the scene before is
-    // kept (for a crossfade from its frames) until DropPrevious. A build of the same scene ends the
-    // one it replaced at once.
+    // A build of another scene went on screen (its quick tier, or the optimized program): true once,
+    // and the server of the scene before is kept (for a crossfade from its frames) until
+    // DropPrevious. A build of the same scene ends the one it replaced at once.
     bool TakeSceneChange() { return std::exchange(sceneChanged_, false); }
     const SceneInfo& PreviousScene() const { return previousScene_; }
     unsigned PreviousFrame(const FrameInputs& in) { return show_.PreviousFrame(in) ? show_.PreviousTexture() : 0; }

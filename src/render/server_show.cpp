@@ -149,8 +149,8 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         c.asked = false;
         fresh_ = c.process->Collect(0);
     }
-    Retire(std::move(previous_));
-    if (keepPrevious_ && onScreen_ && onScreen_->Usable()) {
+    if (keepPrevious_ && onScreen_ && onScreen_->Usable() && !onScreenQuick_) {   // a quick tier is never kept
+        Retire(std::move(previous_));
         previous_ = std::move(onScreen_);
         previousLoad_ = onScreenLoad_;
     }

@@ -66,7 +66,8 @@ public:
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
     // Keep the server a build replaced (for a crossfade from its frames) until DropPrevious or the
-    // next build on screen; off by default (it is ended at once).
+    // next build on screen; off by default (it is ended at once). A quick tier is never kept: the
+    // optimized program that replaces it leaves the previous one as it was.
     void SetKeepPrevious(bool on) { keepPrevious_ = on; }
     bool HasPrevious() const { return previous_ && previous_->Usable(); }
     const ServerLoad& PreviousLoad() const { return previousLoad_; }

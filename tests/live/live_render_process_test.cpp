@@ -99,6 +99,36 @@ TEST_CASE("live render process: a save builds in a process of its own, its heade
     CHECK(show.Running());
 }
 
+TEST_CASE("live render process: tiered, a save's quick tier and its optimized program build side by side and the optimized one ends on screen") {
+    // On NVIDIA the quick tier (inlining off) is on screen first; llvmpipe ignores the hint, so here
+    // either may come first: what must hold is that the optimized program is the one that stays.
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-tiered");
+    const std::string root = CopyDataRoot(dir);
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    const std::string good = ReadAll(scene);
+    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root, {{"SDFVJ_TIERED", "1"}});
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
+    // The optimized program is on screen when no quick tier was said after the last one said.
+    auto optimizedOnScreen = [&] {
+        const std::string log = show.Log();
+        const size_t optimized = log.rfind("shader reloaded (its render process"), quick = log.rfind("shader reloaded, quick tier");
+        return quick == std::string::npos || (optimized != std::string::npos && quick < optimized);
+    };
+    REQUIRE_LIVE(show, PollFor(60, optimizedOnScreen));   // the first program's tiers settled
+    const size_t before = CountInFile(show.log, "shader reloaded (its render process");
+    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
+        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
+        "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},"));
+    REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.25f}}, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", before + 1, 60));
+    REQUIRE_LIVE(show, PollFor(60, optimizedOnScreen));
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    CHECK(optimizedOnScreen());   // a quick tier that came second was ended unseen, never shown over it
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Running());
+}
+
 TEST_CASE("live render process: a preset's scene change crossfades from the frames of the scene before, whose process ends with the fade") {
     const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-morph");
     const std::string root = CopyDataRoot(dir);
