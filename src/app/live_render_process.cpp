@@ -11,7 +11,7 @@ namespace sdfvj {
 void LiveSession::StartServers() {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
-    servers_ = std::make_unique<LiveServers>(LiveProgram::TieredCompileDefault());
+    servers_ = std::make_unique<LiveServers>(LiveProgram::TieredCompileDefault(), live_.LiteralTier());
     std::string error;
     if (servers_->Start(state_.wanted, std::max(1, (int)std::lround(w * renderScale_)), std::max(1, (int)std::lround(h * renderScale_)), &error))
         return;

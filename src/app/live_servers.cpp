@@ -22,14 +22,43 @@ bool ShaderSaved(const std::vector<std::string>& changed) {
 
 // Frames come over on the GPU where both ends can (the server falls back, and says why), each one
 // drawn while the show waits: a frame shown is the frame of its inputs, as in-process drawing.
-LiveServers::LiveServers(bool tiered) : show_(FrameTransport::VkMemory, false, tiered) { show_.SetKeepPrevious(true); }
+LiveServers::LiveServers(bool tiered, bool literalTier) : show_(FrameTransport::VkMemory, false, tiered), literalTier_(literalTier) {
+    show_.SetKeepPrevious(true);
+}
 LiveServers::~LiveServers() = default;
 
-bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error) const {
+bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted) const {
     ShaderSource src;
     if (!LoadScene(key.scenePath, scene, error) || !AssembleProgram(*scene, key, &src, error)) return false;
     *hash = src.hash;
+    if (lifted && !AssembleProgram(*scene, key, lifted, error, true)) *lifted = ShaderSource{};
+    error->clear();
     return true;
+}
+
+// After an optimized program went on screen and nothing else builds: a spare builds its variant
+// lifted and holds it (one at a time, each lifted source once).
+void LiveServers::PrepareLiteralTier(std::vector<std::string>* say) {
+    if (show_.HasPrepared()) {
+        const bool ready = show_.PreparedReady();   // drops one that failed or died
+        if (!show_.HasPrepared()) {
+            say->push_back("sdfvj live: literal tier not built: " + show_.PreparedError().substr(0, 300));
+        } else if (ready && !preparedSaid_) {
+            preparedSaid_ = true;
+            std::fprintf(stderr, "sdfvj live: %s: a save that changes only numbers in its functions shows at once (literal tier, held by a render process)\n",
+                         DisplayPath(key_.scenePath).c_str());
+        }
+    }
+    if (!wantPrepare_ || !OnScreen() || show_.OnScreenQuick() || show_.Building() || !error_.empty()) return;
+    wantPrepare_ = false;
+    ShaderSource lifted;
+    std::string error;
+    if (!AssembleProgram(scene_, key_, &lifted, &error, true) || lifted.literals.empty() || lifted.hash == preparedHash_) return;
+    ServerLoad load = show_.OnScreenLoad();
+    load.lifted = true;
+    preparedHash_ = lifted.hash;
+    preparedSaid_ = false;
+    if (!show_.Prepare(load, &error)) say->push_back("sdfvj live: literal tier not built: " + error);
 }
 
 bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error) {
@@ -49,6 +78,7 @@ bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error)
     key_ = key;
     scene_ = buildingScene_;
     hash_ = buildingHash_;
+    wantPrepare_ = literalTier_;
     const RenderProcess::Ready& r = show_.Shown().back();
     std::fprintf(stderr, "sdfvj live: the scene is drawn by a render process (frames by %s%s; build %.0f ms, first use %.0f ms)\n",
                  FrameTransportName(show_.Transport()), show_.Note().empty() ? "" : (": " + show_.Note()).c_str(), r.buildMs, r.useMs);
@@ -74,17 +104,20 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
                       show_.OnScreenQuick() ? "; the optimized program follows" : "");
         say->push_back(line);
         error_.clear();
+        wantPrepare_ = literalTier_;
     } else if (!error.empty()) {
         error_ = error;
         say->push_back(error);
     }
+    if (literalTier_) PrepareLiteralTier(say);
     if (want == wantKey_ && w == w_ && h == h_ && !ShaderSaved(changed)) return;
     wantKey_ = want;
     w_ = w;
     h_ = h;
     SceneInfo scene;
     uint64_t hash = 0;
-    if (!Check(want, &scene, &hash, &error)) {   // a broken header or include: said once, nothing built
+    ShaderSource lifted;
+    if (!Check(want, &scene, &hash, &error, literalTier_ ? &lifted : nullptr)) {   // a broken header or include: said once, nothing built
         if (error != error_) say->push_back(error);
         error_ = error;
         return;
@@ -96,6 +129,17 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         return;
     }
     if (show_.Building() && hash == buildingHash_ && load == show_.BuildingLoad()) return;   // already building it
+    // Only numbers changed: the held lifted program goes on screen with them now.
+    ServerLoad liftedLoad = load;
+    liftedLoad.lifted = true;
+    if (literalTier_ && lifted.hash != 0 && lifted.hash == preparedHash_ && show_.HasPrepared() &&
+        show_.PreparedLoad() == liftedLoad && show_.PromotePrepared(lifted.literals)) {
+        preparedHash_ = 0;   // used: built again once the optimized program is on screen
+        key_ = want;
+        scene_ = scene;
+        error_.clear();
+        say->push_back("shader retuned: the new numbers are on screen (read from uniforms by a render process), its optimized program builds behind them");
+    }
     buildingScene_ = std::move(scene);
     buildingHash_ = hash;
     buildingKey_ = want;

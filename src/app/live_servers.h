@@ -7,8 +7,8 @@
 // next program's source is, and a broken header or include said as file:line before any server is
 // asked; a program that does not compile comes back from its server with the driver's log, mapped
 // to file:line. Either way the program on screen stays.
-// What it does not do yet (the show says so once): the morph of a scene change (a cut instead),
-// the field morph, the literal tier and "measure costs", which need the program in this process.
+// What it does not do yet: the field morph (a scene change crossfades the two servers' frames),
+// variants built ahead and "measure costs".
 // Render thread only.
 #pragma once
 #include <memory>
@@ -24,7 +24,11 @@ class LiveServers {
 public:
     // tiered: every build also builds the quick tier in a second spare (LiveProgram::TieredCompileDefault:
     // NVIDIA), on screen until the optimized program is.
-    explicit LiveServers(bool tiered);
+    // literalTier: once the optimized program is on screen, a spare builds the same variant with the
+    // scene's float literals as uniforms and holds it; a save that changes only those numbers puts it
+    // on screen with them at once, while the save's optimized program builds (LiveProgram's literal
+    // tier, across processes).
+    LiveServers(bool tiered, bool literalTier);
     ~LiveServers();
     // The first program at w x h, waited for. False: *error says why (a scene that does not build:
     // the show goes on and the next save that builds goes on screen).
@@ -52,8 +56,12 @@ public:
     const ServerShow& Servers() const { return show_; }
 
 private:
-    // Reads the scene and assembles the program's source (no GL): *hash, or *error as file:line.
-    bool Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error) const;
+    // Reads the scene and assembles the program's source (no GL): *hash, or *error as file:line;
+    // with `lifted`, its literal tier's source too.
+    bool Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted = nullptr) const;
+    void PrepareLiteralTier(std::vector<std::string>* say);   // the held lifted program, when it is time
+    bool literalTier_ = false, wantPrepare_ = false, preparedSaid_ = false;
+    uint64_t preparedHash_ = 0;   // the lifted source the held program was built from
     ServerShow show_;
     VariantKey key_, wantKey_, buildingKey_;
     ServerLoad lastLoad_;   // the last program asked for

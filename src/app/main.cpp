@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
                       "draw the scene in a render process of its own: a save, an effect pad or a new size builds its "
                       "program in a spare process while the one on screen goes on, so no frame waits for a compile "
                       "(on NVIDIA a save otherwise stalls the show 150-300 ms). Scene changes cut instead of morphing; "
-                      "no literal tier or \"measure costs\" (docs/performance.md, \"Render processes\")");
+                      "no variants built ahead or \"measure costs\" (docs/performance.md, \"Session 17\")");
     cmdLive->add_option("--budget-floor", live.budgetFloor, "never below, e.g. scale=0.5,steps=64,shadow_steps=16,ao=2");
     cmdLive->add_option("--render-scale", live.renderScale,
                         "render the scene at this fraction of the window, upscaled (0.25..1; the overlay's "

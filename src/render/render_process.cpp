@@ -89,7 +89,7 @@ bool RenderProcess::Send(const std::string& message) {
 }
 
 bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick,
-                         const EffectSet* effects) {
+                         const EffectSet* effects, bool lifted) {
     std::string p;
     Put<uint32_t>(&p, (uint32_t)path);
     Put<int32_t>(&p, width);
@@ -99,6 +99,7 @@ bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int widt
     PutText(&p, scenePath);
     Put<uint32_t>(&p, effects ? 1 : 0);
     if (effects) Put(&p, *effects);
+    Put<uint32_t>(&p, lifted ? 1 : 0);
     width_ = width;
     height_ = height;
     return Send(Message(1, p));
@@ -246,6 +247,13 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready) {
         return false;
     }
     return true;
+}
+
+bool RenderProcess::SetLiterals(const std::vector<float>& values) {
+    std::string p;
+    Put<uint32_t>(&p, (uint32_t)values.size());
+    for (float v : values) Put(&p, v);
+    return Send(Message(3, p));
 }
 
 bool RenderProcess::Request(const FrameInputs& in) {

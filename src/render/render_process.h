@@ -26,9 +26,11 @@
 // u32 type, u32 payload length, payload):
 //   show -> server  1 load:  u32 path, i32 width, i32 height, u32 transport (0 shm, else the GPU), u32 quick
 //                            tier (0/1), scene path,
-//                            u32 own effects (0: the scene's own; 1: an EffectSet's bytes follow)
+//                            u32 own effects (0: the scene's own; 1: an EffectSet's bytes follow),
+//                            u32 lifted (1: the scene's literals as uniforms, the literal tier)
 //                   2 frame: FrameInputs (f64 time, i32 frame, f32 beat, f32 bpm, Quality's bytes,
 //                            i32 effectsOff, f32 yaw, f32 pitch, u32 n, n x (u32 len, name, f32))
+//                   3 literals: u32 n, n x f32 (no answer)
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
@@ -72,7 +74,10 @@ public:
     // quick: the quick first tier of the program (QuickTierText). effects: the variant's
     // effects; null: the scene's own.
     bool Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick = false,
-              const EffectSet* effects = nullptr);
+              const EffectSet* effects = nullptr, bool lifted = false);
+    // The values of the lifted program's u_lit[i] (a Load with lifted: the scene's float literals
+    // read from uniforms) for the frames from now on. Never blocks; ignored when the count differs.
+    bool SetLiterals(const std::vector<float>& values);
     // True once the server answered Load (or died: then ready->ok is false). Never blocks; with
     // a timeout > 0 it waits up to that long. On success the frame is importable: Texture().
     bool PollReady(Ready* ready, int timeoutMs = 0);

@@ -172,16 +172,27 @@ int RunRenderServer(int fd) {
             if (!SendAll(fd, Message(2, p))) return 0;
             continue;
         }
+        if (header[0] == 3 && loaded) {   // the literal tier's numbers
+            size_t at = 0;
+            uint32_t n = 0;
+            std::vector<float> values;
+            if (!Take(payload, &at, &n) || n > kMaxPayload / 4) return 3;
+            values.resize(n);
+            for (float& v : values)
+                if (!Take(payload, &at, &v)) return 3;
+            if (values.size() == program.Literals().size()) program.SetLiterals(values);
+            continue;
+        }
         if (header[0] != 1 || loaded) return 3;   // out of turn: the show is not ours
         size_t at = 0;
         uint32_t path = 0, transport = 0, quick = 0;
         int32_t w = 0, h = 0;
-        uint32_t hasEffects = 0;
+        uint32_t hasEffects = 0, lifted = 0;
         EffectSet effects;
         std::string scenePath, error;
         if (!Take(payload, &at, &path) || !Take(payload, &at, &w) || !Take(payload, &at, &h) ||
             !Take(payload, &at, &transport) || !Take(payload, &at, &quick) || !TakeText(payload, &at, &scenePath) ||
-            !Take(payload, &at, &hasEffects) || (hasEffects && !Take(payload, &at, &effects)))
+            !Take(payload, &at, &hasEffects) || (hasEffects && !Take(payload, &at, &effects)) || !Take(payload, &at, &lifted))
             return 3;
         const RenderPath rp = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
         double buildMs = 0, useMs = 0, frameMs = 0;
@@ -189,7 +200,7 @@ int RunRenderServer(int fd) {
         if (!glOk) error = glError;
         ShaderSource src;
         if (ok) ok = LoadScene(scenePath, &scene, &error) &&
-                     AssembleProgram(scene, VariantKey{scenePath, hasEffects ? effects : scene.effects, rp}, &src, &error);
+                     AssembleProgram(scene, VariantKey{scenePath, hasEffects ? effects : scene.effects, rp}, &src, &error, lifted != 0);
         if (ok && quick) src.text = QuickTierText(src.text);
         auto t0 = Clock::now();
         if (ok) ok = program.Build(src, rp, &error);

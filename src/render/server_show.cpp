@@ -14,6 +14,7 @@ ServerShow::~ServerShow() {
     onScreen_.reset();
     lastFrame_.reset();
     previous_.reset();
+    prepared_.process.reset();
     next_.process.reset();
     quick_.process.reset();
     {
@@ -85,7 +86,7 @@ bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) 
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
         c.process = attempt == 0 ? TakeSpare(error) : Spawn(error);
         if (c.process && c.process->Load(load.scenePath, load.path, load.width, load.height, transport_, c.quick,
-                                         load.sceneEffects ? nullptr : &load.effects))
+                                         load.sceneEffects ? nullptr : &load.effects, load.lifted))
             return true;
         Retire(std::move(c.process));
     }
@@ -149,6 +150,11 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         c.asked = false;
         fresh_ = c.process->Collect(0);
     }
+    PutOnScreen(std::move(c.process), building_, c.quick);
+    return true;
+}
+
+void ServerShow::PutOnScreen(std::unique_ptr<RenderProcess> p, const ServerLoad& load, bool quick) {
     if (keepPrevious_ && onScreen_ && onScreen_->Usable() && !onScreenQuick_) {   // a quick tier is never kept
         Retire(std::move(previous_));
         previous_ = std::move(onScreen_);
@@ -157,9 +163,43 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
     Retire(std::move(onScreen_));
     Retire(std::move(lastFrame_));
     retryS_ = 1;
-    onScreen_ = std::move(c.process);
-    onScreenLoad_ = building_;
-    onScreenQuick_ = c.quick;
+    onScreen_ = std::move(p);
+    onScreenLoad_ = load;
+    onScreenQuick_ = quick;
+}
+
+bool ServerShow::Prepare(const ServerLoad& load, std::string* error) {
+    error->clear();
+    Retire(std::move(prepared_.process));
+    preparedLoad_ = load;
+    preparedIsReady_ = false;
+    preparedError_.clear();
+    const bool ok = Send(prepared_, load, error);
+    FillSpares();
+    return ok;
+}
+
+bool ServerShow::PreparedReady() {
+    if (!prepared_.process) return false;
+    if (!preparedIsReady_) {
+        if (!prepared_.process->PollReady(&preparedReady_, 0)) return false;
+        preparedIsReady_ = preparedReady_.ok;
+        if (!preparedReady_.ok) preparedError_ = preparedReady_.text;
+    }
+    if (preparedIsReady_ && prepared_.process->Usable()) return true;
+    if (preparedError_.empty()) preparedError_ = "its render process ended";
+    Retire(std::move(prepared_.process));
+    preparedIsReady_ = false;
+    return false;
+}
+
+bool ServerShow::PromotePrepared(const std::vector<float>& literals) {
+    if (!PreparedReady() || !prepared_.process->SetLiterals(literals)) return false;
+    shown_.push_back(preparedReady_);
+    shownQuick_.push_back(true);
+    fresh_ = false;
+    PutOnScreen(std::move(prepared_.process), preparedLoad_, true);
+    preparedIsReady_ = false;
     return true;
 }
 

@@ -31,6 +31,7 @@ struct ServerLoad {
     EffectSet effects;
     RenderPath path = RenderPath::Fragment;
     int width = 0, height = 0;
+    bool lifted = false;   // the scene's float literals as uniforms (the literal tier: RenderProcess::SetLiterals)
     bool operator==(const ServerLoad&) const = default;
 };
 
@@ -65,6 +66,15 @@ public:
     void AfterRead(const FrameInputs& in);
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
+    // A program held ready off screen (the literal tier: `lifted`, its numbers from uniforms):
+    // a spare builds it; Poll never puts it on screen. PromotePrepared does, with new numbers, as a
+    // quick tier (an optimized build follows it).
+    bool Prepare(const ServerLoad& load, std::string* error);
+    bool HasPrepared() const { return prepared_.process != nullptr; }
+    const ServerLoad& PreparedLoad() const { return preparedLoad_; }
+    bool PreparedReady();   // never blocks; one that failed or died is dropped (*PreparedError says why)
+    const std::string& PreparedError() const { return preparedError_; }
+    bool PromotePrepared(const std::vector<float>& literals);
     // Keep the server a build replaced (for a crossfade from its frames) until DropPrevious or the
     // next build on screen; off by default (it is ended at once). A quick tier is never kept: the
     // optimized program that replaces it leaves the previous one as it was.
@@ -100,6 +110,7 @@ private:
     std::unique_ptr<RenderProcess> TakeSpare(std::string* error);
     void FillSpares();
     bool Promote(Candidate& c, std::string* error);   // true when c went on screen
+    void PutOnScreen(std::unique_ptr<RenderProcess> p, const ServerLoad& load, bool quick);
     void Retire(std::unique_ptr<RenderProcess> p);
     bool Send(Candidate& c, const ServerLoad& load, std::string* error);
 
@@ -121,6 +132,11 @@ private:
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
     std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
     ServerLoad previousLoad_;
+    Candidate prepared_;
+    ServerLoad preparedLoad_;
+    RenderProcess::Ready preparedReady_;
+    bool preparedIsReady_ = false;
+    std::string preparedError_;
     bool keepPrevious_ = false;
     bool onScreenQuick_ = false;
     bool fresh_ = false;   // the frame in onScreen_'s texture is collected and not yet shown

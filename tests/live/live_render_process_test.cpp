@@ -129,6 +129,35 @@ TEST_CASE("live render process: tiered, a save's quick tier and its optimized pr
     CHECK(show.Running());
 }
 
+TEST_CASE("live render process: a save that changes only numbers goes on screen through the held literal tier, its optimized program after it") {
+    // Off by default on llvmpipe (as in-process), forced here.
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-retune");
+    const std::string root = CopyDataRoot(dir);
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    const std::string good = ReadAll(scene);
+    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root, {{"SDFVJ_LITERAL_TIER", "1"}, {"SDFVJ_TIERED", "0"}});
+    REQUIRE_LIVE(show, show.WaitForLog("changes only numbers in its functions shows at once (literal tier, held by a render process)", 1, 60));
+    REQUIRE(Children(show.pid).size() == 3);   // on screen, the held lifted program, a spare
+    const std::string from = "vec4(0.95f, 0.30f, 0.12f,", to = "vec4(0.10f, 0.30f, 0.95f,";
+    const size_t at = good.find(from);
+    REQUIRE(at != std::string::npos);
+    SaveLikeAnEditor(scene, good.substr(0, at) + to + good.substr(at + from.size()));
+    REQUIRE_LIVE(show, show.WaitForLog("shader retuned: the new numbers are on screen", 1, kDeadline));
+    // Then the save's optimized program, and a new held program for the next retune.
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("(literal tier, held by a render process)", 2, 60));
+    // A structural save is not a retune: built as any save, no second "retuned" line.
+    const size_t mapAt = good.find("vec4 map(vec3 p) {");
+    REQUIRE(mapAt != std::string::npos);
+    SaveLikeAnEditor(scene, good.substr(0, mapAt) + "vec4 map(vec3 p) {\n    p.x += 0.0f * p.y;" +
+                                good.substr(mapAt + std::string("vec4 map(vec3 p) {").size()));
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 2, 60));
+    CHECK(CountInFile(show.log, "shader retuned") == 1);
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Log().find("literal tier not built") == std::string::npos);
+    CHECK(show.Running());
+}
+
 TEST_CASE("live render process: a preset's scene change crossfades from the frames of the scene before, whose process ends with the fade") {
     const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-morph");
     const std::string root = CopyDataRoot(dir);
