@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <string>
 #include <vector>
@@ -79,19 +80,27 @@ void LinkAndUse(GLuint sh, Steps* s) {
     glDeleteProgram(prog);
 }
 
-Steps BuildGlsl(const std::string& text) {
-    Steps s;
-    const char* p = text.c_str();
-    auto t0 = Clock::now();
+// A compute shader from `feed` (its source or its binary, into the new shader), timed from
+// glCreateShader to its compile status; then linked and used (LinkAndUse).
+void BuildShader(const std::function<void(GLuint)>& feed, const char* step, Steps* s) {
+    const auto t0 = Clock::now();
     GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(sh, 1, &p, nullptr);
-    glCompileShader(sh);
+    feed(sh);
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    s.compile = MsSince(t0);
-    if (ok) LinkAndUse(sh, &s);
-    else s.error = "compile: " + ShaderLog(sh).substr(0, 400);
+    s->compile = MsSince(t0);
+    if (ok) LinkAndUse(sh, s);
+    else s->error = std::string(step) + ": " + ShaderLog(sh).substr(0, 400);
     glDeleteShader(sh);
+}
+
+Steps BuildGlsl(const std::string& text) {
+    Steps s;
+    BuildShader([&](GLuint sh) {
+        const char* p = text.c_str();
+        glShaderSource(sh, 1, &p, nullptr);
+        glCompileShader(sh);
+    }, "compile", &s);
     return s;
 }
 
@@ -111,16 +120,10 @@ Steps BuildSpirv(const std::string& text, const std::string& glslang, const fs::
         s.error = "glslangValidator: " + std::string((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>()).substr(0, 600);
         return s;
     }
-    t0 = Clock::now();
-    GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderBinary(1, &sh, GL_SHADER_BINARY_FORMAT_SPIR_V_ARB, spirv.data(), (GLsizei)spirv.size());
-    glSpecializeShaderARB(sh, "main", 0, nullptr, nullptr);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    s.compile = MsSince(t0);
-    if (ok) LinkAndUse(sh, &s);
-    else s.error = "glSpecializeShader: " + ShaderLog(sh).substr(0, 400);
-    glDeleteShader(sh);
+    BuildShader([&](GLuint sh) {
+        glShaderBinary(1, &sh, GL_SHADER_BINARY_FORMAT_SPIR_V_ARB, spirv.data(), (GLsizei)spirv.size());
+        glSpecializeShaderARB(sh, "main", 0, nullptr, nullptr);
+    }, "glSpecializeShader", &s);
     return s;
 }
 
@@ -132,12 +135,6 @@ std::string FindGlslang(const std::string& given) {
     for (const char* dir : {"/usr/bin", "/usr/local/bin"})
         if (fs::exists(fs::path(dir) / "glslangValidator")) return (fs::path(dir) / "glslangValidator").string();
     return "";
-}
-
-double Median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
 }
 
 }  // namespace
@@ -194,7 +191,7 @@ int RunSpirvBench(const SpirvBenchOptions& o) {
     }
     std::printf("\nmedians: glsl %.1f ms (driver compile + link %.1f, first use %.1f); spirv %.1f ms (glslangValidator %.1f, "
                 "driver specialize + link %.1f, first use %.1f)\n",
-                Median(totals[0]), Median(links[0]), Median(uses[0]), Median(totals[1]), Median(fronts[1]), Median(links[1]), Median(uses[1]));
+                MedianMs(totals[0]), MedianMs(links[0]), MedianMs(uses[0]), MedianMs(totals[1]), MedianMs(fronts[1]), MedianMs(links[1]), MedianMs(uses[1]));
     std::error_code ec;
     fs::remove_all(work, ec);
     return 0;

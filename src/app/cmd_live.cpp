@@ -196,8 +196,7 @@ void LiveSession::Reload() {
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
         std::vector<std::string> say;
-        servers_->Update(state_.wanted, changed, std::max(1, (int)std::lround(w * renderScale_)),
-                         std::max(1, (int)std::lround(h * renderScale_)), &say);
+        servers_->Update(state_.wanted, changed, Scaled(w), Scaled(h), &say);
         for (const std::string& line : say) state_.report.Say(line);
         FadeServersIfSceneChanged(Now());
         ReloadPost(changed);
@@ -315,7 +314,7 @@ void LiveSession::DrawScene(double now) {
     glClearColor(0.08f, 0.08f, 0.1f, 1.0f);   // until a first program compiles
     glClear(GL_COLOR_BUFFER_BIT);
     // The scene renders at renderScale_ of the window and is upscaled (linear) when it is smaller.
-    const int rw = std::max(1, (int)std::lround(fbw_ * renderScale_)), rh = std::max(1, (int)std::lround(fbh_ * renderScale_));
+    const int rw = Scaled(fbw_), rh = Scaled(fbh_);
     if (state_.show.isfScene && fbw_ > 0 && fbh_ > 0) {   // an ISF generator: the chain draws it all
         in_.time = now;
         in_.frame = frame_++;

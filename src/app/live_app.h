@@ -8,7 +8,9 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -182,6 +184,8 @@ private:
     const SceneInfo& SceneOnScreen() const { return servers_ ? servers_->Scene() : live_.Scene(); }
     const VariantKey& KeyOnScreen() const { return servers_ ? servers_->Key() : live_.Key(); }
     bool HasProgram() const { return servers_ ? servers_->OnScreen() : live_.Current() != nullptr; }
+    // A side of the scene's render size for a window side of n pixels: renderScale_ of it, at least 1.
+    int Scaled(int n) const { return std::max(1, (int)std::lround(n * renderScale_)); }
     // A scene change with a morph time fades from the old scene's frame to the new one's; the old
     // program stays alive (shared) and keeps rendering with its last values until the fade ends.
     struct Fade {

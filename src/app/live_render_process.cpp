@@ -13,7 +13,7 @@ void LiveSession::StartServers() {
     glfwGetFramebufferSize(window_, &w, &h);
     servers_ = std::make_unique<LiveServers>(LiveProgram::TieredCompileDefault(), live_.LiteralTier());
     std::string error;
-    if (servers_->Start(state_.wanted, std::max(1, (int)std::lround(w * renderScale_)), std::max(1, (int)std::lround(h * renderScale_)), &error))
+    if (servers_->Start(state_.wanted, Scaled(w), Scaled(h), &error))
         return;
     // Nothing on screen: the scene's fault (then it does not build here either, and the show waits
     // for the save that fixes it, drawn by a server) or the render process's (no GL of its own, say):

@@ -11,6 +11,7 @@ namespace {
 
 // The load a server gets for a variant at a size: its effects as the show wants them.
 ServerLoad LoadFor(const VariantKey& key, int w, int h) { return ServerLoad{key.scenePath, false, key.effects, key.path, w, h}; }
+VariantKey KeyOf(const ServerLoad& load) { return VariantKey{load.scenePath, load.effects, load.path}; }
 
 bool ShaderSaved(const std::vector<std::string>& changed) {
     for (const std::string& f : changed)
@@ -62,15 +63,12 @@ void LiveServers::PrepareLiteralTier(std::vector<std::string>* say) {
 }
 
 bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error) {
-    wantKey_ = key;
-    w_ = w;
-    h_ = h;
+    wanted_ = LoadFor(key, w, h);
     if (!Check(key, &buildingScene_, &buildingHash_, error)) {
         error_ = *error;
         return false;
     }
-    buildingKey_ = key;
-    lastLoad_ = LoadFor(key, w, h);
+    lastLoad_ = wanted_;
     if (!show_.Start(lastLoad_, error)) {
         error_ = *error;
         return false;
@@ -90,9 +88,9 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     const bool wasQuick = show_.OnScreenQuick();
     if (show_.Poll(&error)) {   // a build went on screen (or a replacement of the same program)
         if (show_.OnScreenLoad() == lastLoad_) {
-            sceneChanged_ = buildingKey_.scenePath != key_.scenePath;
+            sceneChanged_ = lastLoad_.scenePath != key_.scenePath;
             previousScene_ = scene_;
-            key_ = buildingKey_;
+            key_ = KeyOf(lastLoad_);
             scene_ = buildingScene_;
             hash_ = buildingHash_;
         }
@@ -110,10 +108,9 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         say->push_back(error);
     }
     if (literalTier_) PrepareLiteralTier(say);
-    if (want == wantKey_ && w == w_ && h == h_ && !ShaderSaved(changed)) return;
-    wantKey_ = want;
-    w_ = w;
-    h_ = h;
+    const ServerLoad load = LoadFor(want, w, h);
+    if (load == wanted_ && !ShaderSaved(changed)) return;
+    wanted_ = load;
     SceneInfo scene;
     uint64_t hash = 0;
     ShaderSource lifted;
@@ -122,7 +119,6 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         error_ = error;
         return;
     }
-    const ServerLoad load = LoadFor(want, w, h);
     if (OnScreen() && hash == hash_ && load == show_.OnScreenLoad() && !show_.Building()) {
         if (!error_.empty()) say->push_back("shader reloaded (the saved source is the program on screen)");
         error_.clear();   // back to what is on screen
@@ -142,7 +138,6 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     }
     buildingScene_ = std::move(scene);
     buildingHash_ = hash;
-    buildingKey_ = want;
     lastLoad_ = load;
     if (!show_.Load(load, &error)) {
         error_ = "sdfvj live: " + error;

@@ -63,12 +63,12 @@ private:
     bool literalTier_ = false, wantPrepare_ = false, preparedSaid_ = false;
     uint64_t preparedHash_ = 0;   // the lifted source the held program was built from
     ServerShow show_;
-    VariantKey key_, wantKey_, buildingKey_;
-    ServerLoad lastLoad_;   // the last program asked for
+    VariantKey key_;
+    ServerLoad wanted_;     // what the show asked for last (variant and size), built or not
+    ServerLoad lastLoad_;   // the last program sent to a server: its scene and hash are building*_
     SceneInfo scene_, buildingScene_, previousScene_;
     bool sceneChanged_ = false;
     uint64_t hash_ = 0, buildingHash_ = 0;
-    int w_ = 0, h_ = 0;
     std::string error_;
 };
 

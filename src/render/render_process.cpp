@@ -88,20 +88,19 @@ bool RenderProcess::Send(const std::string& message) {
     return Usable();
 }
 
-bool RenderProcess::Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick,
-                         const EffectSet* effects, bool lifted) {
+bool RenderProcess::Load(const ServerLoad& load, FrameTransport transport, bool quick) {
     std::string p;
-    Put<uint32_t>(&p, (uint32_t)path);
-    Put<int32_t>(&p, width);
-    Put<int32_t>(&p, height);
+    Put<uint32_t>(&p, (uint32_t)load.path);
+    Put<int32_t>(&p, load.width);
+    Put<int32_t>(&p, load.height);
     Put<uint32_t>(&p, (uint32_t)transport);
     Put<uint32_t>(&p, quick ? 1 : 0);
-    PutText(&p, scenePath);
-    Put<uint32_t>(&p, effects ? 1 : 0);
-    if (effects) Put(&p, *effects);
-    Put<uint32_t>(&p, lifted ? 1 : 0);
-    width_ = width;
-    height_ = height;
+    PutText(&p, load.scenePath);
+    Put<uint32_t>(&p, load.sceneEffects ? 0 : 1);
+    if (!load.sceneEffects) Put(&p, load.effects);
+    Put<uint32_t>(&p, load.lifted ? 1 : 0);
+    width_ = load.width;
+    height_ = load.height;
     return Send(Message(1, p));
 }
 

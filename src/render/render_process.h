@@ -49,6 +49,17 @@
 namespace sdfvj {
 
 enum class FrameTransport { Shm = 0, DmaBuf = 1, VkMemory = 2 };
+
+// What a server builds and draws.
+struct ServerLoad {
+    std::string scenePath;
+    bool sceneEffects = true;   // the scene's own effects, or:
+    EffectSet effects;
+    RenderPath path = RenderPath::Fragment;
+    int width = 0, height = 0;
+    bool lifted = false;   // the scene's float literals as uniforms (the literal tier: RenderProcess::SetLiterals)
+    bool operator==(const ServerLoad&) const = default;
+};
 const char* FrameTransportName(FrameTransport t);
 
 class RenderProcess {
@@ -71,10 +82,8 @@ public:
     // Spawns `exe render-server`; it opens its own GL context and waits for Load. Never blocks on it.
     bool Start(std::string* error, const std::string& exe = "/proc/self/exe");
     // Asks the server to build and draw a scene (from its file, as the show would). Never blocks.
-    // quick: the quick first tier of the program (QuickTierText). effects: the variant's
-    // effects; null: the scene's own.
-    bool Load(const std::string& scenePath, RenderPath path, int width, int height, FrameTransport transport, bool quick = false,
-              const EffectSet* effects = nullptr, bool lifted = false);
+    // quick: the quick first tier of the program (QuickTierText).
+    bool Load(const ServerLoad& load, FrameTransport transport, bool quick = false);
     // The values of the lifted program's u_lit[i] (a Load with lifted: the scene's float literals
     // read from uniforms) for the frames from now on. Never blocks; ignored when the count differs.
     bool SetLiterals(const std::vector<float>& values);

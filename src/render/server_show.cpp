@@ -85,9 +85,7 @@ bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) 
     c.asked = false;
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
         c.process = attempt == 0 ? TakeSpare(error) : Spawn(error);
-        if (c.process && c.process->Load(load.scenePath, load.path, load.width, load.height, transport_, c.quick,
-                                         load.sceneEffects ? nullptr : &load.effects, load.lifted))
-            return true;
+        if (c.process && c.process->Load(load, transport_, c.quick)) return true;
         Retire(std::move(c.process));
     }
     if (error->empty()) *error = "the render process did not start";
@@ -106,7 +104,6 @@ bool ServerShow::Start(const ServerLoad& load, std::string* error, int timeoutMs
         }
         ::poll(nullptr, 0, 2);
     }
-    FillSpares();
     return true;
 }
 

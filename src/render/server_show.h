@@ -24,17 +24,6 @@
 
 namespace sdfvj {
 
-// What a server builds and draws.
-struct ServerLoad {
-    std::string scenePath;
-    bool sceneEffects = true;   // the scene's own effects, or:
-    EffectSet effects;
-    RenderPath path = RenderPath::Fragment;
-    int width = 0, height = 0;
-    bool lifted = false;   // the scene's float literals as uniforms (the literal tier: RenderProcess::SetLiterals)
-    bool operator==(const ServerLoad&) const = default;
-};
-
 class ServerShow {
 public:
     // transport: how frames come over (FrameTransport::Shm, or the GPU where both sides can: the

@@ -238,9 +238,7 @@ TEST_CASE("live_reload scene header: an added input keeps every knob, a wrong-ty
     CHECK(show.Frames().back().second.at("twist") == Approx(2.0f));
 
     // An added input: it appears at its default, the knob set before stays.
-    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
-        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
-        "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},"));
+    SaveLikeAnEditor(scene, MidiWithGlow(good));
     REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.25f}, {"twist", 2.0f}}, 30));
     show.Osc("/sdfvj/raw/glow", 0.75f);
     REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.75f}, {"twist", 2.0f}}, kDeadline));

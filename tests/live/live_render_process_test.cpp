@@ -69,9 +69,7 @@ TEST_CASE("live render process: a save builds in a process of its own, its heade
 
     // A new input in the header: its value appears when the program that declares it is on screen.
     const size_t before = show.Frames().size() - 1;
-    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
-        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
-        "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},"));
+    SaveLikeAnEditor(scene, MidiWithGlow(good));
     size_t at = 0;
     REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.25f}}, 60, &at));
     REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 1, kDeadline));
@@ -117,9 +115,7 @@ TEST_CASE("live render process: tiered, a save's quick tier and its optimized pr
     };
     REQUIRE_LIVE(show, PollFor(60, optimizedOnScreen));   // the first program's tiers settled
     const size_t before = CountInFile(show.log, "shader reloaded (its render process");
-    SaveLikeAnEditor(scene, MidiWithTwistLine(good,
-        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
-        "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},"));
+    SaveLikeAnEditor(scene, MidiWithGlow(good));
     REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.25f}}, 60));
     REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", before + 1, 60));
     REQUIRE_LIVE(show, PollFor(60, optimizedOnScreen));

@@ -174,4 +174,11 @@ inline std::string MidiWithTwistLine(const std::string& midi, const std::string&
     return midi.substr(0, at) + replacement + midi.substr(at + twist.size());
 }
 
+// The midi scene with an input added after `twist`: glow, 0..1, default 0.25.
+inline std::string MidiWithGlow(const std::string& midi) {
+    return MidiWithTwistLine(midi,
+        "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
+        "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},");
+}
+
 }  // namespace sdfvj::test

@@ -57,7 +57,7 @@ RenderProcess::Ready StartAndLoad(RenderProcess* proc, const std::string& sceneP
     std::string error;
     INFO(error);
     REQUIRE(proc->Start(&error));
-    REQUIRE(proc->Load(scenePath, path, kW, kH, t));
+    REQUIRE(proc->Load(ServerLoad{scenePath, true, {}, path, kW, kH}, t));
     RenderProcess::Ready ready;
     REQUIRE(proc->PollReady(&ready, 120000));
     return ready;
@@ -150,16 +150,26 @@ bool PollUntilChange(ServerShow* show, std::string* error) {
     return false;
 }
 
-}  // namespace
+// A load of `path` with its own effects at the tests' size.
+ServerLoad OwnEffects(const std::string& path) { return ServerLoad{path, true, {}, RenderPath::Fragment, kW, kH}; }
 
-TEST_CASE("render process: a show's servers draw the variant a load asks for, and a failed build leaves the one on screen", "[render_process]") {
+// `show` started on scene `name` (its own effects, fragment path); returns the scene.
+SceneInfo StartShow(ServerShow* show, const char* name) {
     RequireGl();
     SceneInfo scene;
     std::string error;
-    REQUIRE(FindScene("midi", &scene, &error));
-    ServerShow show(FrameTransport::VkMemory, false, false);
+    REQUIRE(FindScene(name, &scene, &error));
     INFO(error);
-    REQUIRE(show.Start(ServerLoad{scene.path, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    REQUIRE(show->Start(OwnEffects(scene.path), &error));
+    return scene;
+}
+
+}  // namespace
+
+TEST_CASE("render process: a show's servers draw the variant a load asks for, and a failed build leaves the one on screen", "[render_process]") {
+    ServerShow show(FrameTransport::VkMemory, false, false);
+    const SceneInfo scene = StartShow(&show, "midi");
+    std::string error;
     REQUIRE(show.Frame(Inputs(scene, 1.0)));
     const Image own = ReadTexture(show.Texture());
     CHECK(CompareImages(own, RenderScene("midi", scene.effects, RenderPath::Fragment, kW, kH, 1.0), 1).fractionOver == 0.0);
@@ -180,7 +190,7 @@ TEST_CASE("render process: a show's servers draw the variant a load asks for, an
         std::ofstream out(broken);
         out << "/*{\"DESCRIPTION\": \"broken\"}*/\nvec4 map(vec3 p) { return fBx(p); }\n";
     }
-    REQUIRE(show.Load(ServerLoad{broken, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    REQUIRE(show.Load(OwnEffects(broken), &error));
     CHECK_FALSE(PollUntilChange(&show, &error));
     CHECK(error.find("sdfvj_broken_scene.glsl:2:") != std::string::npos);
     REQUIRE(show.Frame(Inputs(scene, 1.0)));
@@ -188,12 +198,9 @@ TEST_CASE("render process: a show's servers draw the variant a load asks for, an
 }
 
 TEST_CASE("render process: a show's server that dies is replaced by one building the same program, its last frame shown meanwhile", "[render_process]") {
-    RequireGl();
-    SceneInfo scene;
-    std::string error;
-    REQUIRE(FindScene("primitives", &scene, &error));
     ServerShow show(FrameTransport::Shm, false, false);
-    REQUIRE(show.Start(ServerLoad{scene.path, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    const SceneInfo scene = StartShow(&show, "primitives");
+    std::string error;
     REQUIRE(show.Frame(Inputs(scene, 1.0)));
     const Image last = ReadTexture(show.Texture());
     ::kill(show.OnScreenPid(), SIGKILL);
