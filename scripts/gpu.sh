@@ -12,7 +12,8 @@
 #                                 timeouts of several add up past one 600 s call). Each part's comment
 #                                 below says what it measures. Issue 12 (reloads): reload, retune,
 #                                 adopt, toggle, launch, fresh, handover, stage, s16 (render processes),
-#                                 spirv (GLSL against SPIR-V builds).
+#                                 spirv (GLSL against SPIR-V builds), ahead (effect pad hits through
+#                                 render processes, cold against built ahead).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
 #                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13,
@@ -287,6 +288,19 @@ case "${1:-}" in
         --modes ${S16_MODES:-process,render-process,render-process-sync,render-process-shm} --driver-cache off --rounds 3 > "$f" 2>&1 || true
       grep -h -A6 'modes side by side' "$f" || tail -5 "$f"
       grep -h -E '^render processes|^longest frame before|^median' "$f" | cut -c1-300 || true
+    done
+    fi
+    if [ "$part" = ahead ]; then
+    # Session 18 (issue 12): effect pad hits as live --render-process takes them, each hit's variant
+    # compiled by its spare against built ahead into the program cache by a server of their own
+    # (ServerShow::BuildAhead), rounds interleaved; the drivers' disk caches off, then on in empty
+    # folders of each way's own (as a performer's machine has them).
+    for s in ${AHEAD_SCENES:-midi character}; do
+      for c in off fresh; do
+        timeout 240 bash "$0" remote bench reload --edit toggle --modes render-process --scene $s --size 1920x1080 --path compute \
+          --rounds ${AHEAD_ROUNDS:-6} --driver-cache $c > "$out/ahead_${s}_$c.txt" 2>&1 || true
+        grep -h -E '^\| render-process|never reached' "$out/ahead_${s}_$c.txt" | cut -c1-300 || tail -5 "$out/ahead_${s}_$c.txt"
+      done
     done
     fi
     if [ "$part" = spirv ]; then

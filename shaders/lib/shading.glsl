@@ -53,6 +53,22 @@ vec3 calcNormalTetra(vec3 p, float eps) {
 }
 
 // ---- shadows: ro is the (offset) surface point, rd the unit direction to the light -----
+// The soft shadows' step from t, where the field (already divided by its Lipschitz bound) reads h
+// and the penumbra so far is res: iq's clamp(h, 0.005, 0.5), or further where no point can darken
+// the penumbra. Within s of t the field is at least h - s, so every point there has
+// k * (h - s) / (t + s) >= res while s <= (k h - res t) / (k + res): no sample skipped could have
+// lowered res. SHADOW_SAFE_STEP 0: the clamp alone.
+#ifndef SHADOW_SAFE_STEP
+#define SHADOW_SAFE_STEP 1
+#endif
+float shadowStep(float h, float t, float res, float k) {
+    float s = clamp(h, 0.005f, 0.5f);
+#if SHADOW_SAFE_STEP
+    s = max(s, (k * h - res * t) / (k + res));
+#endif
+    return s;
+}
+
 // Hard: 0 if anything is hit before tmax, else 1.
 float shadowHard(vec3 ro, vec3 rd, float tmin, float tmax, int steps) {
     float stepScale = sceneStepScale();
@@ -75,7 +91,7 @@ float shadowSoft(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
         float h = PROBE_MAP(ro + rd * t).w * stepScale;
         res = min(res, k * h / t);
         if (res < 1e-3f) return 0.0f;
-        t += clamp(h, 0.005f, 0.5f);
+        t += shadowStep(h, t, res, k);
         if (t > tmax) break;
     }
     return saturate(res);
@@ -95,7 +111,7 @@ float shadowSoftImproved(vec3 ro, vec3 rd, float tmin, float tmax, int steps, fl
         res = min(res, k * d / max(t - y, 1e-4f));
         ph = max(h, 1e-6f);
         if (res < 1e-3f) return 0.0f;
-        t += clamp(h, 0.005f, 0.5f);
+        t += shadowStep(h, t, res, k);
         if (t > tmax) break;
     }
     return saturate(res);

@@ -62,6 +62,8 @@ int RunToggleBench(const ReloadBenchOptions& o, const SceneInfo& scene, int w, i
                 o.fps > 0 ? (std::to_string((int)o.fps) + " Hz").c_str() : "flat out",
                 LiveProgram::ProcessCompileDefault() ? "builds in the compile process (as live on this GPU)" : "builds in-process");
 
+    const bool servers = o.modes.find("render-process") != std::string::npos;
+    if (servers && o.modes == "render-process") return RunServerToggleWays(o, scene, path, toggles, w, h);
     std::vector<Way> ways(3);
     ways[0].name = "cold";
     ways[1].name = "prefetch";
@@ -147,7 +149,7 @@ int RunToggleBench(const ReloadBenchOptions& o, const SceneInfo& scene, int w, i
                                   m.live->Error().c_str());
     }
     for (Way& m : ways) m.live->Wait();
-    return 0;
+    return servers ? RunServerToggleWays(o, scene, path, toggles, w, h) : 0;
 }
 
 }  // namespace sdfvj

@@ -192,13 +192,14 @@ void LiveSession::Reload() {
     state_.foldersToWatch.clear();
     const std::vector<std::string> changed = watcher_.Poll();
     ApplyFileChanges(state_, changed, Now());
-    if (servers_) {   // --render-process: builds go to spare servers; no prefetch, no morph
+    if (servers_) {   // --render-process: builds go to spare servers; no field morph
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
         std::vector<std::string> say;
         servers_->Update(state_.wanted, changed, Scaled(w), Scaled(h), &say);
         for (const std::string& line : say) state_.report.Say(line);
         FadeServersIfSceneChanged(Now());
+        PrefetchReachable(Now());
         ReloadPost(changed);
         return;
     }
@@ -287,18 +288,27 @@ void LiveSession::Draw(double now) {
 // Each frame while "measure costs" runs: the program on screen once more, offscreen, with every
 // effect on or one switched off (effect_costs.h). A new program makes the costs stale.
 void LiveSession::MeasureEffectCosts() {
-    if (!costs_.Started() || costs_.Done() || !live_.Current()) return;
-    if (!(costs_.effects == live_.Key().effects)) {
+    if (!costs_.Started() || costs_.Done() || !HasProgram()) return;
+    if (!(costs_.effects == KeyOnScreen().effects)) {
         costs_ = EffectCosts{};
         state_.report.Say("sdfvj live: effect costs: the program changed while measuring; press \"measure costs\" again");
         return;
     }
-    std::string error;
-    if (!costRenderer_.Resize(renderer_.Width(), renderer_.Height(), &error)) return;
-    StepEffectCosts(costs_, costRenderer_, *live_.Current(), live_.Scene(), in_);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    int w = renderer_.Width(), h = renderer_.Height();
+    if (servers_) {   // the server on screen draws each one offscreen and times it, in its process
+        w = servers_->Servers().OnScreenLoad().width;
+        h = servers_->Servers().OnScreenLoad().height;
+        StepEffectCostsTimed(costs_, in_, [&](const FrameInputs& in) { return servers_->TimeDraw(in); },
+                             softwareGl_ ? "timed in the render process on screen (glFinish + wall clock, software GL)"
+                                         : "timed in the render process on screen (GPU timer queries)");
+    } else {
+        std::string error;
+        if (!costRenderer_.Resize(w, h, &error)) return;
+        StepEffectCosts(costs_, costRenderer_, *live_.Current(), live_.Scene(), in_);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
     if (costs_.Done()) {
-        std::string line = "effect costs at " + std::to_string(renderer_.Width()) + "x" + std::to_string(renderer_.Height()) + ":";
+        std::string line = "effect costs at " + std::to_string(w) + "x" + std::to_string(h) + ":";
         for (size_t i = 0; i < costs_.rows.size(); ++i)
             line += (i ? ", " : " ") + costs_.rows[i].name + " " + EffectCostText(costs_.rows[i], costs_);
         state_.report.Say(line);

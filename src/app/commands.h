@@ -108,7 +108,11 @@ struct ReloadBenchOptions {
 int RunReloadBench(const ReloadBenchOptions& o);
 // --edit toggle (cmd_bench_toggle.cpp): effect pad hits, cold against built ahead; after the
 // drivers' caches are set, before any context exists.
+// With "render-process" in --modes: the hits as live --render-process takes them
+// (bench_toggle_servers.cpp); with it alone, only those.
 int RunToggleBench(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h, const std::string& cacheLine);
+int RunServerToggleWays(const ReloadBenchOptions& o, const SceneInfo& scene, RenderPath path, const std::vector<VariantKey>& toggles,
+                        int w, int h);
 
 int RunList();
 

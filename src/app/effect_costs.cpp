@@ -12,6 +12,17 @@ namespace {
 // The u_effectsOff bits of shaders/render/uniforms.glsl.
 constexpr int kOffShadows = 1, kOffAo = 2, kOffSpecular = 4, kOffReflections = 8, kOffFog = 16;
 
+// Once every draw's time is in: each row's differences, round by round.
+void FinishEffectCosts(EffectCosts& c) {
+    if (!c.Done()) return;
+    const int variants = c.Variants();
+    for (int r = 0; r < c.rounds; ++r)
+        for (size_t i = 0; i < c.rows.size(); ++i)
+            if (c.rows[i].offBit)
+                c.rows[i].diffs.push_back(c.ms[(size_t)(r * variants)] - c.ms[(size_t)(r * variants + 1 + (int)i)]);
+    c.ring.reset();
+}
+
 }  // namespace
 
 std::vector<EffectCostRow> EffectCostRows(const EffectSet& e) {
@@ -60,13 +71,18 @@ void StepEffectCosts(EffectCosts& c, FrameRenderer& scratch, const Program& prog
     }
     if (c.ring)
         for (const GpuTimerRing::Sample& s : c.ring->Poll()) c.ms[(size_t)s.tag] = s.ms;
-    if (!c.Done()) return;
-    const int variants = c.Variants();
-    for (int r = 0; r < c.rounds; ++r)
-        for (size_t i = 0; i < c.rows.size(); ++i)
-            if (c.rows[i].offBit)
-                c.rows[i].diffs.push_back(c.ms[(size_t)(r * variants)] - c.ms[(size_t)(r * variants + 1 + (int)i)]);
-    c.ring.reset();
+    FinishEffectCosts(c);
+}
+
+void StepEffectCostsTimed(EffectCosts& c, FrameInputs in, const std::function<double(const FrameInputs&)>& timeDraw,
+                          const std::string& timedBy) {
+    if (!c.Started() || c.Done()) return;
+    c.timedBy = timedBy;
+    const int variant = c.submitted % c.Variants();
+    in.effectsOff = variant == 0 ? 0 : c.rows[(size_t)variant - 1].offBit;
+    const double ms = timeDraw(in);
+    if (ms >= 0) c.ms[(size_t)c.submitted++] = ms;
+    FinishEffectCosts(c);
 }
 
 double EffectCostMs(const EffectCostRow& row, const EffectCosts& c) {
@@ -89,7 +105,7 @@ std::string EffectCostNote(const EffectCosts& c) {
     if (!c.Done()) std::snprintf(text, sizeof text, "measuring costs: %d/%d draws", c.Known(), c.Draws());
     else
         std::snprintf(text, sizeof text, "median of %d frame pairs (all on - one off), %s", c.rounds,
-                      c.wallClock ? "glFinish + wall clock (software GL)" : "GPU timer queries");
+                      !c.timedBy.empty() ? c.timedBy.c_str() : c.wallClock ? "glFinish + wall clock (software GL)" : "GPU timer queries");
     return text;
 }
 

@@ -13,6 +13,7 @@
 //   for (const EffectCostRow& r : costs.rows) ... r.name, EffectCostText(r, costs) ...
 // A frame runs one measuring draw, so the show keeps going (at a lower frame rate) meanwhile.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@ struct EffectCosts {
     std::vector<EffectCostRow> rows;   // one per effect the variant has
     int rounds = 0;
     bool wallClock = false;            // glFinish + wall clock, else GL_TIME_ELAPSED through the ring
+    std::string timedBy;               // StepEffectCostsTimed: who timed the draws (for the note)
     int submitted = 0;                 // draws submitted: index = round * Variants() + variant
     std::vector<double> ms;            // per draw index, < 0 until known
     std::unique_ptr<GpuTimerRing> ring;
@@ -51,6 +53,12 @@ void StartEffectCosts(EffectCosts& c, const EffectSet& variant, int rounds, bool
 // in; nothing once done. `in` is the frame's inputs (its effectsOff is replaced).
 void StepEffectCosts(EffectCosts& c, FrameRenderer& scratch, const Program& program, const SceneInfo& scene,
                      FrameInputs in);
+// The same where a draw is timed by someone else and waited for (`live --render-process`: the
+// server on screen draws it offscreen and times it, RenderProcess::TimeDraw): timeDraw returns ms,
+// or < 0 when it failed (that draw is asked for again next frame). Start it with wallClock = true
+// (no timer ring here); `timedBy` says how, in the note.
+void StepEffectCostsTimed(EffectCosts& c, FrameInputs in, const std::function<double(const FrameInputs&)>& timeDraw,
+                          const std::string& timedBy);
 // The median over the rounds of a row's difference, ms; NaN until done or for a row not measured.
 double EffectCostMs(const EffectCostRow& row, const EffectCosts& c);
 // "+3.21 ms", "-0.02 ms" (noise), "n/a" (no run-time switch), "..." while measuring.

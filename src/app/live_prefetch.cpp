@@ -2,6 +2,8 @@
 // performer (LiveProgram::Prefetch): once the show has asked for nothing new for a few seconds,
 // the one-effect toggles of the variant on screen and every preset's variant are queued, at most
 // the cache's room; the first pad hit or preset switch to one of them then shows it at once.
+// With --render-process they are built into the program cache by a render server of their own
+// (LiveServers::BuildAhead): a hit is then a cache load in its spare.
 // On by default where the GPU compiles beside the frame (not on llvmpipe, whose compiles share the
 // CPU with the frame); SDFVJ_PREFETCH=1 or 0 forces it.
 #include <filesystem>
@@ -21,7 +23,8 @@ void LiveSession::PrefetchReachable(double now) {
         prefetchQueued_ = false;
         return;
     }
-    if (prefetchQueued_ || now - prefetchQuietSince_ < 3.0 || live_.Pending() || !live_.Current()) return;
+    const bool busy = servers_ ? servers_->Building() || !servers_->OnScreen() : live_.Pending() || !live_.Current();
+    if (prefetchQueued_ || now - prefetchQuietSince_ < 3.0 || busy) return;
     prefetchQueued_ = true;
     std::vector<VariantKey> keys;
     for (const EffectSet& e : OneEffectToggles(state_.wanted.effects)) keys.push_back({state_.wanted.scenePath, e, state_.wanted.path});
@@ -33,6 +36,11 @@ void LiveSession::PrefetchReachable(double now) {
         Show next;
         std::string error;
         if (PrepareShow(so, &next, &error) && !next.isfScene) keys.push_back({next.scene.path, next.effects, state_.wanted.path});
+    }
+    if (servers_) {
+        std::fprintf(stderr, "sdfvj live: %zu variants an effect pad or a preset reaches build ahead, into the program cache, in a render process of their own\n",
+                     servers_->BuildAhead(keys));
+        return;
     }
     live_.Prefetch(keys);
     std::fprintf(stderr, "sdfvj live: %zu variants an effect pad or a preset reaches compile in the background%s\n",

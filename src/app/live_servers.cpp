@@ -1,5 +1,6 @@
 #include "app/live_servers.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "scene/scene.h"
@@ -96,10 +97,10 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         }
         if (!sceneChanged_ && !wasQuick) show_.DropPrevious();   // after a quick tier: the one it replaced is gone already
         const RenderProcess::Ready& r = show_.Shown().back();
-        char line[200];
-        std::snprintf(line, sizeof line, "shader reloaded%s (its render process: build %.0f ms, first use %.0f ms, first frame %.0f ms)%s",
-                      show_.OnScreenQuick() ? ", quick tier" : "", r.buildMs, r.useMs, r.firstFrameMs,
-                      show_.OnScreenQuick() ? "; the optimized program follows" : "");
+        char line[240];
+        std::snprintf(line, sizeof line, "shader reloaded%s (its render process: build %.0f ms%s, first use %.0f ms, first frame %.0f ms)%s",
+                      show_.OnScreenQuick() ? ", quick tier" : "", r.buildMs, r.fromCache ? " from the program cache" : "", r.useMs,
+                      r.firstFrameMs, show_.OnScreenQuick() ? "; the optimized program follows" : "");
         say->push_back(line);
         error_.clear();
         wantPrepare_ = literalTier_;
@@ -108,6 +109,7 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         say->push_back(error);
     }
     if (literalTier_) PrepareLiteralTier(say);
+    SayBuiltAhead(say);
     const ServerLoad load = LoadFor(want, w, h);
     if (load == wanted_ && !ShaderSaved(changed)) return;
     wanted_ = load;
@@ -143,6 +145,37 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         error_ = "sdfvj live: " + error;
         say->push_back(error_);
     }
+}
+
+size_t LiveServers::BuildAhead(const std::vector<VariantKey>& keys) {
+    std::vector<ServerLoad> loads;
+    for (const VariantKey& key : keys) {
+        const ServerLoad load = LoadFor(key, show_.OnScreenLoad().width, show_.OnScreenLoad().height);
+        if (!(load == show_.OnScreenLoad()) && std::find(loads.begin(), loads.end(), load) == loads.end()) loads.push_back(load);
+    }
+    aheadSaid_ = show_.BuiltAheadLoads().size();
+    show_.BuildAhead(loads);
+    return loads.size();
+}
+
+void LiveServers::SayBuiltAhead(std::vector<std::string>* say) {
+    const auto& built = show_.BuiltAheadLoads();
+    if (aheadSaid_ == built.size() || show_.BuildAheadLeft() > 0) return;
+    int ok = 0, cached = 0;
+    double ms = 0;
+    for (size_t i = aheadSaid_; i < built.size(); ++i) {
+        const RenderProcess::BuiltAhead& b = built[i].built;
+        ok += b.ok ? 1 : 0;
+        cached += b.ok && b.fromCache ? 1 : 0;
+        ms += b.buildMs;
+        if (!b.ok)   // a variant that does not build says why when it is asked for: only a short line here
+            say->push_back("sdfvj live: a variant built ahead did not build (" + b.text.substr(0, b.text.find('\n')) + ")");
+    }
+    char line[200];
+    std::snprintf(line, sizeof line, "sdfvj live: %d variants an effect pad or a preset reaches are in the program cache (%d built ahead in %.1f s, %d there already)",
+                  ok, ok - cached, ms / 1000.0, cached);
+    say->push_back(line);
+    aheadSaid_ = built.size();
 }
 
 unsigned LiveServers::Frame(const FrameInputs& in, int* w, int* h) {

@@ -7,8 +7,10 @@
 // next program's source is, and a broken header or include said as file:line before any server is
 // asked; a program that does not compile comes back from its server with the driver's log, mapped
 // to file:line. Either way the program on screen stays.
-// What it does not do yet: the field morph (a scene change crossfades the two servers' frames),
-// variants built ahead and "measure costs".
+// The variants an effect pad or a preset reaches are built ahead into the program cache by a server
+// of their own (BuildAhead), so that a hit is a cache load in its spare.
+// "measure costs" asks the server on screen to time its program's draws (TimeDraw).
+// What it does not do yet: the field morph (a scene change crossfades the two servers' frames).
 // Render thread only.
 #pragma once
 #include <memory>
@@ -49,6 +51,12 @@ public:
     unsigned PreviousFrame(const FrameInputs& in) { return show_.PreviousFrame(in) ? show_.PreviousTexture() : 0; }
     void DropPrevious() { show_.DropPrevious(); }
 
+    // Builds these variants ahead (ServerShow::BuildAhead) at the size on screen; the one on screen
+    // is left out. Returns how many are queued. When all are done, Update says so once.
+    size_t BuildAhead(const std::vector<VariantKey>& keys);
+    bool Building() const { return show_.Building(); }
+    // The program on screen drawn once more offscreen by its server and timed there ("measure costs").
+    double TimeDraw(const FrameInputs& in) { return show_.TimeDraw(in); }
     bool OnScreen() const { return show_.OnScreen(); }
     const SceneInfo& Scene() const { return scene_; }    // the scene on screen
     const VariantKey& Key() const { return key_; }       // its variant
@@ -59,7 +67,8 @@ private:
     // Reads the scene and assembles the program's source (no GL): *hash, or *error as file:line;
     // with `lifted`, its literal tier's source too.
     bool Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted = nullptr) const;
-    void PrepareLiteralTier(std::vector<std::string>* say);   // the held lifted program, when it is time
+    void PrepareLiteralTier(std::vector<std::string>* say);
+    void SayBuiltAhead(std::vector<std::string>* say);   // once, when a BuildAhead list is done   // the held lifted program, when it is time
     bool literalTier_ = false, wantPrepare_ = false, preparedSaid_ = false;
     uint64_t preparedHash_ = 0;   // the lifted source the held program was built from
     ServerShow show_;
@@ -68,6 +77,7 @@ private:
     ServerLoad lastLoad_;   // the last program sent to a server: its scene and hash are building*_
     SceneInfo scene_, buildingScene_, previousScene_;
     bool sceneChanged_ = false;
+    size_t aheadSaid_ = 0;   // BuiltAheadLoads() already reported
     uint64_t hash_ = 0, buildingHash_ = 0;
     std::string error_;
 };

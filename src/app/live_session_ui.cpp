@@ -129,7 +129,7 @@ OverlayModel LiveSession::OverlayModelNow() {
     m.mappingFile = state_.mappingFile;
     if (softwareGl_) m.gpuTimesUnavailable = "software renderer";
     // Costs belong to the program they were measured on: shown only while it is on screen.
-    if (costs_.Started() && costs_.effects == live_.Key().effects) {
+    if (costs_.Started() && costs_.effects == KeyOnScreen().effects) {
         for (const EffectCostRow& r : costs_.rows) m.effectCosts.emplace_back(r.name, EffectCostText(r, costs_));
         m.effectCostNote = EffectCostNote(costs_);
     }
@@ -140,7 +140,7 @@ OverlayModel LiveSession::OverlayModelNow() {
 // /sdfvj/effect/<name> would; this frame's own actions were applied already and are put back.
 void LiveSession::ApplyOverlayActions(const OverlayActions& a, double now) {
     if (a.renderScale > 0.0f) renderScale_ = std::clamp(a.renderScale, 0.25f, 1.0f);
-    if (a.measureCosts) StartEffectCosts(costs_, live_.Key().effects, 9, softwareGl_);
+    if (a.measureCosts) StartEffectCosts(costs_, KeyOnScreen().effects, 9, softwareGl_ || servers_);   // a server times its own draws
     for (const auto& [index, value] : a.setTargets)
         if (index >= 0 && (size_t)index < state_.params.decls.size()) SetParamTarget(state_.params, index, value);
     if (!a.loadPreset.empty() || !a.effectToggles.empty()) {

@@ -8,6 +8,8 @@
 #include <sys/mman.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+
 #include "render/render_wire.h"
 #include "render/shared_image.h"
 
@@ -55,7 +57,7 @@ bool RenderProcess::TryReap() {
     return true;
 }
 
-bool RenderProcess::Start(std::string* error, const std::string& exe) {
+bool RenderProcess::Start(std::string* error, const std::string& exe, const std::vector<std::string>& env) {
     int sv[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) {
         *error = std::string("render process: socketpair: ") + std::strerror(errno);
@@ -65,8 +67,20 @@ bool RenderProcess::Start(std::string* error, const std::string& exe) {
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, sv[1], 3);   // dup2 clears CLOEXEC on fd 3
     std::vector<char*> argv{const_cast<char*>(exe.c_str()), const_cast<char*>("render-server"), nullptr};
+    // This process's environment, with `env`'s NAME=value entries over it.
+    std::vector<char*> envp;
+    for (char** e = environ; *e; ++e) {
+        const std::string entry(*e);
+        const bool replaced = std::any_of(env.begin(), env.end(), [&](const std::string& o) {
+            const size_t eq = o.find('=');
+            return eq != std::string::npos && entry.compare(0, eq + 1, o, 0, eq + 1) == 0;
+        });
+        if (!replaced) envp.push_back(*e);
+    }
+    for (const std::string& o : env) envp.push_back(const_cast<char*>(o.c_str()));
+    envp.push_back(nullptr);
     pid_t pid = -1;
-    const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+    const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     ::close(sv[1]);
     if (rc != 0) {
@@ -88,7 +102,8 @@ bool RenderProcess::Send(const std::string& message) {
     return Usable();
 }
 
-bool RenderProcess::Load(const ServerLoad& load, FrameTransport transport, bool quick) {
+namespace {
+std::string LoadPayload(const ServerLoad& load, FrameTransport transport, bool quick) {
     std::string p;
     Put<uint32_t>(&p, (uint32_t)load.path);
     Put<int32_t>(&p, load.width);
@@ -99,9 +114,51 @@ bool RenderProcess::Load(const ServerLoad& load, FrameTransport transport, bool 
     Put<uint32_t>(&p, load.sceneEffects ? 0 : 1);
     if (!load.sceneEffects) Put(&p, load.effects);
     Put<uint32_t>(&p, load.lifted ? 1 : 0);
+    return p;
+}
+}  // namespace
+
+bool RenderProcess::Load(const ServerLoad& load, FrameTransport transport, bool quick) {
     width_ = load.width;
     height_ = load.height;
-    return Send(Message(1, p));
+    return Send(Message(1, LoadPayload(load, transport, quick)));
+}
+
+bool RenderProcess::BuildAhead(const ServerLoad& load) { return Send(Message(4, LoadPayload(load, FrameTransport::Shm, false))); }
+
+bool RenderProcess::Answer(uint32_t* type, std::string* payload, int timeoutMs) {
+    const auto t0 = Clock::now();
+    for (;;) {
+        if (TakeMessage(type, payload)) return true;
+        const int left = timeoutMs - (int)MsSince(t0);
+        if (!Usable()) return false;
+        Receive(left > 0 ? left : 0);
+        if (TakeMessage(type, payload)) return true;
+        if (MsSince(t0) >= timeoutMs) return false;
+    }
+}
+
+bool RenderProcess::PollBuiltAhead(BuiltAhead* built, int timeoutMs) {
+    uint32_t type = 0;
+    std::string payload;
+    if (!Answer(&type, &payload, timeoutMs)) {
+        if (Usable()) return false;
+        built->ok = false;
+        built->text = "the render process ended while it built";
+        return true;
+    }
+    size_t at = 0;
+    uint32_t ok = 0, cached = 0;
+    if (type != 4 || !Take(payload, &at, &ok) || !Take(payload, &at, &cached) || !Take(payload, &at, &built->buildMs) ||
+        !TakeText(payload, &at, &built->text)) {
+        MarkDead();
+        built->ok = false;
+        built->text = "the render process answered out of turn";
+        return true;
+    }
+    built->ok = ok != 0;
+    built->fromCache = cached != 0;
+    return true;
 }
 
 bool RenderProcess::Receive(int timeoutMs) {
@@ -153,20 +210,13 @@ bool RenderProcess::TakeMessage(uint32_t* type, std::string* payload) {
 }
 
 bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
-    const auto t0 = Clock::now();
     uint32_t type = 0;
     std::string payload;
-    for (;;) {
-        if (TakeMessage(&type, &payload)) break;
-        const int left = timeoutMs - (int)MsSince(t0);
-        if (!Usable()) {
-            ready->ok = false;
-            ready->text = "the render process ended before its program was ready";
-            return true;
-        }
-        Receive(left > 0 ? left : 0);
-        if (TakeMessage(&type, &payload)) break;
-        if (MsSince(t0) >= timeoutMs) return false;
+    if (!Answer(&type, &payload, timeoutMs)) {
+        if (Usable()) return false;
+        ready->ok = false;
+        ready->text = "the render process ended before its program was ready";
+        return true;
     }
     if (type != 1) {
         MarkDead();
@@ -180,18 +230,19 @@ bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
 
 bool RenderProcess::Import(const std::string& payload, Ready* ready) {
     size_t at = 0;
-    uint32_t ok = 0, transport = 0, fourcc = 0;
+    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0;
     uint64_t modifier = 0, memorySize = 0;
     int32_t stride = 0, offset = 0;
     if (!Take(payload, &at, &ok) || !Take(payload, &at, &transport) || !Take(payload, &at, &ready->buildMs) ||
         !Take(payload, &at, &ready->useMs) || !Take(payload, &at, &ready->firstFrameMs) || !Take(payload, &at, &fourcc) ||
         !Take(payload, &at, &modifier) || !Take(payload, &at, &stride) || !Take(payload, &at, &offset) ||
-        !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text)) {
+        !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached)) {
         ready->text = "the render process's answer is malformed";
         return false;
     }
     ready->transport = transport_ = transport == 2 ? FrameTransport::VkMemory : transport == 1 ? FrameTransport::DmaBuf : FrameTransport::Shm;
     ready->ok = ok != 0;
+    ready->fromCache = cached != 0;
     if (!ready->ok) return false;
     if (fds_.empty()) {
         ready->text = "the render process sent no frame buffer";
@@ -259,6 +310,23 @@ bool RenderProcess::Request(const FrameInputs& in) {
     if (outstanding_ || !texture_ || !Send(Message(2, EncodeInputs(in)))) return false;
     outstanding_ = true;
     return true;
+}
+
+double RenderProcess::TimeDraw(const FrameInputs& in, int timeoutMs) {
+    if (outstanding_ || !texture_ || !Send(Message(5, EncodeInputs(in)))) return -1;
+    uint32_t type = 0;
+    std::string payload;
+    size_t at = 0;
+    double ms = -1;
+    if (!Answer(&type, &payload, timeoutMs)) {
+        MarkDead();   // not waited for again, as a frame that does not come
+        return -1;
+    }
+    if (type != 5 || !Take(payload, &at, &ms)) {
+        MarkDead();
+        return -1;
+    }
+    return ms;
 }
 
 bool RenderProcess::Arrived() {

@@ -31,11 +31,16 @@
 //                   2 frame: FrameInputs (f64 time, i32 frame, f32 beat, f32 bpm, Quality's bytes,
 //                            i32 effectsOff, f32 yaw, f32 pitch, u32 n, n x (u32 len, name, f32))
 //                   3 literals: u32 n, n x f32 (no answer)
+//                   4 build ahead: a load's payload; the program is built into the program cache
+//                            (program_cache.h) and nothing is drawn; only before a load, any number
+//                   5 time a draw: FrameInputs; drawn offscreen, timed, not handed over
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
-//                            Vulkan memory or dma-buf)
+//                            Vulkan memory or dma-buf); then u32 from the program cache (0/1)
 //                   2 done:  f64 the server's draw + hand-over ms
+//                   4 built: u32 ok, u32 it was in the program cache already, f64 ms, u32 len, the error
+//                   5 timed: f64 ms (a GL timer query; glFinish + wall clock on a software renderer; < 0 failed)
 // Render thread only (the show's side), except RunRenderServer (the child's main).
 #pragma once
 #include <sys/types.h>
@@ -69,6 +74,12 @@ public:
         FrameTransport transport = FrameTransport::Shm;
         double buildMs = 0, useMs = 0, firstFrameMs = 0;   // in the server: compile + link, first use, first real frame
         std::string text;                                  // the error, or a note (a transport refused)
+        bool fromCache = false;                            // the program came from the program cache: nothing compiled
+    };
+    struct BuiltAhead {
+        bool ok = false, fromCache = false;   // fromCache: it was there already
+        double buildMs = 0;
+        std::string text;   // the error
     };
     RenderProcess() = default;
     ~RenderProcess();   // Stop(), then waits for the server to end
@@ -80,10 +91,18 @@ public:
     RenderProcess& operator=(const RenderProcess&) = delete;
 
     // Spawns `exe render-server`; it opens its own GL context and waits for Load. Never blocks on it.
-    bool Start(std::string* error, const std::string& exe = "/proc/self/exe");
+    // env: NAME=value entries over this process's environment, for the server.
+    bool Start(std::string* error, const std::string& exe = "/proc/self/exe", const std::vector<std::string>& env = {});
     // Asks the server to build and draw a scene (from its file, as the show would). Never blocks.
     // quick: the quick first tier of the program (QuickTierText).
     bool Load(const ServerLoad& load, FrameTransport transport, bool quick = false);
+    // Builds a load's program into the program cache (program_cache.h) and draws nothing, so that a
+    // later Load of it, in any server, is a cache load. Only before Load; one at a time: the next
+    // after PollBuiltAhead said it is done. Never blocks.
+    bool BuildAhead(const ServerLoad& load);
+    // True once the server answered BuildAhead (or died: then built->ok is false). Never blocks
+    // with timeoutMs 0.
+    bool PollBuiltAhead(BuiltAhead* built, int timeoutMs = 0);
     // The values of the lifted program's u_lit[i] (a Load with lifted: the scene's float literals
     // read from uniforms) for the frames from now on. Never blocks; ignored when the count differs.
     bool SetLiterals(const std::vector<float>& values);
@@ -100,6 +119,9 @@ public:
     bool Request(const FrameInputs& in);
     bool Collect(int timeoutMs = 5000);
     bool Outstanding() const { return outstanding_; }
+    // The program drawn once more with `in`, offscreen in the server, timed there (the overlay's
+    // "measure costs"); waits for the answer. -1 when it failed (or a frame is outstanding).
+    double TimeDraw(const FrameInputs& in, int timeoutMs = 5000);
     // True when the frame asked for has arrived (Collect will not wait). Never blocks.
     bool Arrived();
     unsigned Texture() const { return texture_; }   // this context's texture holding the last frame
@@ -111,6 +133,7 @@ private:
     bool Send(const std::string& message);
     bool Receive(int timeoutMs);                 // reads what arrived (fds too) into inbox_/fds_
     bool TakeMessage(uint32_t* type, std::string* payload);
+    bool Answer(uint32_t* type, std::string* payload, int timeoutMs);   // false: none yet, or the server is gone
     bool Import(const std::string& payload, Ready* ready);
     void MarkDead();
     int fd_ = -1;

@@ -143,6 +143,37 @@ void WarmCompiler() {
     glDeleteShader(sh);
 }
 
+// A load or a build ahead (wire types 1 and 4: the same payload).
+struct LoadMessage {
+    RenderPath path = RenderPath::Fragment;
+    int32_t width = 0, height = 0;
+    uint32_t transport = 0, quick = 0, hasEffects = 0, lifted = 0;
+    EffectSet effects;
+    std::string scenePath;
+};
+
+bool ParseLoad(const std::string& payload, LoadMessage* m) {
+    size_t at = 0;
+    uint32_t path = 0;
+    if (!Take(payload, &at, &path) || !Take(payload, &at, &m->width) || !Take(payload, &at, &m->height) ||
+        !Take(payload, &at, &m->transport) || !Take(payload, &at, &m->quick) || !TakeText(payload, &at, &m->scenePath) ||
+        !Take(payload, &at, &m->hasEffects) || (m->hasEffects && !Take(payload, &at, &m->effects)) || !Take(payload, &at, &m->lifted))
+        return false;
+    m->path = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
+    return true;
+}
+
+// The scene read from its file, as the show would, and its program built (from the program cache
+// when it holds it; a compiled one is stored there).
+bool BuildLoad(const LoadMessage& m, SceneInfo* scene, Program* program, std::string* error) {
+    ShaderSource src;
+    if (!LoadScene(m.scenePath, scene, error) ||
+        !AssembleProgram(*scene, VariantKey{m.scenePath, m.hasEffects ? m.effects : scene->effects, m.path}, &src, error, m.lifted != 0))
+        return false;
+    if (m.quick) src.text = QuickTierText(src.text);
+    return program->Build(src, m.path, error);
+}
+
 }  // namespace
 
 int RunRenderServer(int fd) {
@@ -153,7 +184,7 @@ int RunRenderServer(int fd) {
     if (glOk) WarmCompiler();   // a spare does this while it waits, off the save's path
     SceneInfo scene;
     Program program;
-    FrameRenderer fr;
+    FrameRenderer fr, scratch;   // scratch: draws timed for the show (wire type 5)
     ServerTarget target;
     bool loaded = false;
     for (;;) {
@@ -172,6 +203,20 @@ int RunRenderServer(int fd) {
             if (!SendAll(fd, Message(2, p))) return 0;
             continue;
         }
+        if (header[0] == 5 && loaded) {   // a draw timed offscreen ("measure costs"): nothing handed over
+            FrameInputs in;
+            if (!DecodeInputs(payload, &in)) return 3;
+            std::string ignored;
+            double ms = -1;
+            if (scratch.Resize(fr.Width(), fr.Height(), &ignored)) {
+                scratch.Draw(program, scene, in, true);   // a GL timer query, or glFinish + wall clock on llvmpipe
+                ms = scratch.LastGpuMs();
+            }
+            std::string p;
+            Put(&p, ms);
+            if (!SendAll(fd, Message(5, p))) return 0;
+            continue;
+        }
         if (header[0] == 3 && loaded) {   // the literal tier's numbers
             size_t at = 0;
             uint32_t n = 0;
@@ -183,27 +228,35 @@ int RunRenderServer(int fd) {
             if (values.size() == program.Literals().size()) program.SetLiterals(values);
             continue;
         }
-        if (header[0] != 1 || loaded) return 3;   // out of turn: the show is not ours
-        size_t at = 0;
-        uint32_t path = 0, transport = 0, quick = 0;
-        int32_t w = 0, h = 0;
-        uint32_t hasEffects = 0, lifted = 0;
-        EffectSet effects;
-        std::string scenePath, error;
-        if (!Take(payload, &at, &path) || !Take(payload, &at, &w) || !Take(payload, &at, &h) ||
-            !Take(payload, &at, &transport) || !Take(payload, &at, &quick) || !TakeText(payload, &at, &scenePath) ||
-            !Take(payload, &at, &hasEffects) || (hasEffects && !Take(payload, &at, &effects)) || !Take(payload, &at, &lifted))
-            return 3;
-        const RenderPath rp = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
+        if ((header[0] != 1 && header[0] != 4) || loaded) return 3;   // out of turn: the show is not ours
+        LoadMessage m;
+        if (!ParseLoad(payload, &m)) return 3;
+        const RenderPath rp = m.path;
+        const uint32_t transport = m.transport;
+        const int32_t w = m.width, h = m.height;
         double buildMs = 0, useMs = 0, frameMs = 0;
+        std::string error;
         bool ok = glOk;
         if (!glOk) error = glError;
-        ShaderSource src;
-        if (ok) ok = LoadScene(scenePath, &scene, &error) &&
-                     AssembleProgram(scene, VariantKey{scenePath, hasEffects ? effects : scene.effects, rp}, &src, &error, lifted != 0);
-        if (ok && quick) src.text = QuickTierText(src.text);
+        if (header[0] == 4) {   // built ahead into the program cache, nothing drawn; the next message may be anything
+            Program ahead;
+            SceneInfo aheadScene;
+            const auto t0 = Clock::now();
+            if (ok) ok = BuildLoad(m, &aheadScene, &ahead, &error);
+            if (ok) {   // used once too: what the driver finishes at a first use lands in its own disk cache
+                PrimeProgram(ahead.Id(), rp, false);
+                glFinish();
+            }
+            std::string p;
+            Put<uint32_t>(&p, ok ? 1 : 0);
+            Put<uint32_t>(&p, ok && ahead.FromCache() ? 1 : 0);
+            Put(&p, MsSince(t0));
+            PutText(&p, error);
+            if (!SendAll(fd, Message(4, p))) return 0;
+            continue;
+        }
         auto t0 = Clock::now();
-        if (ok) ok = program.Build(src, rp, &error);
+        if (ok) ok = BuildLoad(m, &scene, &program, &error);
         buildMs = MsSince(t0);
         FrameInputs in;
         for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
@@ -237,6 +290,7 @@ int RunRenderServer(int fd) {
         Put<int32_t>(&p, target.offset);
         Put<uint64_t>(&p, target.memorySize);
         PutText(&p, ok ? target.note : error);
+        Put<uint32_t>(&p, ok && program.FromCache() ? 1 : 0);
         if (!SendAll(fd, Message(1, p), ok ? target.fd : -1)) return 0;
         if (!ok) return 1;
         if (target.transport != FrameTransport::Shm) {

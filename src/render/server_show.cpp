@@ -15,6 +15,7 @@ ServerShow::~ServerShow() {
     lastFrame_.reset();
     previous_.reset();
     prepared_.process.reset();
+    ahead_.reset();
     next_.process.reset();
     quick_.process.reset();
     {
@@ -29,7 +30,7 @@ ServerShow::~ServerShow() {
 
 std::unique_ptr<RenderProcess> ServerShow::Spawn(std::string* error) {
     auto p = std::make_unique<RenderProcess>();
-    if (!p->Start(error)) return nullptr;
+    if (!p->Start(error, "/proc/self/exe", env_)) return nullptr;
     return p;
 }
 
@@ -200,11 +201,45 @@ bool ServerShow::PromotePrepared(const std::vector<float>& literals) {
     return true;
 }
 
+void ServerShow::BuildAhead(std::vector<ServerLoad> loads) {
+    aheadQueue_ = std::move(loads);
+    std::reverse(aheadQueue_.begin(), aheadQueue_.end());   // taken from the back
+}
+
+void ServerShow::StepBuildAhead() {
+    if (aheadAsked_) {
+        RenderProcess::BuiltAhead built;
+        if (!ahead_->PollBuiltAhead(&built, 0)) return;
+        aheadAsked_ = false;
+        builtAhead_.push_back({aheadLoad_, built});
+        if (!ahead_->Usable()) Retire(std::move(ahead_));   // a build that killed it: the next one gets another
+    }
+    if (aheadQueue_.empty()) {
+        Retire(std::move(ahead_));
+        return;
+    }
+    if (Building()) return;   // a save's build first: the driver and the CPU are its
+    if (!ahead_) {
+        std::string error;
+        ahead_ = TakeSpare(&error);
+        FillSpares();
+        if (!ahead_) {
+            aheadQueue_.clear();
+            return;
+        }
+    }
+    aheadLoad_ = aheadQueue_.back();
+    aheadQueue_.pop_back();
+    aheadAsked_ = ahead_->BuildAhead(aheadLoad_);
+    if (!aheadAsked_) Retire(std::move(ahead_));
+}
+
 bool ServerShow::Poll(std::string* error) {
     error->clear();
     for (size_t i = 0; i < retired_.size();)
         if (retired_[i]->TryReap()) retired_.erase(retired_.begin() + (long)i);
         else ++i;
+    StepBuildAhead();
     const bool died = onScreen_ && !onScreen_->Usable();
     if ((died || (!onScreen_ && lastFrame_)) && !Building() && render_wire::Clock::now() >= retryAt_) {
         // Died or stopped answering (or its replacement did): its last frame stays on screen while

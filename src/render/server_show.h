@@ -40,6 +40,9 @@ public:
     // False with *error when it did not build (the show may go on: a later Load that builds goes on
     // screen) or no server could start.
     bool Start(const ServerLoad& load, std::string* error, int timeoutMs = 120000);
+    // NAME=value entries over this process's environment for every server started from now on (a
+    // bench's program cache folder, say). Before Start.
+    void SetServerEnv(std::vector<std::string> env) { env_ = std::move(env); }
     // A new program: a spare builds it while the one on screen goes on; a build still running for an
     // earlier Load is ended. Never blocks. False when no server could start.
     bool Load(const ServerLoad& load, std::string* error);
@@ -64,6 +67,17 @@ public:
     bool PreparedReady();   // never blocks; one that failed or died is dropped (*PreparedError says why)
     const std::string& PreparedError() const { return preparedError_; }
     bool PromotePrepared(const std::vector<float>& literals);
+    // Variants built ahead (issue 12: what an effect pad or a preset reaches next): a server of their
+    // own builds each into the program cache, one at a time and only while no save builds, so that a
+    // later Load of one is a cache load in its spare. Replaces the list not yet built; its server
+    // ends when the list is done.
+    struct BuiltAheadLoad {
+        ServerLoad load;
+        RenderProcess::BuiltAhead built;
+    };
+    void BuildAhead(std::vector<ServerLoad> loads);
+    const std::vector<BuiltAheadLoad>& BuiltAheadLoads() const { return builtAhead_; }
+    size_t BuildAheadLeft() const { return aheadQueue_.size() + (aheadAsked_ ? 1 : 0); }
     // Keep the server a build replaced (for a crossfade from its frames) until DropPrevious or the
     // next build on screen; off by default (it is ended at once). A quick tier is never kept: the
     // optimized program that replaces it leaves the previous one as it was.
@@ -74,6 +88,8 @@ public:
     bool PreviousFrame(const FrameInputs& in, int timeoutMs = 1000) { return HasPrevious() && previous_->DrawFrame(in, timeoutMs); }
     unsigned PreviousTexture() const { return previous_ ? previous_->Texture() : 0; }
     void DropPrevious() { Retire(std::move(previous_)); }
+    // The program on screen drawn once more offscreen by its server, timed there (RenderProcess::TimeDraw).
+    double TimeDraw(const FrameInputs& in) { return onScreen_ && onScreen_->Usable() ? onScreen_->TimeDraw(in) : -1; }
     bool OnScreen() const { return onScreen_ != nullptr; }
     const ServerLoad& OnScreenLoad() const { return onScreenLoad_; }
     bool OnScreenQuick() const { return onScreenQuick_; }
@@ -102,9 +118,11 @@ private:
     void PutOnScreen(std::unique_ptr<RenderProcess> p, const ServerLoad& load, bool quick);
     void Retire(std::unique_ptr<RenderProcess> p);
     bool Send(Candidate& c, const ServerLoad& load, std::string* error);
+    void StepBuildAhead();
 
     FrameTransport transport_;
     bool pipelined_, tiered_;
+    std::vector<std::string> env_;
     std::unique_ptr<RenderProcess> onScreen_;
     ServerLoad onScreenLoad_, building_;
     Candidate next_, quick_{nullptr, true, false};
@@ -121,6 +139,11 @@ private:
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
     std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
     ServerLoad previousLoad_;
+    std::unique_ptr<RenderProcess> ahead_;   // BuildAhead's server
+    std::vector<ServerLoad> aheadQueue_;
+    ServerLoad aheadLoad_;
+    bool aheadAsked_ = false;
+    std::vector<BuiltAheadLoad> builtAhead_;
     Candidate prepared_;
     ServerLoad preparedLoad_;
     RenderProcess::Ready preparedReady_;

@@ -215,3 +215,55 @@ TEST_CASE("live render process: a broken save is said as file:line and the pictu
     REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
     CHECK(show.Running());
 }
+
+TEST_CASE("live render process: the variants an effect pad or a preset reaches are built ahead into the program cache, and a pad hit is a cache load") {
+    // Off by default on llvmpipe (its compiles share the CPU with the frames), forced here; a program
+    // cache of the test's own, Mesa's disk cache on (llvmpipe gives no program binary without it).
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-ahead");
+    const std::string root = CopyDataRoot(dir);
+    std::filesystem::remove_all(root + "/presets");
+    std::filesystem::create_directories(root + "/presets");
+    std::ofstream(root + "/presets/to_primitives.json") << R"({"scene": "primitives", "params": {"spin": 0.8}})";
+    const std::string cache = dir + "/cache";
+    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root,
+                  {{"SDFVJ_PREFETCH", "1"}, {"SDFVJ_TIERED", "0"}, {"SDFVJ_LITERAL_TIER", "0"}, {"XDG_CACHE_HOME", cache},
+                   {"SDFVJ_PROGRAM_CACHE", "1"}});
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
+    // After 3 quiet seconds: the six one-effect toggles of "--effects none" and the preset's variant.
+    REQUIRE_LIVE(show, show.WaitForLog("reaches build ahead, into the program cache", 1, 30));
+    REQUIRE_LIVE(show, show.WaitForLog("reaches are in the program cache (", 1, 120));
+    const std::string log = show.Log();
+    int inCache = 0, built = 0, already = 0;
+    double seconds = 0;
+    const size_t lineAt = log.rfind("sdfvj live: ", log.find(" variants an effect pad or a preset reaches are in the program cache ("));
+    REQUIRE(lineAt != std::string::npos);
+    REQUIRE(std::sscanf(log.c_str() + lineAt,
+                        "sdfvj live: %d variants an effect pad or a preset reaches are in the program cache (%d built ahead in %lf s, %d there already)",
+                        &inCache, &built, &seconds, &already) == 4);
+    INFO(log);
+    CHECK(inCache == 7);
+    CHECK(built == 7);   // a cache of its own: nothing was there
+    CHECK(already == 0);
+    size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(cache + "/sdfvj/programs")) files += e.is_regular_file() ? 1 : 0;
+    CHECK(files >= 8);   // the seven and the program on screen
+    CHECK(show.Log().find("did not build") == std::string::npos);
+
+    // A pad hit: its spare loads the program from the cache instead of compiling it, and llvmpipe's
+    // code for it is in Mesa's disk cache (the server that built it ahead used it once): the hit's
+    // build + first use is a fraction of the first program's, which compiled (a ratio, not a time).
+    double firstBuild = 0, firstUse = 0, hitBuild = 0, hitUse = 0;
+    REQUIRE(std::sscanf(log.c_str() + log.find("the scene is drawn by a render process"),
+                        "the scene is drawn by a render process (frames by %*[a-z-]; build %lf ms, first use %lf ms", &firstBuild, &firstUse) == 2);
+    show.Osc("/sdfvj/effect/ao", 1.0f);
+    REQUIRE_LIVE(show, show.WaitForLog(" from the program cache, first use", 1, 60));
+    const std::string after = show.Log();
+    REQUIRE(std::sscanf(after.c_str() + after.find("shader reloaded (its render process: build "),
+                        "shader reloaded (its render process: build %lf ms from the program cache, first use %lf ms", &hitBuild, &hitUse) == 2);
+    INFO("first program: build " << firstBuild << " ms, first use " << firstUse << " ms; the pad's, built ahead: " << hitBuild << " + "
+                                 << hitUse << " ms");
+    CHECK(hitBuild + hitUse < 0.5 * (firstBuild + firstUse));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Running());
+}

@@ -4,7 +4,8 @@
 // over on the GPU (a Vulkan-allocated image both processes import) where the drivers can, by
 // shared memory where not, the same image either way. This binary is its own server
 // (/proc/self/exe render-server), as sdfvj is. ServerShow, the servers behind a show (spares, a
-// variant loaded, a failed build, a dead server replaced), is tested here too.
+// variant loaded, a failed build, a dead server replaced, draws timed for "measure costs"), is tested
+// here too.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 #include <epoxy/egl.h>
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/effect_costs.h"
 #include "gl_fixture.h"
 #include "render/render_process.h"
 #include "render/server_show.h"
@@ -36,19 +38,19 @@ FrameInputs Inputs(const SceneInfo& scene, double time) {
 }
 
 // The render process's frame as this context sees it, top row first (as FrameRenderer::ReadPixels).
-Image ReadTexture(unsigned texture) {
+Image ReadTexture(unsigned texture, int w = kW, int h = kH) {
     GLuint fbo = 0;
     glGenFramebuffers(1, &fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
-    std::vector<uint8_t> raw((size_t)kW * kH * 4);
+    std::vector<uint8_t> raw((size_t)w * h * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fbo);
-    Image img{kW, kH, std::vector<uint8_t>(raw.size())};
-    for (int y = 0; y < kH; ++y)
-        std::copy_n(raw.begin() + (long)y * kW * 4, kW * 4, img.rgba.begin() + (long)(kH - 1 - y) * kW * 4);
+    Image img{w, h, std::vector<uint8_t>(raw.size())};
+    for (int y = 0; y < h; ++y)
+        std::copy_n(raw.begin() + (long)y * w * 4, w * 4, img.rgba.begin() + (long)(h - 1 - y) * w * 4);
     return img;
 }
 
@@ -215,6 +217,49 @@ TEST_CASE("render process: a show's server that dies is replaced by one building
     REQUIRE(PollUntilChange(&show, &error));
     REQUIRE(show.Frame(Inputs(scene, 2.0)));
     CHECK(CompareImages(ReadTexture(show.Texture()), RenderScene("primitives", scene.effects, RenderPath::Fragment, kW, kH, 2.0), 1).fractionOver == 0.0);
+}
+
+TEST_CASE("render process: the server on screen times its program's draws offscreen, each effect's cost measured there, its frames untouched", "[render_process]") {
+    // `live --render-process`'s "measure costs": the draws the overlay asks for are timed by the
+    // server (glFinish + wall clock on llvmpipe), into a target of its own, not the one it hands over.
+    RequireGl();
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    EffectSet heavy;
+    heavy.shadows = 2;   // soft
+    heavy.ao = heavy.specular = heavy.fog = true;
+    ServerShow show(FrameTransport::Shm, false, false);
+    INFO(error);
+    const int w = 320, h = 180;   // large enough that the wall clock sees the shadows' cost
+    REQUIRE(show.Start(ServerLoad{scene.path, false, heavy, RenderPath::Fragment, w, h}, &error));
+    const FrameInputs in = Inputs(scene, 1.0);
+    REQUIRE(show.Frame(in));
+    const Image before = ReadTexture(show.Texture(), w, h);
+
+    EffectCosts costs;
+    StartEffectCosts(costs, heavy, 7, true);
+    REQUIRE(costs.rows.size() == 4);
+    int steps = 0;
+    while (!costs.Done() && steps < 1000) {
+        StepEffectCostsTimed(costs, in, [&](const FrameInputs& f) { return show.TimeDraw(f); }, "timed in the render process on screen");
+        ++steps;
+    }
+    REQUIRE(costs.Done());
+    CHECK(steps == 7 * 5);   // every draw answered: all on + 4 one-off variants per round
+    std::string table;
+    for (const EffectCostRow& r : costs.rows) {
+        CHECK(r.diffs.size() == 7);
+        table += r.name + " " + EffectCostText(r, costs) + "\n";
+    }
+    INFO(table << EffectCostNote(costs));
+    CHECK(EffectCostMs(costs.rows[0], costs) > 0.0);   // soft shadows cost more than nothing
+    CHECK(EffectCostNote(costs).find("timed in the render process on screen") != std::string::npos);
+
+    // The frame handed over is still the program's own with every effect on.
+    REQUIRE(show.Frame(in));
+    CHECK(CompareImages(ReadTexture(show.Texture(), w, h), before, 0).fractionOver == 0.0);
+    CHECK(show.Replaced() == 0);
 }
 
 int main(int argc, char** argv) {
