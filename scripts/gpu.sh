@@ -296,7 +296,7 @@ case "${1:-}" in
     # (ServerShow::BuildAhead), rounds interleaved; the drivers' disk caches off, then on in empty
     # folders of each way's own (as a performer's machine has them).
     for s in ${AHEAD_SCENES:-midi character}; do
-      for c in off fresh; do
+      for c in ${AHEAD_CACHES:-off fresh}; do
         timeout 240 bash "$0" remote bench reload --edit toggle --modes render-process --scene $s --size 1920x1080 --path compute \
           --rounds ${AHEAD_ROUNDS:-6} --driver-cache $c > "$out/ahead_${s}_$c.txt" 2>&1 || true
         grep -h -E '^\| render-process|never reached' "$out/ahead_${s}_$c.txt" | cut -c1-300 || tail -5 "$out/ahead_${s}_$c.txt"

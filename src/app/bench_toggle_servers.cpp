@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <utility>
 
 #include "app/bench_adopt.h"
 #include "app/bench_support.h"
@@ -35,7 +36,7 @@ struct ServerWay {
     std::unique_ptr<PresentTarget> present;
     FrameInputs in;
     double steadyMedian = 0, aheadMs = 0, aheadLongest = 0;
-    std::vector<double> shown, longest;
+    std::vector<double> shown, longest, buildMs, useMs;   // per hit; the last two in its server
     int failed = 0, fromCache = 0;
     std::string error;
 };
@@ -70,8 +71,11 @@ int RunServerToggleWays(const ReloadBenchOptions& o, const SceneInfo& scene, Ren
         std::filesystem::create_directories(cache);
         m.show = std::make_unique<ServerShow>(FrameTransport::VkMemory, false, o.tiered == "on");
         std::vector<std::string> env = {"XDG_CACHE_HOME=" + cache, "SDFVJ_PROGRAM_CACHE=1"};
-        for (const char* driver : {"MESA_SHADER_CACHE_DIR", "__GL_SHADER_DISK_CACHE_PATH"})   // --driver-cache fresh: a folder each
-            if (std::getenv(driver)) env.push_back(std::string(driver) + "=" + cache + "/" + driver);
+        for (const auto& [driver, sub] : {std::pair{"MESA_SHADER_CACHE_DIR", "mesa"}, std::pair{"__GL_SHADER_DISK_CACHE_PATH", "nv"}})
+            if (std::getenv(driver)) {   // --driver-cache fresh: a folder each (NVIDIA writes only into one that exists)
+                std::filesystem::create_directories(cache + "/" + sub);
+                env.push_back(std::string(driver) + "=" + cache + "/" + sub);
+            }
         m.show->SetServerEnv(env);
         std::string error;
         if (!m.show->Start(loadOf(scene.effects), &error)) {
@@ -115,7 +119,10 @@ int RunServerToggleWays(const ReloadBenchOptions& o, const SceneInfo& scene, Ren
             if (m.show->Load(loadOf(toggles[round].effects), &error) && untilShown(m, hit, &longest)) {
                 m.shown.push_back(MsSince(hit));
                 m.longest.push_back(longest);
-                m.fromCache += m.show->Shown().back().fromCache ? 1 : 0;
+                const RenderProcess::Ready& r = m.show->Shown().back();
+                m.fromCache += r.fromCache ? 1 : 0;
+                m.buildMs.push_back(r.buildMs);
+                m.useMs.push_back(r.useMs + r.firstFrameMs);
             } else {
                 ++m.failed;
                 if (m.error.empty()) m.error = error;
@@ -127,19 +134,23 @@ int RunServerToggleWays(const ReloadBenchOptions& o, const SceneInfo& scene, Ren
             for (int k = 0; k < 10; ++k) frameOnce(m);
         }
 
-    std::printf("\n| way (live --render-process) | hit -> on screen (median) | longest frame after a hit (max) | hits loaded from the program cache | "
-                "steady frame | building ahead: time, longest frame |\n|---|---:|---:|---:|---:|---|\n");
+    std::printf("\n| way (live --render-process) | hit -> on screen (median) | in its server: build / first use + first frame (medians) | "
+                "longest frame after a hit (max) | hits loaded from the program cache | steady frame | building ahead: time, longest frame |\n"
+                "|---|---:|---:|---:|---:|---:|---|\n");
     for (ServerWay& m : ways) {
         const double worst = m.longest.empty() ? 0 : *std::max_element(m.longest.begin(), m.longest.end());
         char ahead[120] = "-";
         if (m.ahead) std::snprintf(ahead, sizeof ahead, "%zu variants in %.0f ms, longest frame %.1f ms", toggles.size(), m.aheadMs, m.aheadLongest);
-        std::printf("| %s | %.1f ms | %.1f ms | %d of %zu | %.2f ms | %s |\n", m.name.c_str(), m.shown.empty() ? 0 : MedianMs(m.shown), worst,
-                    m.fromCache, m.shown.size(), m.steadyMedian, ahead);
+        std::printf("| %s | %.1f ms | %.1f / %.1f ms | %.1f ms | %d of %zu | %.2f ms | %s |\n", m.name.c_str(), m.shown.empty() ? 0 : MedianMs(m.shown),
+                    m.buildMs.empty() ? 0 : MedianMs(m.buildMs), m.useMs.empty() ? 0 : MedianMs(m.useMs), worst, m.fromCache, m.shown.size(),
+                    m.steadyMedian, ahead);
         if (m.failed) std::printf("  %s: %d of %d hits never reached the screen (%s)\n", m.name.c_str(), m.failed, rounds, m.error.c_str());
     }
-    for (ServerWay& m : ways) {
-        m.present.reset();
-        m.show.reset();
+    for (size_t i = 0; i < ways.size(); ++i) {
+        ways[i].present.reset();
+        ways[i].show.reset();
+        const std::string driver = DriverCacheContents(folder + "/" + std::to_string(i));
+        if (!driver.empty()) std::printf("%s:%s", ways[i].name.c_str(), driver.c_str());
     }
     std::error_code ignored;
     std::filesystem::remove_all(folder, ignored);

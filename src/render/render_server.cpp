@@ -243,8 +243,13 @@ int RunRenderServer(int fd) {
             SceneInfo aheadScene;
             const auto t0 = Clock::now();
             if (ok) ok = BuildLoad(m, &aheadScene, &ahead, &error);
-            if (ok) {   // used once too: what the driver finishes at a first use lands in its own disk cache
+            if (ok) {   // used and drawn once, as a load is: what the driver finishes there lands in its own disk cache
                 PrimeProgram(ahead.Id(), rp, false);
+                FrameRenderer target;
+                FrameInputs in;
+                for (const ParamDecl& d : aheadScene.params) in.params.emplace_back(d.name, d.defaultValue);
+                if (target.Resize(w, h, &error)) target.Draw(ahead, aheadScene, in);
+                error.clear();
                 glFinish();
             }
             std::string p;
