@@ -192,10 +192,11 @@ void LiveSession::Reload() {
     state_.foldersToWatch.clear();
     const std::vector<std::string> changed = watcher_.Poll();
     ApplyFileChanges(state_, changed, Now());
-    if (servers_) {   // --render-process: builds go to spare servers; no field morph
+    if (servers_) {   // --render-process: builds go to spare servers
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
         std::vector<std::string> say;
+        PrepareServerMorph();
         servers_->Update(state_.wanted, changed, Scaled(w), Scaled(h), &say);
         for (const std::string& line : say) state_.report.Say(line);
         FadeServersIfSceneChanged(Now());

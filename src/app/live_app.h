@@ -179,6 +179,12 @@ private:
     GLuint serverFbo_ = 0;   // reads the server's frame for the blit to the window
     void StartServers();
     void DrawServerScene(double now, int rw, int rh);
+    void PresentServerTexture(unsigned texture, int w, int h, double now);
+    // live_morph.cpp, --render-process: the field morph drawn by a server held for it.
+    void PrepareServerMorph();
+    bool ServerFadeMorphsFields();
+    bool DrawServerFieldFade(double now);
+    VariantKey serverMorphFor_;   // the variant the last PrepareServerMorph was asked for
     void FadeServersIfSceneChanged(double now);
     // The program on screen, wherever it is drawn: its scene, its variant, whether there is one.
     const SceneInfo& SceneOnScreen() const { return servers_ ? servers_->Scene() : live_.Scene(); }

@@ -81,3 +81,78 @@ bool LiveSession::DrawFieldFade(double now, int rw, int rh) {
 }
 
 }  // namespace sdfvj
+
+namespace sdfvj {
+
+// --render-process: when the show asks for another scene with a field morph, a server held for it
+// builds the two fields' program beside the new scene's own (LiveServers::PrepareMorph).
+void LiveSession::PrepareServerMorph() {
+    if (state_.wanted == serverMorphFor_ || state_.wanted.scenePath == servers_->Key().scenePath || !servers_->OnScreen()) return;
+    serverMorphFor_ = state_.wanted;
+    const MorphDesc& how = state_.show.preset.automation.morph;
+    if (how.seconds <= 0 || how.easing == Easing::Cut || !how.fieldMorph || state_.show.isfScene) return;
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    servers_->PrepareMorph(state_.wanted, Scaled(w), Scaled(h));
+}
+
+// Whether the fade that starts now morphs the fields (a morph was built for this pair); fade_ is set.
+bool LiveSession::ServerFadeMorphsFields() {
+    const LiveServers::Morph s = servers_->MorphState();
+    if (s == LiveServers::Morph::None || !servers_->MorphFor(fade_.scene.path, servers_->Scene().path)) return false;
+    if (s == LiveServers::Morph::Failed) {
+        const std::string& e = servers_->MorphError();
+        state_.report.Say("sdfvj live: " + fade_.scene.name + " and " + servers_->Scene().name + " cannot morph as one field (" +
+                          e.substr(0, e.find('\n')) + ") — crossfading their frames");
+        servers_->DropMorph();
+        return false;
+    }
+    fade_.field = true;
+    fade_.waiting = s != LiveServers::Morph::Ready;
+    state_.report.Say("scene morph: " + fade_.scene.name + " -> " + servers_->Scene().name + " as one field over " +
+                      std::to_string(fade_.seconds).substr(0, 4) + " s, drawn by a render process" +
+                      (fade_.waiting ? " (its program is still building)" : ""));
+    return true;
+}
+
+// This frame of a field morph drawn by its server, to the window; false when the fade is not one
+// (or just fell back to a crossfade, or ended), and the caller draws as usual.
+bool LiveSession::DrawServerFieldFade(double now) {
+    if (!fade_.server || !fade_.field) return false;
+    const LiveServers::Morph s = servers_->MorphState();
+    if (s == LiveServers::Morph::Ready && fade_.waiting) {
+        fade_.waiting = false;
+        fade_.start = now;   // the morph runs its whole time from the first frame it can draw
+    }
+    const bool late = s == LiveServers::Morph::Building && now - fade_.start > kMorphCompileWait;
+    if (s == LiveServers::Morph::Failed || s == LiveServers::Morph::None || late) {
+        state_.report.Say(std::string("sdfvj live: the field morph ") + (late ? "is still building" : "did not build") +
+                          " — crossfading the frames instead");
+        fade_.field = fade_.waiting = false;
+        fade_.start = now;
+        servers_->DropMorph();
+        return false;
+    }
+    const double t = fade_.waiting ? 0.0 : (now - fade_.start) / fade_.seconds;
+    if (t >= 1.0) {
+        servers_->DropMorph();
+        fade_ = Fade{};
+        servers_->DropPrevious();
+        return false;   // done: the new scene alone from now on
+    }
+    FrameInputs in = in_;
+    unsigned texture = 0;
+    if (fade_.waiting) {   // the scene before holds, drawn by its own server
+        in.params = fade_.params;
+        texture = servers_->PreviousFrame(in);
+    } else {
+        in.params = MorphParamValues(fade_.params, in_.params, Ease(fade_.easing, t));
+        texture = servers_->MorphFrame(in);
+    }
+    if (!texture) return false;
+    const ServerLoad& size = fade_.waiting ? servers_->Servers().PreviousLoad() : servers_->Servers().PreparedLoad(ServerShow::Held::Morph);
+    PresentServerTexture(texture, size.width, size.height, now);
+    return true;
+}
+
+}  // namespace sdfvj

@@ -28,9 +28,9 @@ void LiveSession::StartServers() {
     }
 }
 
-// A scene change morphs as a crossfade from the frames of the scene before, whose server goes on
-// drawing with its last values until the fade ends (the field morph needs both scenes in one
-// program: not with render processes yet).
+// A scene change morphs: the two fields in one program where the preset asks for it and both scenes
+// allow it (drawn by a server held for it, live_morph.cpp), else as a crossfade from the frames of
+// the scene before, whose server goes on drawing with its last values until the fade ends.
 void LiveSession::FadeServersIfSceneChanged(double now) {
     if (!servers_->TakeSceneChange()) return;
     const MorphDesc& how = state_.show.preset.automation.morph;
@@ -38,6 +38,7 @@ void LiveSession::FadeServersIfSceneChanged(double now) {
     if (how.seconds > 0 && how.easing != Easing::Cut && crossfade_.Init(&error)) {
         fade_ = Fade{nullptr, servers_->PreviousScene(), in_.params, now, how.seconds, how.easing};
         fade_.server = true;
+        if (ServerFadeMorphsFields()) return;
         char seconds[32];
         std::snprintf(seconds, sizeof seconds, "%.2f", how.seconds);
         state_.report.Say("scene morph: " + fade_.scene.name + " -> " + servers_->Scene().name + ", a crossfade of their render processes' frames over " +
@@ -50,6 +51,7 @@ void LiveSession::FadeServersIfSceneChanged(double now) {
 }
 
 void LiveSession::DrawServerScene(double now, int rw, int rh) {
+    if (DrawServerFieldFade(now)) return;
     int w = 0, h = 0;
     const unsigned texture = servers_->Frame(in_, &w, &h);
     if (!texture) return;
@@ -71,15 +73,19 @@ void LiveSession::DrawServerScene(double now, int rw, int rh) {
         fade_ = Fade{};
         servers_->DropPrevious();
     }
-    if (!DrawPost(texture, w, h, now)) {
-        if (!serverFbo_) glGenFramebuffers(1, &serverFbo_);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, serverFbo_);
-        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        glBlitFramebuffer(0, 0, w, h, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, w == fbw_ && h == fbh_ ? GL_NEAREST : GL_LINEAR);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    }
+    PresentServerTexture(texture, w, h, now);
     servers_->AfterRead(in_);
+}
+
+// A server's frame (w x h) to the window: through the post chain, or blitted.
+void LiveSession::PresentServerTexture(unsigned texture, int w, int h, double now) {
+    if (DrawPost(texture, w, h, now)) return;
+    if (!serverFbo_) glGenFramebuffers(1, &serverFbo_);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, serverFbo_);
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, w == fbw_ && h == fbh_ ? GL_NEAREST : GL_LINEAR);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 }  // namespace sdfvj

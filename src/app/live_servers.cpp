@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "render/field_morph.h"
 #include "scene/scene.h"
 #include "shader/shader.h"
 
@@ -145,6 +146,24 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         error_ = "sdfvj live: " + error;
         say->push_back(error_);
     }
+}
+
+void LiveServers::PrepareMorph(const VariantKey& to, int w, int h) {
+    ServerLoad load{to.scenePath, false, UnionEffects(key_.effects, to.effects), to.path, w, h};
+    load.morphFrom = key_.scenePath;
+    std::string error;
+    show_.Prepare(load, &error, ServerShow::Held::Morph);   // a failure is said by MorphState's caller
+}
+
+LiveServers::Morph LiveServers::MorphState() {
+    if (show_.PreparedReady(ServerShow::Held::Morph)) return Morph::Ready;
+    if (show_.HasPrepared(ServerShow::Held::Morph)) return Morph::Building;
+    return show_.PreparedError(ServerShow::Held::Morph).empty() ? Morph::None : Morph::Failed;
+}
+
+bool LiveServers::MorphFor(const std::string& fromPath, const std::string& toPath) const {
+    const ServerLoad& load = show_.PreparedLoad(ServerShow::Held::Morph);
+    return load.morphFrom == fromPath && load.scenePath == toPath;
 }
 
 size_t LiveServers::BuildAhead(const std::vector<VariantKey>& keys) {

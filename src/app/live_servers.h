@@ -10,7 +10,8 @@
 // The variants an effect pad or a preset reaches are built ahead into the program cache by a server
 // of their own (BuildAhead), so that a hit is a cache load in its spare.
 // "measure costs" asks the server on screen to time its program's draws (TimeDraw).
-// What it does not do yet: the field morph (a scene change crossfades the two servers' frames).
+// A preset's scene change with a field morph draws both fields in one program, built and drawn by a
+// server held for it (PrepareMorph), as in-process.
 // Render thread only.
 #pragma once
 #include <memory>
@@ -51,6 +52,16 @@ public:
     unsigned PreviousFrame(const FrameInputs& in) { return show_.PreviousFrame(in) ? show_.PreviousTexture() : 0; }
     void DropPrevious() { show_.DropPrevious(); }
 
+    // A field morph (render/field_morph.h) from the scene on screen to `to`'s: a spare builds the two
+    // fields' program (every effect of either variant) at w x h and holds it; MorphFrame draws it
+    // with MorphParamValues. One at a time: a new one replaces it.
+    enum class Morph { None, Building, Ready, Failed };
+    void PrepareMorph(const VariantKey& to, int w, int h);
+    Morph MorphState();   // never blocks
+    bool MorphFor(const std::string& fromPath, const std::string& toPath) const;
+    const std::string& MorphError() const { return show_.PreparedError(ServerShow::Held::Morph); }
+    unsigned MorphFrame(const FrameInputs& in) { return show_.HeldFrame(ServerShow::Held::Morph, in) ? show_.HeldTexture(ServerShow::Held::Morph) : 0; }
+    void DropMorph() { show_.DropHeld(ServerShow::Held::Morph); }
     // Builds these variants ahead (ServerShow::BuildAhead) at the size on screen; the one on screen
     // is left out. Returns how many are queued. When all are done, Update says so once.
     size_t BuildAhead(const std::vector<VariantKey>& keys);

@@ -114,6 +114,7 @@ std::string LoadPayload(const ServerLoad& load, FrameTransport transport, bool q
     Put<uint32_t>(&p, load.sceneEffects ? 0 : 1);
     if (!load.sceneEffects) Put(&p, load.effects);
     Put<uint32_t>(&p, load.lifted ? 1 : 0);
+    PutText(&p, load.morphFrom);
     return p;
 }
 }  // namespace

@@ -27,7 +27,8 @@
 //   show -> server  1 load:  u32 path, i32 width, i32 height, u32 transport (0 shm, else the GPU), u32 quick
 //                            tier (0/1), scene path,
 //                            u32 own effects (0: the scene's own; 1: an EffectSet's bytes follow),
-//                            u32 lifted (1: the scene's literals as uniforms, the literal tier)
+//                            u32 lifted (1: the scene's literals as uniforms, the literal tier),
+//                            u32 len, a scene path (a field morph from that scene; 0: none)
 //                   2 frame: FrameInputs (f64 time, i32 frame, f32 beat, f32 bpm, Quality's bytes,
 //                            i32 effectsOff, f32 yaw, f32 pitch, u32 n, n x (u32 len, name, f32))
 //                   3 literals: u32 n, n x f32 (no answer)
@@ -63,6 +64,9 @@ struct ServerLoad {
     RenderPath path = RenderPath::Fragment;
     int width = 0, height = 0;
     bool lifted = false;   // the scene's float literals as uniforms (the literal tier: RenderProcess::SetLiterals)
+    // A field morph (render/field_morph.h) from this scene to scenePath: one program of both fields,
+    // each frame's inputs MorphParamValues (its `morph` input, 0..1, mixes the headers too).
+    std::string morphFrom;
     bool operator==(const ServerLoad&) const = default;
 };
 const char* FrameTransportName(FrameTransport t);

@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 
 #include "render/compile_worker.h"
+#include "render/field_morph.h"
 #include "render/render_process.h"
 #include "render/render_wire.h"
 #include "render/shared_image.h"
@@ -150,6 +151,7 @@ struct LoadMessage {
     uint32_t transport = 0, quick = 0, hasEffects = 0, lifted = 0;
     EffectSet effects;
     std::string scenePath;
+    std::string morphFrom;   // a field morph from this scene to scenePath ("": none)
 };
 
 bool ParseLoad(const std::string& payload, LoadMessage* m) {
@@ -157,19 +159,24 @@ bool ParseLoad(const std::string& payload, LoadMessage* m) {
     uint32_t path = 0;
     if (!Take(payload, &at, &path) || !Take(payload, &at, &m->width) || !Take(payload, &at, &m->height) ||
         !Take(payload, &at, &m->transport) || !Take(payload, &at, &m->quick) || !TakeText(payload, &at, &m->scenePath) ||
-        !Take(payload, &at, &m->hasEffects) || (m->hasEffects && !Take(payload, &at, &m->effects)) || !Take(payload, &at, &m->lifted))
+        !Take(payload, &at, &m->hasEffects) || (m->hasEffects && !Take(payload, &at, &m->effects)) || !Take(payload, &at, &m->lifted) ||
+        !TakeText(payload, &at, &m->morphFrom))
         return false;
     m->path = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
     return true;
 }
 
 // The scene read from its file, as the show would, and its program built (from the program cache
-// when it holds it; a compiled one is stored there).
-bool BuildLoad(const LoadMessage& m, SceneInfo* scene, Program* program, std::string* error) {
+// when it holds it; a compiled one is stored there). A field morph reads both scenes (*from too).
+bool BuildLoad(const LoadMessage& m, SceneInfo* scene, SceneInfo* from, Program* program, std::string* error) {
     ShaderSource src;
-    if (!LoadScene(m.scenePath, scene, error) ||
-        !AssembleProgram(*scene, VariantKey{m.scenePath, m.hasEffects ? m.effects : scene->effects, m.path}, &src, error, m.lifted != 0))
-        return false;
+    if (!LoadScene(m.scenePath, scene, error)) return false;
+    const VariantKey key{m.scenePath, m.hasEffects ? m.effects : scene->effects, m.path};
+    if (!m.morphFrom.empty()) {
+        if (!LoadScene(m.morphFrom, from, error) || !AssembleMorphProgram(*from, *scene, key, &src, error)) return false;
+        return program->Build(src, m.path, error);
+    }
+    if (!AssembleProgram(*scene, key, &src, error, m.lifted != 0)) return false;
     if (m.quick) src.text = QuickTierText(src.text);
     return program->Build(src, m.path, error);
 }
@@ -184,6 +191,17 @@ int RunRenderServer(int fd) {
     if (glOk) WarmCompiler();   // a spare does this while it waits, off the save's path
     SceneInfo scene;
     Program program;
+    SceneInfo from;      // a field morph's first scene
+    bool morph = false;  // the program is a field morph: each frame's header is the two scenes' mixed by its `morph` input
+    SceneInfo mixed;     // its header this frame
+    auto frameScene = [&](const FrameInputs& in) -> const SceneInfo& {
+        if (!morph) return scene;
+        float t = 0;
+        for (const auto& [name, value] : in.params)
+            if (name == "morph") t = value;
+        mixed = MixSceneInfo(from, scene, t);
+        return mixed;
+    };
     FrameRenderer fr, scratch;   // scratch: draws timed for the show (wire type 5)
     ServerTarget target;
     bool loaded = false;
@@ -196,7 +214,7 @@ int RunRenderServer(int fd) {
             FrameInputs in;
             if (!DecodeInputs(payload, &in)) return 3;
             const auto t0 = Clock::now();
-            fr.Draw(program, scene, in);
+            fr.Draw(program, frameScene(in), in);
             target.HandOver(fr);
             std::string p;
             Put(&p, MsSince(t0));
@@ -209,7 +227,7 @@ int RunRenderServer(int fd) {
             std::string ignored;
             double ms = -1;
             if (scratch.Resize(fr.Width(), fr.Height(), &ignored)) {
-                scratch.Draw(program, scene, in, true);   // a GL timer query, or glFinish + wall clock on llvmpipe
+                scratch.Draw(program, frameScene(in), in, true);   // a GL timer query, or glFinish + wall clock on llvmpipe
                 ms = scratch.LastGpuMs();
             }
             std::string p;
@@ -242,7 +260,8 @@ int RunRenderServer(int fd) {
             Program ahead;
             SceneInfo aheadScene;
             const auto t0 = Clock::now();
-            if (ok) ok = BuildLoad(m, &aheadScene, &ahead, &error);
+            SceneInfo aheadFrom;
+            if (ok) ok = BuildLoad(m, &aheadScene, &aheadFrom, &ahead, &error);
             if (ok) {   // used and drawn once, as a load is: what the driver finishes there lands in its own disk cache
                 PrimeProgram(ahead.Id(), rp, false);
                 FrameRenderer target;
@@ -261,10 +280,11 @@ int RunRenderServer(int fd) {
             continue;
         }
         auto t0 = Clock::now();
-        if (ok) ok = BuildLoad(m, &scene, &program, &error);
+        if (ok) ok = BuildLoad(m, &scene, &from, &program, &error);
+        morph = ok && !m.morphFrom.empty();
         buildMs = MsSince(t0);
         FrameInputs in;
-        for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+        for (const ParamDecl& d : frameScene(in).params) in.params.emplace_back(d.name, d.defaultValue);
         if (ok) ok = fr.Resize(w, h, &error);
         if (ok) {
             t0 = Clock::now();
@@ -272,7 +292,7 @@ int RunRenderServer(int fd) {
             glFinish();
             useMs = MsSince(t0);
             t0 = Clock::now();
-            fr.Draw(program, scene, in);
+            fr.Draw(program, frameScene(in), in);
             glFinish();
             frameMs = MsSince(t0);
             std::string why, why2;

@@ -14,7 +14,7 @@ ServerShow::~ServerShow() {
     onScreen_.reset();
     lastFrame_.reset();
     previous_.reset();
-    prepared_.process.reset();
+    for (HeldServer& h : held_) h.c.process.reset();
     ahead_.reset();
     next_.process.reset();
     quick_.process.reset();
@@ -166,39 +166,53 @@ void ServerShow::PutOnScreen(std::unique_ptr<RenderProcess> p, const ServerLoad&
     onScreenQuick_ = quick;
 }
 
-bool ServerShow::Prepare(const ServerLoad& load, std::string* error) {
+bool ServerShow::Prepare(const ServerLoad& load, std::string* error, Held slot) {
     error->clear();
-    Retire(std::move(prepared_.process));
-    preparedLoad_ = load;
-    preparedIsReady_ = false;
-    preparedError_.clear();
-    const bool ok = Send(prepared_, load, error);
+    HeldServer& h = held_[(int)slot];
+    Retire(std::move(h.c.process));
+    h.load = load;
+    h.isReady = false;
+    h.error.clear();
+    const bool ok = Send(h.c, load, error);
     FillSpares();
     return ok;
 }
 
-bool ServerShow::PreparedReady() {
-    if (!prepared_.process) return false;
-    if (!preparedIsReady_) {
-        if (!prepared_.process->PollReady(&preparedReady_, 0)) return false;
-        preparedIsReady_ = preparedReady_.ok;
-        if (!preparedReady_.ok) preparedError_ = preparedReady_.text;
+bool ServerShow::PreparedReady(Held slot) {
+    HeldServer& h = held_[(int)slot];
+    if (!h.c.process) return false;
+    if (!h.isReady) {
+        if (!h.c.process->PollReady(&h.ready, 0)) return false;
+        h.isReady = h.ready.ok;
+        if (!h.ready.ok) h.error = h.ready.text;
     }
-    if (preparedIsReady_ && prepared_.process->Usable()) return true;
-    if (preparedError_.empty()) preparedError_ = "its render process ended";
-    Retire(std::move(prepared_.process));
-    preparedIsReady_ = false;
+    if (h.isReady && h.c.process->Usable()) return true;
+    if (h.error.empty()) h.error = "its render process ended";
+    Retire(std::move(h.c.process));
+    h.isReady = false;
     return false;
 }
 
 bool ServerShow::PromotePrepared(const std::vector<float>& literals) {
-    if (!PreparedReady() || !prepared_.process->SetLiterals(literals)) return false;
-    shown_.push_back(preparedReady_);
+    HeldServer& h = held_[(int)Held::Literal];
+    if (!PreparedReady(Held::Literal) || !h.c.process->SetLiterals(literals)) return false;
+    shown_.push_back(h.ready);
     shownQuick_.push_back(true);
     fresh_ = false;
-    PutOnScreen(std::move(prepared_.process), preparedLoad_, true);
-    preparedIsReady_ = false;
+    PutOnScreen(std::move(h.c.process), h.load, true);
+    h.isReady = false;
     return true;
+}
+
+bool ServerShow::HeldFrame(Held slot, const FrameInputs& in, int timeoutMs) {
+    return PreparedReady(slot) && held_[(int)slot].c.process->DrawFrame(in, timeoutMs);
+}
+
+void ServerShow::DropHeld(Held slot) {
+    HeldServer& h = held_[(int)slot];
+    Retire(std::move(h.c.process));
+    h.isReady = false;
+    h.error.clear();
 }
 
 void ServerShow::BuildAhead(std::vector<ServerLoad> loads) {

@@ -58,15 +58,23 @@ public:
     void AfterRead(const FrameInputs& in);
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
-    // A program held ready off screen (the literal tier: `lifted`, its numbers from uniforms):
-    // a spare builds it; Poll never puts it on screen. PromotePrepared does, with new numbers, as a
-    // quick tier (an optimized build follows it).
-    bool Prepare(const ServerLoad& load, std::string* error);
-    bool HasPrepared() const { return prepared_.process != nullptr; }
-    const ServerLoad& PreparedLoad() const { return preparedLoad_; }
-    bool PreparedReady();   // never blocks; one that failed or died is dropped (*PreparedError says why)
-    const std::string& PreparedError() const { return preparedError_; }
+    // Programs held ready off screen, each by a server of its own that a spare becomes, in slots:
+    //   Literal  the literal tier (`lifted`: its numbers from uniforms); Poll never puts it on
+    //            screen, PromotePrepared does, with new numbers, as a quick tier (an optimized build
+    //            follows it)
+    //   Morph    a field morph (ServerLoad::morphFrom) drawn beside the show while a scene change
+    //            morphs (HeldFrame), never on screen as a program of its own
+    enum class Held { Literal = 0, Morph = 1 };
+    bool Prepare(const ServerLoad& load, std::string* error, Held slot = Held::Literal);
+    bool HasPrepared(Held slot = Held::Literal) const { return held_[(int)slot].c.process != nullptr; }
+    const ServerLoad& PreparedLoad(Held slot = Held::Literal) const { return held_[(int)slot].load; }
+    bool PreparedReady(Held slot = Held::Literal);   // never blocks; one that failed or died is dropped (*PreparedError says why)
+    const std::string& PreparedError(Held slot = Held::Literal) const { return held_[(int)slot].error; }
     bool PromotePrepared(const std::vector<float>& literals);
+    // A ready held server's frame for `in` into HeldTexture(slot); false when it failed.
+    bool HeldFrame(Held slot, const FrameInputs& in, int timeoutMs = 1000);
+    unsigned HeldTexture(Held slot) const { return HasPrepared(slot) ? held_[(int)slot].c.process->Texture() : 0; }
+    void DropHeld(Held slot);
     // Variants built ahead (issue 12: what an effect pad or a preset reaches next): a server of their
     // own builds each into the program cache, one at a time and only while no save builds, so that a
     // later Load of one is a cache load in its spare. Replaces the list not yet built; its server
@@ -144,11 +152,14 @@ private:
     ServerLoad aheadLoad_;
     bool aheadAsked_ = false;
     std::vector<BuiltAheadLoad> builtAhead_;
-    Candidate prepared_;
-    ServerLoad preparedLoad_;
-    RenderProcess::Ready preparedReady_;
-    bool preparedIsReady_ = false;
-    std::string preparedError_;
+    struct HeldServer {
+        Candidate c;
+        ServerLoad load;
+        RenderProcess::Ready ready;
+        bool isReady = false;
+        std::string error;
+    };
+    HeldServer held_[2];
     bool keepPrevious_ = false;
     bool onScreenQuick_ = false;
     bool fresh_ = false;   // the frame in onScreen_'s texture is collected and not yet shown

@@ -158,7 +158,7 @@ TEST_CASE("live render process: a preset's scene change crossfades from the fram
     const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-morph");
     const std::string root = CopyDataRoot(dir);
     std::ofstream(root + "/presets/to_primitives.json")
-        << R"({"scene": "primitives", "params": {"spin": 0.8}, "morph": {"seconds": 4.0, "easing": "linear"}})";
+        << R"({"scene": "primitives", "params": {"spin": 0.8}, "morph": {"seconds": 4.0, "easing": "linear", "scenes": "crossfade"}})";
     LiveShow show(dir, {"--scene", "midi", "--render-process"}, root);
     REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
     REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
@@ -172,6 +172,33 @@ TEST_CASE("live render process: a preset's scene change crossfades from the fram
     REQUIRE_LIVE(show, PollFor(20, [&] { return Children(show.pid).size() == 2; }));
     REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
     CHECK(show.Log().find("internal error") == std::string::npos);
+    CHECK(show.Running());
+}
+
+TEST_CASE("live render process: a preset's scene change with a field morph is drawn by a process held for it, which ends with the morph") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-field-morph");
+    const std::string root = CopyDataRoot(dir);
+    std::ofstream(root + "/presets/to_primitives.json")
+        << R"({"scene": "primitives", "params": {"spin": 0.8}, "morph": {"seconds": 3.0, "easing": "linear"}})";
+    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root, {{"SDFVJ_TIERED", "0"}, {"SDFVJ_LITERAL_TIER", "0"}});
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
+    REQUIRE_LIVE(show, PollFor(20, [&] { return Children(show.pid).size() == 2; }));   // on screen, and a spare
+    REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "to_primitives"}, dir + "/oscsend.log", 10) == 0);
+    // The morph program builds in a process of its own beside the new scene's.
+    REQUIRE_LIVE(show, PollFor(20, [&] { return Children(show.pid).size() >= 4; }));
+    REQUIRE_LIVE(show, show.WaitForLog("scene morph: midi -> primitives as one field over 3.00 s, drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"spin", 0.8f}}, kDeadline));
+    const size_t during = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(during, 10, kDeadline));   // frames go on while it morphs
+    // After it: the morph's process and the scene before's are ended, the frames go on.
+    REQUIRE_LIVE(show, PollFor(30, [&] { return Children(show.pid).size() == 2; }));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    const std::string log = show.Log();
+    INFO(log);
+    CHECK(log.find("crossfading the frames instead") == std::string::npos);
+    CHECK(log.find("cannot morph") == std::string::npos);
+    CHECK(log.find("a crossfade of their render processes' frames") == std::string::npos);
     CHECK(show.Running());
 }
 

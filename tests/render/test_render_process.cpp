@@ -19,6 +19,7 @@
 
 #include "app/effect_costs.h"
 #include "gl_fixture.h"
+#include "render/field_morph.h"
 #include "render/render_process.h"
 #include "render/server_show.h"
 #include "scene/scene.h"
@@ -260,6 +261,49 @@ TEST_CASE("render process: the server on screen times its program's draws offscr
     REQUIRE(show.Frame(in));
     CHECK(CompareImages(ReadTexture(show.Texture(), w, h), before, 0).fractionOver == 0.0);
     CHECK(show.Replaced() == 0);
+}
+
+TEST_CASE("render process: a field morph held by a server draws the first scene at 0, the second at 1, a third picture half way", "[render_process]") {
+    // `live --render-process`'s field morph (ServerLoad::morphFrom, ServerShow::Held::Morph): the
+    // server builds both fields' program and draws it with the morph's inputs; the show's own
+    // server on screen is not touched.
+    RequireGl();
+    SceneInfo a, b;
+    std::string error;
+    REQUIRE(FindScene("midi", &a, &error));
+    REQUIRE(FindScene("primitives", &b, &error));
+    const EffectSet fx = UnionEffects(a.effects, b.effects);
+    const int w = 160, h = 90;
+    ServerShow show(FrameTransport::Shm, false, false);
+    INFO(error);
+    REQUIRE(show.Start(ServerLoad{a.path, true, {}, RenderPath::Fragment, w, h}, &error));
+    ServerLoad morph{b.path, false, fx, RenderPath::Fragment, w, h};
+    morph.morphFrom = a.path;
+    REQUIRE(show.Prepare(morph, &error, ServerShow::Held::Morph));
+    for (int i = 0; i < 60000 && show.HasPrepared(ServerShow::Held::Morph) && !show.PreparedReady(ServerShow::Held::Morph); ++i) ::usleep(2000);
+    INFO(show.PreparedError(ServerShow::Held::Morph));
+    REQUIRE(show.PreparedReady(ServerShow::Held::Morph));
+    auto at = [&](float t) {
+        FrameInputs in = Inputs(b, 1.0);
+        in.params = MorphParamValues(Inputs(a, 1.0).params, in.params, t);
+        REQUIRE(show.HeldFrame(ServerShow::Held::Morph, in));
+        return ReadTexture(show.HeldTexture(ServerShow::Held::Morph), w, h);
+    };
+    const Image ia = RenderScene("midi", fx, RenderPath::Fragment, w, h), ib = RenderScene("primitives", fx, RenderPath::Fragment, w, h);
+    const Image m0 = at(0.0f), half = at(0.5f), m1 = at(1.0f);
+    // The ends, as test_field_morph's in-process morph: one bounding sphere around both scenes, so the
+    // last bits of soft shadows may differ.
+    CHECK(CompareImages(ia, m0, 8).meanAbs < 1.0);
+    CHECK(CompareImages(ia, m0, 8).fractionOver < 0.01);
+    CHECK(CompareImages(ib, m1, 8).meanAbs < 1.0);
+    CHECK(CompareImages(ib, m1, 8).fractionOver < 0.01);
+    CHECK(CompareImages(ia, half, 8).fractionOver > 0.05);
+    CHECK(CompareImages(ib, half, 8).fractionOver > 0.05);
+    // Dropped, it is gone; the server on screen still draws its own scene.
+    show.DropHeld(ServerShow::Held::Morph);
+    CHECK_FALSE(show.HasPrepared(ServerShow::Held::Morph));
+    REQUIRE(show.Frame(Inputs(a, 1.0)));
+    CHECK(CompareImages(ReadTexture(show.Texture(), w, h), RenderScene("midi", a.effects, RenderPath::Fragment, w, h), 1).fractionOver == 0.0);
 }
 
 int main(int argc, char** argv) {
