@@ -216,8 +216,10 @@ int main(int argc, char** argv) {
     cmdLive->add_flag("--render-process", live.renderProcess,
                       "draw the scene in a render process of its own: a save, an effect pad or a new size builds its "
                       "program in a spare process while the one on screen goes on, so no frame waits for a compile "
-                      "(on NVIDIA a save otherwise stalls the show 150-300 ms). Scene changes cut instead of morphing; "
-                      "no variants built ahead or \"measure costs\" (docs/performance.md, \"Session 17\")");
+                      "(on NVIDIA a save otherwise stalls the show 150-300 ms). Scene changes morph or crossfade as "
+                      "in-process, each drawn by a process of its own; the variants pads and presets reach are built "
+                      "ahead into the program cache by another (a pad hit on an H200: 0.3-0.5 s, no frame held); "
+                      "\"measure costs\" is timed by the process on screen (docs/performance.md, \"Session 18\")");
     cmdLive->add_option("--budget-floor", live.budgetFloor, "never below, e.g. scale=0.5,steps=64,shadow_steps=16,ao=2");
     cmdLive->add_option("--render-scale", live.renderScale,
                         "render the scene at this fraction of the window, upscaled (0.25..1; the overlay's "
