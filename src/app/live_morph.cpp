@@ -87,6 +87,11 @@ namespace sdfvj {
 // --render-process: when the show asks for another scene with a field morph, a server held for it
 // builds the two fields' program beside the new scene's own (LiveServers::PrepareMorph).
 void LiveSession::PrepareServerMorph() {
+    if (state_.wanted.scenePath == servers_->Key().scenePath && !fade_.field && servers_->MorphState() != LiveServers::Morph::None) {
+        servers_->DropMorph();   // asked for and then not used (the show went back, or the scene did not build)
+        serverMorphFor_ = VariantKey{};
+        return;
+    }
     if (state_.wanted == serverMorphFor_ || state_.wanted.scenePath == servers_->Key().scenePath || !servers_->OnScreen()) return;
     serverMorphFor_ = state_.wanted;
     const MorphDesc& how = state_.show.preset.automation.morph;
