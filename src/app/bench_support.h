@@ -10,12 +10,17 @@
 // Benches also interleave the settings they compare (each round draws every setting once), so a
 // clock change lands on all of them alike.
 #pragma once
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace sdfvj {
+
+// The benches' clock: milliseconds since t.
+using Clock = std::chrono::steady_clock;
+inline double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 // Draws (drawOnce must finish its frame, e.g. glFinish) until `seconds` have passed, at least once.
 void WarmGpu(const std::function<void()>& drawOnce, double seconds = 1.0);

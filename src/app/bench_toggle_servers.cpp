@@ -26,9 +26,6 @@ namespace sdfvj {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
 struct ServerWay {
     std::string name;
     bool ahead = false;

@@ -40,9 +40,6 @@ namespace sdfvj {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double MsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
 int Fail(const std::string& what, int code = 2) {
     std::fprintf(stderr, "sdfvj bench reload: %s\n", what.c_str());
     return code;
