@@ -312,14 +312,15 @@ case "${1:-}" in
     done
     fi
     if [ "$part" = define ]; then
-    # A render lever against the shaders before it: every scene against a copy with DEFINE="NAME VALUE"
-    # (_off), 1080p and 4K full lighting interleaved, and midi's and character's compile (untiered).
+    # A render lever against the shaders before it: every scene (or DEFINE_SCENES) against a copy with
+    # DEFINE="NAME VALUE" (_off), 1080p and 4K full lighting interleaved, and midi's and character's
+    # compile (untiered; DEFINE_RELOAD=0: not).
     root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc=""
-    for s in $all; do variant "$root" $s off "${DEFINE:?DEFINE=NAME VALUE}"; sc="$sc $s ${s}_off"; done
+    for s in ${DEFINE_SCENES:-$all}; do variant "$root" $s off "${DEFINE:?DEFINE=NAME VALUE}"; sc="$sc $s ${s}_off"; done
     SDFVJ_ROOT_OVERRIDE="$root" timeout 150 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
       --paths compute --frames 20 --warmup 5 --markdown "$out/define_frames.md" --csv "$out/define_frames.csv" > "$out/define_frames.txt" 2>&1 || true
     cat "$out/define_frames.md" 2>/dev/null; grep -h drift "$out/define_frames.txt" || true
-    for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
+    [ "${DEFINE_RELOAD:-1}" = 0 ] || for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
       --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; grep -h '^median' "$out/define_reload_$s.txt" | cut -c1-200; done
     rm -rf "$root"
     fi

@@ -144,9 +144,18 @@ vec4 fieldMap(vec3 p, float nx, float nz, float size, float blend, float wave, f
     float v = p.z + 0.5f * (nz - 1.0f);
     float i0 = clamp(floor(u), 0.0f, nx - 2.0f);
     float j0 = clamp(floor(v), 0.0f, nz - 2.0f);
-    // nearest centre first, so the cylinder test skips more of the others
+    // nearest centre first, so the cylinder test skips more of the others. FIELD_NEAREST_FIRST 0: the
+    // cells in one order, so the lanes of a warp in the same 2x2 cells take the same shape's branch
+    // at each turn of the loop (a lever measured on the GPU: the same field either way)
+#ifndef FIELD_NEAREST_FIRST
+#define FIELD_NEAREST_FIRST 1
+#endif
+#if FIELD_NEAREST_FIRST
     float di = u - i0 < 0.5f ? 0.0f : 1.0f;
     float dj = v - j0 < 0.5f ? 0.0f : 1.0f;
+#else
+    const float di = 0.0f, dj = 0.0f;
+#endif
     FieldPair n = FieldPair(vec4(0.0f, 0.0f, 0.0f, 1e9f), vec4(0.0f, 0.0f, 0.0f, 1e9f));
     // one call site in a rolled loop (SDF_LOOP_ZERO): fieldShape's code once, not four times
     for (int c = SDF_LOOP_ZERO; c < 4; c++)

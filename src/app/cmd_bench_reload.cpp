@@ -239,10 +239,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
                    : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6
                    : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : modeName == "render-process" ? 9
-                   : modeName == "render-process-shm" ? 10 : modeName == "render-process-sync" ? 11 : -1;
+                   : modeName == "render-process-shm" ? 10 : modeName == "render-process-sync" ? 11
+                   : modeName == "render-process-one-image" ? 12 : -1;
         if (mode < 0)
             return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
-                        "adopt-process, stage, render-process, render-process-sync or render-process-shm");
+                        "adopt-process, stage, render-process, render-process-sync, render-process-one-image or render-process-shm");
         ModeRun m;
         m.name = modeName;
         // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
@@ -302,7 +303,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode == 8) m.handover = std::make_unique<StageRun>(m.process.get());
         if (mode >= 9)
             m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11,
-                                                            m.live->Tiered());
+                                                            m.live->Tiered(), mode == 12);
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();

@@ -148,8 +148,9 @@ int main(int argc, char** argv) {
                           "drawn on that context and presented on the render context), adopt-process (the same with the compile in the compile process), "
                           "stage (each program loaded, used and drawn by a thread of its own with a shared context), render-process (each program compiled, "
                           "used and drawn by a process of its own, its frames handed over on the GPU: a Vulkan-allocated image both "
-                          "processes import, or a dma-buf; by shared memory where the driver offers neither; the frame shown one behind its inputs, so the server draws while "
-                          "the show waits for the display), render-process-sync (the same, every frame a round trip), render-process-shm (by shared memory always); comma-separated, rounds interleaved; "
+                          "processes import (two, by turns), or a dma-buf; by shared memory where the driver offers neither; the frame shown one behind its inputs, so the server draws while "
+                          "the show waits for the display), render-process-sync (the same, every frame a round trip), render-process-one-image (pipelined through one "
+                          "image: each request waits for the show's read of the frame before), render-process-shm (by shared memory always); comma-separated, rounds interleaved; "
                           "--first-frame: warm = with the loader")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();

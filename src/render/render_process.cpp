@@ -39,12 +39,17 @@ void RenderProcess::Stop() {
     fds_.clear();
     if (pid_ > 0 && !killed_) ::kill(pid_, SIGTERM);   // it may be in a compile of seconds; it has nothing to save
     killed_ = true;
-    if (texture_) glDeleteTextures(1, &texture_);
+    for (int i = 0; i < 2; ++i) {
+        if (reads_[i]) glDeleteSync((GLsync)reads_[i]);
+        reads_[i] = nullptr;
+        if (textures_[i]) glDeleteTextures(1, &textures_[i]);
+        textures_[i] = 0;
+        if (memories_[i]) glDeleteMemoryObjectsEXT(1, &memories_[i]);
+        memories_[i] = 0;
+    }
     texture_ = 0;
     if (image_) eglDestroyImageKHR(eglGetCurrentDisplay(), (EGLImageKHR)image_);
     image_ = nullptr;
-    if (memory_) glDeleteMemoryObjectsEXT(1, &memory_);
-    memory_ = 0;
     if (shm_) ::munmap(shm_, shmBytes_);
     shm_ = nullptr;
 }
@@ -231,13 +236,14 @@ bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
 
 bool RenderProcess::Import(const std::string& payload, Ready* ready) {
     size_t at = 0;
-    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0;
+    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0;
     uint64_t modifier = 0, memorySize = 0;
     int32_t stride = 0, offset = 0;
     if (!Take(payload, &at, &ok) || !Take(payload, &at, &transport) || !Take(payload, &at, &ready->buildMs) ||
         !Take(payload, &at, &ready->useMs) || !Take(payload, &at, &ready->firstFrameMs) || !Take(payload, &at, &fourcc) ||
         !Take(payload, &at, &modifier) || !Take(payload, &at, &stride) || !Take(payload, &at, &offset) ||
-        !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached)) {
+        !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached) ||
+        !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2)) {
         ready->text = "the render process's answer is malformed";
         return false;
     }
@@ -249,15 +255,31 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready) {
         ready->text = "the render process sent no frame buffer";
         return false;
     }
+    if (fds_.size() < images) {
+        ready->text = "the render process sent " + std::to_string(fds_.size()) + " frame buffers, expected " + std::to_string(images);
+        return false;
+    }
     const int fd = fds_.front();
     fds_.erase(fds_.begin());
+    shown_ = 0;
     if (transport_ == FrameTransport::VkMemory) {
         std::string why;
-        texture_ = ImportSharedTexture(fd, memorySize, width_, height_, &memory_, &why);
-        if (!texture_) ready->text = "the render process's image could not be imported here: " + why;
+        textures_[0] = ImportSharedTexture(fd, memorySize, width_, height_, &memories_[0], &why);
+        if (textures_[0] && images == 2) {
+            const int fd2 = fds_.front();
+            fds_.erase(fds_.begin());
+            textures_[1] = ImportSharedTexture(fd2, memorySize, width_, height_, &memories_[1], &why);
+        }
+        texture_ = textures_[0];
+        images_ = textures_[1] ? 2 : 1;
+        if (!textures_[0] || (images == 2 && !textures_[1])) {
+            ready->text = "the render process's image could not be imported here: " + why;
+            texture_ = 0;
+        }
         return texture_ != 0;
     }
     glGenTextures(1, &texture_);
+    textures_[0] = texture_;
     glBindTexture(GL_TEXTURE_2D, texture_);
     if (transport_ == FrameTransport::Shm) {
         shmBytes_ = (size_t)width_ * (size_t)height_ * 4;
@@ -307,8 +329,22 @@ bool RenderProcess::SetLiterals(const std::vector<float>& values) {
     return Send(Message(3, p));
 }
 
+void RenderProcess::Read() {
+    if (!texture_) return;
+    if (reads_[shown_]) glDeleteSync((GLsync)reads_[shown_]);
+    reads_[shown_] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+}
+
 bool RenderProcess::Request(const FrameInputs& in) {
-    if (outstanding_ || !texture_ || !Send(Message(2, EncodeInputs(in)))) return false;
+    if (outstanding_ || !texture_) return false;
+    // The server writes the next frame into this image: what read it must be done on the GPU.
+    const int next = (shown_ + 1) % images_;
+    if (reads_[next]) {
+        glClientWaitSync((GLsync)reads_[next], GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000);
+        glDeleteSync((GLsync)reads_[next]);
+        reads_[next] = nullptr;
+    }
+    if (!Send(Message(2, EncodeInputs(in)))) return false;
     outstanding_ = true;
     return true;
 }
@@ -352,10 +388,14 @@ bool RenderProcess::Collect(int timeoutMs) {
         }
     }
     size_t at = 0;
-    if (type != 2 || !Take(payload, &at, &lastServerMs_)) {
+    uint32_t image = 0;
+    if (type != 2 || !Take(payload, &at, &lastServerMs_) || !Take(payload, &at, &image) ||
+        image != (uint32_t)((shown_ + 1) % images_)) {   // a server that answers otherwise is not ours
         MarkDead();
         return false;
     }
+    shown_ = (int)image;
+    texture_ = textures_[shown_];
     if (transport_ == FrameTransport::Shm) {
         glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
         glBindTexture(GL_TEXTURE_2D, texture_);

@@ -20,7 +20,11 @@
 // Asked for the GPU (any transport but shm), the server tries vkmem, then dmabuf, then shm, and
 // says why each one it passed over failed.
 // A frame is synchronous: the show sends the inputs, the server draws and finishes (glFinish,
-// before it answers) and says done; the show then reads the frame before it asks for the next.
+// before it answers) and says done; the show then reads the frame. On the GPU (vkmem) the server
+// hands frames over in two images by turns, so the show may ask for the next frame while its read
+// of this one is still on the GPU: it waits (a fence, Read) only for the read of the image the
+// server writes next, a frame older. One image (shm, dmabuf, or SDFVJ_SERVER_IMAGES=1 in the
+// server's environment): the show waits for its read before it asks for the next frame.
 //
 // Wire format (a stream socket, the server's fd 3; native byte order; each message
 // u32 type, u32 payload length, payload):
@@ -38,8 +42,9 @@
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
-//                            Vulkan memory or dma-buf); then u32 from the program cache (0/1)
-//                   2 done:  f64 the server's draw + hand-over ms
+//                            Vulkan memory or dma-buf); then u32 from the program cache (0/1),
+//                            u32 images (1, or 2: a second Vulkan image's fd rides along too)
+//                   2 done:  f64 the server's draw + hand-over ms, u32 the image the frame is in
 //                   4 built: u32 ok, u32 it was in the program cache already, f64 ms, u32 len, the error
 //                   5 timed: f64 ms (a GL timer query; glFinish + wall clock on a software renderer; < 0 failed)
 // Render thread only (the show's side), except RunRenderServer (the child's main).
@@ -118,9 +123,11 @@ public:
     bool DrawFrame(const FrameInputs& in, int timeoutMs = 5000) { return Request(in) && Collect(timeoutMs); }
     // The same in two halves, for a frame loop that lets the server draw while it waits for the
     // display (the frame shown is then one behind the inputs): Request sends the inputs and returns;
-    // Collect waits for that frame. Texture() must not be read by the GPU while a request is out:
-    // wait for what read it (a fence) before the next Request.
+    // Collect waits for that frame. Texture() must not be read by the GPU while the server may
+    // write it: call Read() after the commands that read it; Request then waits for the read of the
+    // image the server writes next (with two images, that of the frame before: long done).
     bool Request(const FrameInputs& in);
+    void Read();
     bool Collect(int timeoutMs = 5000);
     bool Outstanding() const { return outstanding_; }
     // The program drawn once more with `in`, offscreen in the server, timed there (the overlay's
@@ -147,9 +154,12 @@ private:
     std::vector<int> fds_;
     int width_ = 0, height_ = 0;
     FrameTransport transport_ = FrameTransport::Shm;
-    unsigned texture_ = 0;
+    unsigned texture_ = 0;    // the image holding the last frame: textures_[shown_]
+    unsigned textures_[2] = {0, 0};
+    unsigned memories_[2] = {0, 0};   // GL memory objects of the Vulkan images
+    void* reads_[2] = {nullptr, nullptr};   // GLsync: the show's last read of each image
+    int images_ = 1, shown_ = 0;
     void* image_ = nullptr;   // EGLImage of the dma-buf
-    unsigned memory_ = 0;     // GL memory object of the Vulkan image
     void* shm_ = nullptr;
     size_t shmBytes_ = 0;
     double lastServerMs_ = 0;

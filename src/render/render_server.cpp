@@ -5,6 +5,8 @@
 #include <signal.h>
 #include <sys/mman.h>
 
+#include <cstdlib>
+
 #include "render/compile_worker.h"
 #include "render/field_morph.h"
 #include "render/render_process.h"
@@ -203,7 +205,14 @@ int RunRenderServer(int fd) {
         return mixed;
     };
     FrameRenderer fr, scratch;   // scratch: draws timed for the show (wire type 5)
-    ServerTarget target;
+    // Two images on the GPU (vkmem): frame N into one while the show may still read frame N - 1 from
+    // the other, so the show never waits for its own read before it asks for the next frame.
+    // SDFVJ_SERVER_IMAGES=1: one image (every request then waits for the show's read: measured).
+    ServerTarget targets[2];
+    ServerTarget& target = targets[0];
+    int images = 1, current = 0;
+    const char* imagesEnv = std::getenv("SDFVJ_SERVER_IMAGES");
+    const bool oneImage = imagesEnv && std::string(imagesEnv) == "1";
     bool loaded = false;
     for (;;) {
         uint32_t header[2];
@@ -215,9 +224,11 @@ int RunRenderServer(int fd) {
             if (!DecodeInputs(payload, &in)) return 3;
             const auto t0 = Clock::now();
             fr.Draw(program, frameScene(in), in);
-            target.HandOver(fr);
+            current = (current + 1) % images;
+            targets[current].HandOver(fr);
             std::string p;
             Put(&p, MsSince(t0));
+            Put<uint32_t>(&p, (uint32_t)current);
             if (!SendAll(fd, Message(2, p))) return 0;
             continue;
         }
@@ -301,6 +312,11 @@ int RunRenderServer(int fd) {
             else if (transport != 0 && target.transport == FrameTransport::DmaBuf)
                 target.note = "Vulkan image refused (" + why + "): dma-buf";
             if (target.transport == FrameTransport::Shm && !target.MakeShm(w, h, &error)) ok = false;
+            std::string whySecond;
+            if (ok && target.transport == FrameTransport::VkMemory && !oneImage) {
+                if (targets[1].ShareVulkan(w, h, &whySecond)) images = 2;
+                else target.note = "one shared image (a second one failed: " + whySecond + "): each frame waits for the show's read";
+            }
             if (ok) target.HandOver(fr);
         }
         std::string p;
@@ -316,12 +332,14 @@ int RunRenderServer(int fd) {
         Put<uint64_t>(&p, target.memorySize);
         PutText(&p, ok ? target.note : error);
         Put<uint32_t>(&p, ok && program.FromCache() ? 1 : 0);
-        if (!SendAll(fd, Message(1, p), ok ? target.fd : -1)) return 0;
+        Put<uint32_t>(&p, (uint32_t)images);
+        if (!SendAll(fd, Message(1, p), ok ? target.fd : -1, ok && images == 2 ? targets[1].fd : -1)) return 0;
         if (!ok) return 1;
-        if (target.transport != FrameTransport::Shm) {
-            ::close(target.fd);   // the show holds it now
-            target.fd = -1;
-        }
+        for (ServerTarget& t : targets)
+            if (t.transport != FrameTransport::Shm && t.fd >= 0) {
+                ::close(t.fd);   // the show holds it now
+                t.fd = -1;
+            }
         loaded = true;
     }
 }

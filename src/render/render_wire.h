@@ -54,23 +54,27 @@ inline std::string Message(uint32_t type, const std::string& payload) {
     return m + payload;
 }
 
-// Sends all of `bytes`, with `fd` (when >= 0) riding on the first byte.
-inline bool SendAll(int sock, const std::string& bytes, int fd = -1) {
+// Sends all of `bytes`, with `fd` and then `fd2` (each when >= 0) riding on the first byte.
+inline bool SendAll(int sock, const std::string& bytes, int fd = -1, int fd2 = -1) {
     size_t at = 0;
+    int fds[2];
+    int nfds = 0;
+    for (int f : {fd, fd2})
+        if (f >= 0) fds[nfds++] = f;
     while (at < bytes.size()) {
         msghdr msg{};
         iovec iov{const_cast<char*>(bytes.data() + at), bytes.size() - at};
         msg.msg_iov = &iov;
         msg.msg_iovlen = 1;
-        alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
-        if (fd >= 0 && at == 0) {
+        alignas(cmsghdr) char control[CMSG_SPACE(sizeof fds)] = {};
+        if (nfds > 0 && at == 0) {
             msg.msg_control = control;
-            msg.msg_controllen = sizeof control;
+            msg.msg_controllen = CMSG_SPACE(sizeof(int) * (size_t)nfds);
             cmsghdr* c = CMSG_FIRSTHDR(&msg);
             c->cmsg_level = SOL_SOCKET;
             c->cmsg_type = SCM_RIGHTS;
-            c->cmsg_len = CMSG_LEN(sizeof(int));
-            std::memcpy(CMSG_DATA(c), &fd, sizeof(int));
+            c->cmsg_len = CMSG_LEN(sizeof(int) * (size_t)nfds);
+            std::memcpy(CMSG_DATA(c), fds, sizeof(int) * (size_t)nfds);
         }
         const ssize_t put = ::sendmsg(sock, &msg, MSG_NOSIGNAL);
         if (put < 0 && (errno == EINTR || errno == EAGAIN)) {

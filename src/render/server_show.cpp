@@ -301,10 +301,9 @@ bool ServerShow::Frame(const FrameInputs& in, int timeoutMs) {
 
 void ServerShow::AfterRead(const FrameInputs& in) {
     if (!pipelined_ || !onScreen_) return;
-    // What read the shared image must have finished before the server writes the next frame into it.
-    GLsync read = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    glClientWaitSync(read, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000);
-    glDeleteSync(read);
+    // What read the frame is fenced; the request waits for the read of the image it will be drawn
+    // into (with two images, the frame before's: done by now).
+    onScreen_->Read();
     if (!onScreen_->Request(in)) ++failedFrames_;
 }
 

@@ -54,7 +54,8 @@ public:
     // before (pipelined). False when there is none to show this frame (no server on screen, or it
     // failed: Texture() still holds the last frame delivered, if any).
     bool Frame(const FrameInputs& in, int timeoutMs = 1000);
-    // Pipelined: the show has read Texture() (a fence waited for); the server may draw the next.
+    // Pipelined: the show has issued what reads Texture() (fenced: RenderProcess::Read); the server
+    // may draw the next frame.
     void AfterRead(const FrameInputs& in);
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
