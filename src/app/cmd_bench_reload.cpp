@@ -55,6 +55,7 @@ void SaveLikeAnEditor(const fs::path& file, const std::string& text) {
 struct Round {
     double beginCall = 0, finishCall = 0;   // the optimized program's Begin and Finish on the render thread
     double longestBefore = 0;   // longest frame before the first swap (the program built or loaded elsewhere)
+    double longestAt = 0;       // when the longest frame began, ms after the save
     double firstMs = 0, optimizedMs = 0, longestFrame = 0, longestUpdate = 0, firstDraw = 0, compileMs = 0;
     int frames = 0;
     std::vector<double> quickFrames;   // frame times while the quick tier was on screen
@@ -348,6 +349,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         while (MsSince(saved) < 120000) {
             const double ms = frameOnce(m, &swapped);
             ++r.frames;
+            if (ms > r.longestFrame) r.longestAt = MsSince(saved) - ms;
             r.longestFrame = std::max(r.longestFrame, ms);
             r.longestUpdate = std::max(r.longestUpdate, updateMs);
             if (m.handover) {
@@ -443,7 +445,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
                     "compile ms (its own) | used before the hand-over (load + first use ms) | from program cache |\n"
                     "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
-        std::vector<double> first, optimized, longest, compile, before;
+        std::vector<double> first, optimized, longest, compile, before, at, atShare;
         for (int round : m.failedRounds)
             std::printf("| %d | no new program on screen: %s |\n", round,
                         !adoptError.empty() && m.handover ? adoptError.c_str()
@@ -456,6 +458,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             optimized.push_back(r.optimizedMs);
             longest.push_back(r.longestFrame);
             before.push_back(r.longestBefore);
+            at.push_back(r.longestAt);
+            atShare.push_back(r.firstMs > 0 ? r.longestAt / r.firstMs : 0.0);
             compile.push_back(r.compileMs);
             char quick[32] = "-";
             if (!r.quickFrames.empty()) std::snprintf(quick, sizeof quick, "%.2f", MedianMs(r.quickFrames));
@@ -472,8 +476,9 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::printf("median: save -> first tier %.1f ms, -> optimized %.1f ms; longest frame during a reload %.1f ms "
                     "= %.1fx the steady median %.2f ms (target <= 2x); compile %.1f ms\n",
                     MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(compile));
-        std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds\n",
-                    MedianMs(before));
+        std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds; "
+                    "the longest frame began %.1f ms after the save (%.2f of the way to the first swap), medians of rounds\n",
+                    MedianMs(before), MedianMs(at), MedianMs(atShare));
         if (m.handover && !m.handover->Details().empty()) std::printf("%s\n", m.handover->Details().c_str());
         summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian});
     }
