@@ -243,7 +243,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready) {
         !Take(payload, &at, &ready->useMs) || !Take(payload, &at, &ready->firstFrameMs) || !Take(payload, &at, &fourcc) ||
         !Take(payload, &at, &modifier) || !Take(payload, &at, &stride) || !Take(payload, &at, &offset) ||
         !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached) ||
-        !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2)) {
+        !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2) || !Take(payload, &at, &ready->shareMs)) {
         ready->text = "the render process's answer is malformed";
         return false;
     }

@@ -43,7 +43,8 @@
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
 //                            Vulkan memory or dma-buf); then u32 from the program cache (0/1),
-//                            u32 images (1, or 2: a second Vulkan image's fd rides along too)
+//                            u32 images (1, or 2: a second Vulkan image's fd rides along too),
+//                            f64 the hand-over's set-up ms (images made and exported, the first frame in)
 //                   2 done:  f64 the server's draw + hand-over ms, u32 the image the frame is in
 //                   4 built: u32 ok, u32 it was in the program cache already, f64 ms, u32 len, the error
 //                   5 timed: f64 ms (a GL timer query; glFinish + wall clock on a software renderer; < 0 failed)
@@ -84,6 +85,7 @@ public:
         double buildMs = 0, useMs = 0, firstFrameMs = 0;   // in the server: compile + link, first use, first real frame
         std::string text;                                  // the error, or a note (a transport refused)
         bool fromCache = false;                            // the program came from the program cache: nothing compiled
+        double shareMs = 0;                                // in the server: the hand-over set up (images made, the first frame in)
     };
     struct BuiltAhead {
         bool ok = false, fromCache = false;   // fromCache: it was there already

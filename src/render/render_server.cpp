@@ -190,7 +190,11 @@ int RunRenderServer(int fd) {
     HeadlessContext gl;
     std::string glError;
     const bool glOk = gl.Create(&glError);
-    if (glOk) WarmCompiler();   // a spare does this while it waits, off the save's path
+    if (glOk) {   // a spare does these while it waits, off the save's path
+        WarmCompiler();
+        std::string ignored;   // a load that asks for the GPU says why there is none
+        SharedImage::Prepare(&ignored);   // the Vulkan device the shared images come from (NVIDIA: tens of ms)
+    }
     SceneInfo scene;
     Program program;
     SceneInfo from;      // a field morph's first scene
@@ -263,7 +267,7 @@ int RunRenderServer(int fd) {
         const RenderPath rp = m.path;
         const uint32_t transport = m.transport;
         const int32_t w = m.width, h = m.height;
-        double buildMs = 0, useMs = 0, frameMs = 0;
+        double buildMs = 0, useMs = 0, frameMs = 0, shareMs = 0;
         std::string error;
         bool ok = glOk;
         if (!glOk) error = glError;
@@ -306,6 +310,7 @@ int RunRenderServer(int fd) {
             fr.Draw(program, frameScene(in), in);
             glFinish();
             frameMs = MsSince(t0);
+            t0 = Clock::now();
             std::string why, why2;
             if (transport != 0 && !target.ShareVulkan(w, h, &why) && !target.ExportDmaBuf(w, h, &why2))
                 target.note = "GPU hand-over refused (Vulkan image: " + why + "; dma-buf: " + why2 + "): shared memory instead";
@@ -318,6 +323,7 @@ int RunRenderServer(int fd) {
                 else target.note = "one shared image (a second one failed: " + whySecond + "): each frame waits for the show's read";
             }
             if (ok) target.HandOver(fr);
+            shareMs = MsSince(t0);
         }
         std::string p;
         Put<uint32_t>(&p, ok ? 1 : 0);
@@ -333,6 +339,7 @@ int RunRenderServer(int fd) {
         PutText(&p, ok ? target.note : error);
         Put<uint32_t>(&p, ok && program.FromCache() ? 1 : 0);
         Put<uint32_t>(&p, (uint32_t)images);
+        Put(&p, shareMs);
         if (!SendAll(fd, Message(1, p), ok ? target.fd : -1, ok && images == 2 ? targets[1].fd : -1)) return 0;
         if (!ok) return 1;
         for (ServerTarget& t : targets)

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstring>
+#include <mutex>
 #include <vector>
 
 #if SDFVJ_VULKAN
@@ -15,24 +16,124 @@
 namespace sdfvj {
 
 #if SDFVJ_VULKAN
-struct SharedImage::Vk {
+namespace {
+
+// The process's Vulkan device on the GL context's GPU: made once (instance and device cost tens of
+// milliseconds, more on NVIDIA) and kept until the process ends; every image is allocated from it.
+struct VkDeviceOnce {
     void* lib = nullptr;
-    PFN_vkGetInstanceProcAddr gipa = nullptr;
     VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice phys = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
+    PFN_vkCreateImage createImage = nullptr;
+    PFN_vkDestroyImage destroyImage = nullptr;
+    PFN_vkGetImageMemoryRequirements imageRequirements = nullptr;
+    PFN_vkGetPhysicalDeviceMemoryProperties memoryProperties = nullptr;
+    PFN_vkAllocateMemory allocateMemory = nullptr;
+    PFN_vkFreeMemory freeMemory = nullptr;
+    PFN_vkBindImageMemory bindImageMemory = nullptr;
+    PFN_vkGetMemoryFdKHR getMemoryFd = nullptr;
+    bool tried = false;
+    std::string why;   // why there is none
+
+    bool Make() {
+        if (!epoxy_has_gl_extension("GL_EXT_memory_object_fd")) {
+            why = "this GL cannot import memory (no GL_EXT_memory_object_fd)";
+            return false;
+        }
+        uint8_t glUuid[GL_UUID_SIZE_EXT] = {};
+        glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, glUuid);
+        lib = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+        if (!lib) {
+            why = "no Vulkan loader (libvulkan.so.1)";
+            return false;
+        }
+        auto gipa = (PFN_vkGetInstanceProcAddr)dlsym(lib, "vkGetInstanceProcAddr");
+        auto createInstance = gipa ? (PFN_vkCreateInstance)gipa(VK_NULL_HANDLE, "vkCreateInstance") : nullptr;
+        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+        app.pApplicationName = "sdfvj";
+        app.apiVersion = VK_API_VERSION_1_1;
+        VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+        ici.pApplicationInfo = &app;
+        if (!createInstance || createInstance(&ici, nullptr, &instance) != VK_SUCCESS) {
+            why = "vkCreateInstance (Vulkan 1.1) failed: no Vulkan driver";
+            return false;
+        }
+#define SDFVJ_VK(name) auto name = (PFN_##name)gipa(instance, #name)
+        SDFVJ_VK(vkEnumeratePhysicalDevices);
+        SDFVJ_VK(vkGetPhysicalDeviceProperties2);
+        SDFVJ_VK(vkCreateDevice);
+        SDFVJ_VK(vkGetDeviceProcAddr);
+        memoryProperties = (PFN_vkGetPhysicalDeviceMemoryProperties)gipa(instance, "vkGetPhysicalDeviceMemoryProperties");
+        uint32_t n = 0;
+        vkEnumeratePhysicalDevices(instance, &n, nullptr);
+        std::vector<VkPhysicalDevice> devices(n);
+        vkEnumeratePhysicalDevices(instance, &n, devices.data());
+        for (VkPhysicalDevice d : devices) {
+            VkPhysicalDeviceIDProperties id{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
+            VkPhysicalDeviceProperties2 p{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+            p.pNext = &id;
+            vkGetPhysicalDeviceProperties2(d, &p);
+            if (std::memcmp(id.deviceUUID, glUuid, VK_UUID_SIZE) == 0) phys = d;
+        }
+        if (!phys) {
+            why = "no Vulkan device has the GL device's UUID (of " + std::to_string(n) + ")";
+            return false;
+        }
+        const float priority = 1.0f;
+        VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        q.queueCount = 1;
+        q.pQueuePriorities = &priority;
+        const char* exts[] = {VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME};
+        VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        dci.queueCreateInfoCount = 1;
+        dci.pQueueCreateInfos = &q;
+        dci.enabledExtensionCount = 1;
+        dci.ppEnabledExtensionNames = exts;
+        if (vkCreateDevice(phys, &dci, nullptr, &device) != VK_SUCCESS) {
+            why = "vkCreateDevice with VK_KHR_external_memory_fd failed";
+            return false;
+        }
+#define SDFVJ_VKD(name) (PFN_##name)vkGetDeviceProcAddr(device, #name)
+        createImage = SDFVJ_VKD(vkCreateImage);
+        destroyImage = SDFVJ_VKD(vkDestroyImage);
+        imageRequirements = SDFVJ_VKD(vkGetImageMemoryRequirements);
+        allocateMemory = SDFVJ_VKD(vkAllocateMemory);
+        freeMemory = SDFVJ_VKD(vkFreeMemory);
+        bindImageMemory = SDFVJ_VKD(vkBindImageMemory);
+        getMemoryFd = SDFVJ_VKD(vkGetMemoryFdKHR);
+#undef SDFVJ_VK
+#undef SDFVJ_VKD
+        return true;
+    }
+};
+
+std::mutex g_vkMutex;
+VkDeviceOnce* g_vk = nullptr;   // never freed: images may outlive any owner but the process
+
+// The device, made on the first call (GL context current); null with why.
+VkDeviceOnce* Device(std::string* why) {
+    std::lock_guard<std::mutex> lock(g_vkMutex);
+    if (!g_vk) {
+        g_vk = new VkDeviceOnce;
+        g_vk->tried = g_vk->Make();
+    }
+    if (!g_vk->tried) {
+        *why = g_vk->why;
+        return nullptr;
+    }
+    return g_vk;
+}
+
+}  // namespace
+
+struct SharedImage::Vk {
+    VkDeviceOnce* d = nullptr;
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
-    PFN_vkGetMemoryFdKHR getMemoryFd = nullptr;
-    PFN_vkDestroyImage destroyImage = nullptr;
-    PFN_vkFreeMemory freeMemory = nullptr;
-    PFN_vkDestroyDevice destroyDevice = nullptr;
-    PFN_vkDestroyInstance destroyInstance = nullptr;
     ~Vk() {
-        if (image) destroyImage(device, image, nullptr);
-        if (memory) freeMemory(device, memory, nullptr);
-        if (device) destroyDevice(device, nullptr);
-        if (instance) destroyInstance(instance, nullptr);
-        if (lib) dlclose(lib);
+        if (image) d->destroyImage(d->device, image, nullptr);
+        if (memory) d->freeMemory(d->device, memory, nullptr);
     }
 };
 #else
@@ -42,89 +143,26 @@ struct SharedImage::Vk {};
 SharedImage::SharedImage() = default;
 SharedImage::~SharedImage() = default;
 
+bool SharedImage::Prepare(std::string* why) {
+#if !SDFVJ_VULKAN
+    *why = "built without the Vulkan headers (libvulkan-dev)";
+    return false;
+#else
+    return Device(why) != nullptr;
+#endif
+}
+
 bool SharedImage::Create(int width, int height, std::string* why) {
 #if !SDFVJ_VULKAN
     (void)width, (void)height;
     *why = "built without the Vulkan headers (libvulkan-dev)";
     return false;
 #else
-    if (!epoxy_has_gl_extension("GL_EXT_memory_object_fd")) {
-        *why = "this GL cannot import memory (no GL_EXT_memory_object_fd)";
-        return false;
-    }
-    uint8_t glUuid[GL_UUID_SIZE_EXT] = {};
-    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, glUuid);
+    VkDeviceOnce* d = Device(why);
+    if (!d) return false;
     vk_ = std::make_unique<Vk>();
     Vk& v = *vk_;
-    v.lib = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
-    if (!v.lib) {
-        *why = "no Vulkan loader (libvulkan.so.1)";
-        return false;
-    }
-    v.gipa = (PFN_vkGetInstanceProcAddr)dlsym(v.lib, "vkGetInstanceProcAddr");
-    auto createInstance = (PFN_vkCreateInstance)v.gipa(VK_NULL_HANDLE, "vkCreateInstance");
-    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.pApplicationName = "sdfvj";
-    app.apiVersion = VK_API_VERSION_1_1;
-    VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-    ici.pApplicationInfo = &app;
-    if (!createInstance || createInstance(&ici, nullptr, &v.instance) != VK_SUCCESS) {
-        *why = "vkCreateInstance (Vulkan 1.1) failed: no Vulkan driver";
-        return false;
-    }
-#define SDFVJ_VK(name) auto name = (PFN_##name)v.gipa(v.instance, #name)
-    SDFVJ_VK(vkDestroyInstance);
-    SDFVJ_VK(vkEnumeratePhysicalDevices);
-    SDFVJ_VK(vkGetPhysicalDeviceProperties2);
-    SDFVJ_VK(vkGetPhysicalDeviceMemoryProperties);
-    SDFVJ_VK(vkCreateDevice);
-    SDFVJ_VK(vkGetDeviceProcAddr);
-    v.destroyInstance = vkDestroyInstance;
-    uint32_t n = 0;
-    vkEnumeratePhysicalDevices(v.instance, &n, nullptr);
-    std::vector<VkPhysicalDevice> devices(n);
-    vkEnumeratePhysicalDevices(v.instance, &n, devices.data());
-    VkPhysicalDevice phys = VK_NULL_HANDLE;
-    for (VkPhysicalDevice d : devices) {
-        VkPhysicalDeviceIDProperties id{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
-        VkPhysicalDeviceProperties2 p{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-        p.pNext = &id;
-        vkGetPhysicalDeviceProperties2(d, &p);
-        if (std::memcmp(id.deviceUUID, glUuid, VK_UUID_SIZE) == 0) phys = d;
-    }
-    if (!phys) {
-        *why = "no Vulkan device has the GL device's UUID (of " + std::to_string(n) + ")";
-        return false;
-    }
-    const float priority = 1.0f;
-    VkDeviceQueueCreateInfo q{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    q.queueCount = 1;
-    q.pQueuePriorities = &priority;
-    const char* exts[] = {VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME};
-    VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    dci.queueCreateInfoCount = 1;
-    dci.pQueueCreateInfos = &q;
-    dci.enabledExtensionCount = 1;
-    dci.ppEnabledExtensionNames = exts;
-    if (vkCreateDevice(phys, &dci, nullptr, &v.device) != VK_SUCCESS) {
-        *why = "vkCreateDevice with VK_KHR_external_memory_fd failed";
-        return false;
-    }
-#define SDFVJ_VKD(name) auto name = (PFN_##name)vkGetDeviceProcAddr(v.device, #name)
-    SDFVJ_VKD(vkDestroyDevice);
-    SDFVJ_VKD(vkCreateImage);
-    SDFVJ_VKD(vkDestroyImage);
-    SDFVJ_VKD(vkGetImageMemoryRequirements);
-    SDFVJ_VKD(vkAllocateMemory);
-    SDFVJ_VKD(vkFreeMemory);
-    SDFVJ_VKD(vkBindImageMemory);
-    SDFVJ_VKD(vkGetMemoryFdKHR);
-#undef SDFVJ_VK
-#undef SDFVJ_VKD
-    v.destroyDevice = vkDestroyDevice;
-    v.destroyImage = vkDestroyImage;
-    v.freeMemory = vkFreeMemory;
-    v.getMemoryFd = vkGetMemoryFdKHR;
+    v.d = d;
     VkExternalMemoryImageCreateInfo ext{VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_IMAGE_CREATE_INFO};
     ext.handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT;
     VkImageCreateInfo img{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -139,14 +177,14 @@ bool SharedImage::Create(int width, int height, std::string* why) {
     img.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     img.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    if (vkCreateImage(v.device, &img, nullptr, &v.image) != VK_SUCCESS) {
+    if (d->createImage(d->device, &img, nullptr, &v.image) != VK_SUCCESS) {
         *why = "vkCreateImage of an exportable RGBA8 image failed";
         return false;
     }
     VkMemoryRequirements req{};
-    vkGetImageMemoryRequirements(v.device, v.image, &req);
+    d->imageRequirements(d->device, v.image, &req);
     VkPhysicalDeviceMemoryProperties mp{};
-    vkGetPhysicalDeviceMemoryProperties(phys, &mp);
+    d->memoryProperties(d->phys, &mp);
     uint32_t type = UINT32_MAX;
     for (uint32_t i = 0; i < mp.memoryTypeCount && type == UINT32_MAX; ++i)
         if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) type = i;
@@ -161,8 +199,8 @@ bool SharedImage::Create(int width, int height, std::string* why) {
     ai.pNext = &exportInfo;
     ai.allocationSize = req.size;
     ai.memoryTypeIndex = type;
-    if (type == UINT32_MAX || vkAllocateMemory(v.device, &ai, nullptr, &v.memory) != VK_SUCCESS ||
-        vkBindImageMemory(v.device, v.image, v.memory, 0) != VK_SUCCESS) {
+    if (type == UINT32_MAX || d->allocateMemory(d->device, &ai, nullptr, &v.memory) != VK_SUCCESS ||
+        d->bindImageMemory(d->device, v.image, v.memory, 0) != VK_SUCCESS) {
         *why = "cannot allocate exportable memory for the image";
         return false;
     }
@@ -178,7 +216,7 @@ int SharedImage::ExportFd() {
     info.memory = vk_->memory;
     info.handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT;
     int fd = -1;
-    if (vk_->getMemoryFd(vk_->device, &info, &fd) != VK_SUCCESS) return -1;
+    if (vk_->d->getMemoryFd(vk_->d->device, &info, &fd) != VK_SUCCESS) return -1;
     return fd;
 #else
     return -1;

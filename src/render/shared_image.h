@@ -16,9 +16,12 @@ namespace sdfvj {
 class SharedImage {
 public:
     SharedImage();
-    ~SharedImage();   // frees the image and the Vulkan device (GL textures of it must be gone)
+    ~SharedImage();   // frees the image (GL textures of it must be gone); the device stays
     SharedImage(const SharedImage&) = delete;
     SharedImage& operator=(const SharedImage&) = delete;
+    // The process's Vulkan device on the current GL context's GPU, made now (once per process: every
+    // image is allocated from it), so that a later Create costs only the image. False with why.
+    static bool Prepare(std::string* why);
     // Allocates width x height RGBA8 on the Vulkan device of the current GL context. False with why.
     bool Create(int width, int height, std::string* why);
     // A new fd of the image's memory (each import takes one); -1 on failure.
