@@ -27,11 +27,11 @@ public:
     // on screen one behind its inputs); otherwise every frame waits for the server's round trip.
     // tiered: every save also goes to a second server that builds the quick tier (QuickTierText),
     // on screen until the optimized program's server is ready.
-    // oneImage: the servers hand frames over in one image, not two by turns (SDFVJ_SERVER_IMAGES=1):
-    // each request then waits for the show's read of the frame before.
-    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered, bool oneImage = false)
+    // serverEnv: NAME=value entries for the servers' environment (SDFVJ_SERVER_IMAGES=1: frames
+    // handed over in one image, not two by turns; SDFVJ_SERVER_PREPARE=0: no Vulkan device made ahead).
+    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered, std::vector<std::string> serverEnv = {})
         : servers_(transport, pipelined, tiered), pipelined_(pipelined), tiered_(tiered) {
-        if (oneImage) servers_.SetServerEnv({"SDFVJ_SERVER_IMAGES=1"});
+        servers_.SetServerEnv(std::move(serverEnv));
     }
     ~RenderProcessRun() override;
     RenderProcessRun(const RenderProcessRun&) = delete;

@@ -237,6 +237,17 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     std::string modeName;
     bool workerMeasured = false;
     while (std::getline(modeList, modeName, ',')) {
+        // render-process+NAME=VALUE[+NAME=VALUE..]: render-process with these in its servers' environment
+        std::vector<std::string> serverEnv;
+        std::string shownName = modeName;
+        if (modeName.rfind("render-process+", 0) == 0) {
+            std::stringstream entries(modeName.substr(15));
+            for (std::string e; std::getline(entries, e, '+');)
+                if (e.find('=') != std::string::npos && e.find('=') > 0) serverEnv.push_back(e);
+                else return Fail("--modes: '" + modeName + "': expected render-process+NAME=VALUE");
+            modeName = "render-process";
+        }
+        if (modeName == "render-process-one-image") serverEnv.push_back("SDFVJ_SERVER_IMAGES=1");
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
                    : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6
                    : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : modeName == "render-process" ? 9
@@ -246,7 +257,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
                         "adopt-process, stage, render-process, render-process-sync, render-process-one-image or render-process-shm");
         ModeRun m;
-        m.name = modeName;
+        m.name = shownName;
         // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
         // same, but a loader thread (shared context) loads the binary and uses it once before the
         // hand-over. A driver without binaries cannot serve either: measured as the fallback.
@@ -304,7 +315,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode == 8) m.handover = std::make_unique<StageRun>(m.process.get());
         if (mode >= 9)
             m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11,
-                                                            m.live->Tiered(), mode == 12);
+                                                            m.live->Tiered(), serverEnv);
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();

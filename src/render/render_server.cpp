@@ -193,7 +193,8 @@ int RunRenderServer(int fd) {
     if (glOk) {   // a spare does these while it waits, off the save's path
         WarmCompiler();
         std::string ignored;   // a load that asks for the GPU says why there is none
-        SharedImage::Prepare(&ignored);   // the Vulkan device the shared images come from (NVIDIA: tens of ms)
+        const char* prepare = std::getenv("SDFVJ_SERVER_PREPARE");   // 0: not (measured: bench reload --modes render-process+SDFVJ_SERVER_PREPARE=0)
+        if (!prepare || std::string(prepare) != "0") SharedImage::Prepare(&ignored);   // the Vulkan device the images come from
     }
     SceneInfo scene;
     Program program;
