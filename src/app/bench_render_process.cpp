@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "app/bench_support.h"
+
 namespace sdfvj {
 
 RenderProcessRun::~RenderProcessRun() { present_.reset(); }   // the render context is current (the bench ends on it)
@@ -23,17 +25,25 @@ bool RenderProcessRun::Start(HeadlessContext& gl, const std::string& scenePath, 
 }
 
 bool RenderProcessRun::Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) {
+    const auto t0 = Clock::now();
     if (!changed.empty() && !servers_.Load(ServerLoad{scenePath, true, {}, path, w_, h_}, error)) return false;
-    if (!servers_.Poll(error)) return false;
+    const bool swapped = servers_.Poll(error);
+    pollMs_.push_back(MsSince(t0));
+    if (!swapped) return false;
     const RenderProcess::Ready& r = servers_.Shown().back();
     lastMs_ = r.buildMs + r.useMs + r.firstFrameMs;
     return true;
 }
 
 void RenderProcessRun::Draw(const FrameInputs& in) {
-    if (!servers_.Frame(in, 5000)) return;   // the last frame stays on screen
+    auto t0 = Clock::now();
+    const bool ok = servers_.Frame(in, 5000);
+    collectMs_.push_back(MsSince(t0));
+    if (!ok) return;   // the last frame stays on screen
+    t0 = Clock::now();
     present_->Blit(servers_.Texture());
     servers_.AfterRead(in);
+    blitMs_.push_back(MsSince(t0));
 }
 
 std::string RenderProcessRun::Details() const {
@@ -43,7 +53,7 @@ std::string RenderProcessRun::Details() const {
                         : t == FrameTransport::DmaBuf ? "dma-buf (on the GPU)" : "shared memory (a copy each way)") +
                        (servers_.Note().empty() ? "" : "; " + servers_.Note()) + "; " + (tiered_ ? "tiered (a quick build in one process, the optimized one in another)" : "untiered") +
                        "; each one on screen: compile + link / first use / first frame / hand-over set-up ms:";
-    char buf[96];
+    char buf[200];
     for (size_t i = 1; i < servers_.Shown().size(); ++i) {   // [0]: the first program, before the rounds
         const RenderProcess::Ready& r = servers_.Shown()[i];
         std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f / %.1f;", servers_.ShownQuick()[i] ? "quick " : "", r.buildMs, r.useMs,
@@ -51,6 +61,9 @@ std::string RenderProcessRun::Details() const {
         line += buf;
     }
     if (servers_.FailedFrames()) line += " frames the server did not deliver: " + std::to_string(servers_.FailedFrames());
+    std::snprintf(buf, sizeof buf, "\nthe show's frames, medians: poll %.3f ms, collect %.3f ms, blit + request %.3f ms (then glFinish)",
+                  MedianMs(pollMs_), MedianMs(collectMs_), MedianMs(blitMs_));
+    line += buf;
     return line;
 }
 

@@ -50,6 +50,7 @@ private:
     std::unique_ptr<PresentTarget> present_;
     int w_ = 0, h_ = 0;
     double lastMs_ = 0;
+    std::vector<double> pollMs_, collectMs_, blitMs_;   // each frame's parts on the render thread
 };
 
 }  // namespace sdfvj

@@ -199,6 +199,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     // machine that gets busier or quieter moves every mode's figures alike.
     struct ModeRun {
         int mode = 0;
+        int entry = 0;   // its place in --modes, from 1: what each save's nudge is made of
         std::string name;
         std::unique_ptr<CompileProcess> process;
         std::unique_ptr<HeadlessContext> shared;
@@ -295,7 +296,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"}) m.watcher->Watch((root / d).string(), &error);
         m.path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
                                                                                   : ProbeRenderPath(scene, nullptr);
-        SaveLikeAnEditor(sceneFile, saveText(100 * mode));   // this mode's starting program: new as well
+        // Each entry of --modes its own programs (by its place, not its mode: render-process+NAME=VALUE
+        // shares render-process's number, and a program cache would serve it the other's builds).
+        m.entry = (int)runs.size() + 1;
+        SaveLikeAnEditor(sceneFile, saveText(100 * m.entry));   // this mode's starting program: new as well
         m.watcher->Poll();
         m.live = std::make_unique<LiveProgram>();
         if (o.tiered != "auto") m.live->SetTiered(o.tiered == "on");
@@ -355,7 +359,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         Round r;
         LiveProgram& live = *m.live;
         bool swapped = false;
-        SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * m.mode + round) : original + "// round " + std::to_string(round) + "\n");
+        SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * m.entry + round) : original + "// round " + std::to_string(round) + "\n");
         const auto saved = Clock::now();
         while (MsSince(saved) < 120000) {
             const double ms = frameOnce(m, &swapped);
