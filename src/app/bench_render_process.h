@@ -29,9 +29,11 @@ public:
     // on screen until the optimized program's server is ready.
     // serverEnv: NAME=value entries for the servers' environment (SDFVJ_SERVER_IMAGES=1: frames
     // handed over in one image, not two by turns; SDFVJ_SERVER_PREPARE=0: no Vulkan device made ahead).
-    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered, std::vector<std::string> serverEnv = {})
+    // inTurn: tiered, the optimized build starts once the quick tier is on screen (ServerShow::SetTiersInTurn).
+    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered, std::vector<std::string> serverEnv = {}, bool inTurn = false)
         : servers_(transport, pipelined, tiered), pipelined_(pipelined), tiered_(tiered) {
         servers_.SetServerEnv(std::move(serverEnv));
+        servers_.SetTiersInTurn(inTurn);
     }
     ~RenderProcessRun() override;
     RenderProcessRun(const RenderProcessRun&) = delete;

@@ -249,6 +249,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             modeName = "render-process";
         }
         if (modeName == "render-process-one-image") serverEnv.push_back("SDFVJ_SERVER_IMAGES=1");
+        const bool inTurn = modeName == "render-process-in-turn";
+        if (inTurn) modeName = "render-process";
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
                    : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6
                    : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : modeName == "render-process" ? 9
@@ -319,7 +321,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode == 8) m.handover = std::make_unique<StageRun>(m.process.get());
         if (mode >= 9)
             m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11,
-                                                            m.live->Tiered(), serverEnv);
+                                                            m.live->Tiered(), serverEnv, inTurn);
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();

@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
                           "used and drawn by a process of its own, its frames handed over on the GPU: a Vulkan-allocated image both "
                           "processes import (two, by turns), or a dma-buf; by shared memory where the driver offers neither; the frame shown one behind its inputs, so the server draws while "
                           "the show waits for the display), render-process-sync (the same, every frame a round trip), render-process-one-image (pipelined through one "
-                          "image: each request waits for the show's read of the frame before), render-process+NAME=VALUE[+..] (render-process, these in its servers' "
+                          "image: each request waits for the show's read of the frame before), render-process-in-turn (tiered: the optimized build starts once the quick tier is on screen), render-process+NAME=VALUE[+..] (render-process, these in its servers' "
                           "environment: SDFVJ_SERVER_PREPARE=0, no Vulkan device made ahead), render-process-shm (by shared memory always); comma-separated, rounds interleaved; "
                           "--first-frame: warm = with the loader")
         ->capture_default_str();

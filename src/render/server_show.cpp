@@ -112,6 +112,13 @@ bool ServerShow::Load(const ServerLoad& load, std::string* error) {
     error->clear();
     for (Candidate* c : {&next_, &quick_}) Retire(std::move(c->process));   // superseded before they were shown
     building_ = load;
+    deferred_ = false;
+    if (tiered_ && inTurn_) {   // the quick tier alone first; the optimized build once it is on screen (Poll)
+        if (!Send(quick_, load, error)) return false;
+        deferred_ = true;
+        FillSpares();
+        return true;
+    }
     if (!Send(next_, load, error)) return false;
     if (tiered_ && !Send(quick_, load, error)) return false;
     FillSpares();
@@ -279,6 +286,12 @@ bool ServerShow::Poll(std::string* error) {
     }
     std::string quickError;
     const bool quick = Promote(quick_, &quickError);
+    if (deferred_ && !quick_.process) {   // the quick tier is on screen (or failed): the optimized build now
+        deferred_ = false;
+        std::string why;
+        if (!Send(next_, building_, &why) && error->empty()) *error = why;
+        FillSpares();
+    }
     if (error->empty() && !next_.process) *error = quickError;
     return quick;
 }

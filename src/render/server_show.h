@@ -43,6 +43,9 @@ public:
     // NAME=value entries over this process's environment for every server started from now on (a
     // bench's program cache folder, say). Before Start.
     void SetServerEnv(std::vector<std::string> env) { env_ = std::move(env); }
+    // Tiered: the optimized build starts once the quick tier is on screen (or failed), not beside it,
+    // so the quick build has the driver and the CPU to itself (bench reload --modes render-process-in-turn).
+    void SetTiersInTurn(bool inTurn) { inTurn_ = inTurn; }
     // A new program: a spare builds it while the one on screen goes on; a build still running for an
     // earlier Load is ended. Never blocks. False when no server could start.
     bool Load(const ServerLoad& load, std::string* error);
@@ -102,7 +105,7 @@ public:
     bool OnScreen() const { return onScreen_ != nullptr; }
     const ServerLoad& OnScreenLoad() const { return onScreenLoad_; }
     bool OnScreenQuick() const { return onScreenQuick_; }
-    bool Building() const { return next_.process != nullptr || quick_.process != nullptr; }
+    bool Building() const { return next_.process != nullptr || quick_.process != nullptr || deferred_; }
     const ServerLoad& BuildingLoad() const { return building_; }
     FrameTransport Transport() const { return transport_; }
     // Every server that went on screen, its figures in its process: build, first use, first frame.
@@ -131,6 +134,7 @@ private:
 
     FrameTransport transport_;
     bool pipelined_, tiered_;
+    bool inTurn_ = false, deferred_ = false;   // deferred_: the optimized build waits for the quick tier
     std::vector<std::string> env_;
     std::unique_ptr<RenderProcess> onScreen_;
     ServerLoad onScreenLoad_, building_;
