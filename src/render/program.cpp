@@ -7,6 +7,7 @@
 #include "render/program_cache.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <thread>
 
 namespace sdfvj {
@@ -22,11 +23,34 @@ double NowMs() {
 }
 }  // namespace
 
+// NVIDIA's compiler hints for the quick tier: `inline none`, or SDFVJ_QUICK_OPTIONS (words joined by
+// '-', hints by ':', "inline-none:unroll-none"), for measuring others (bench reload --modes
+// render-process+SDFVJ_QUICK_OPTIONS=...). A value with anything but letters, '-' and ':' is ignored.
+std::string QuickTierPragmas() {
+    const char* env = std::getenv("SDFVJ_QUICK_OPTIONS");
+    std::string options = env ? env : "";
+    const bool valid = !options.empty() && options.size() < 200 &&
+                       options.find_first_not_of("abcdefghijklmnopqrstuvwxyz-:") == std::string::npos;
+    if (!valid) options = "inline-none";
+    std::string pragmas;
+    size_t at = 0;
+    while (at <= options.size()) {
+        size_t end = options.find(':', at);
+        if (end == std::string::npos) end = options.size();
+        std::string hint = options.substr(at, end - at);
+        for (char& c : hint)
+            if (c == '-') c = ' ';
+        if (!hint.empty()) pragmas += "#pragma optionNV(" + hint + ")\n";
+        at = end + 1;
+    }
+    return pragmas;
+}
+
 std::string QuickTierText(const std::string& text) {
     const size_t eol = text.find('\n');
     if (text.rfind("#version", 0) != 0 || eol == std::string::npos) return text;
     // No cone pre-pass either (main_comp.glsl): its march is one more map() call site to compile.
-    return text.substr(0, eol + 1) + "#pragma optionNV(inline none)\n#define CONE_PREPASS 0\n" + text.substr(eol + 1);
+    return text.substr(0, eol + 1) + QuickTierPragmas() + "#define CONE_PREPASS 0\n" + text.substr(eol + 1);
 }
 
 bool Program::Build(const ShaderSource& src, RenderPath path, std::string* log) {
