@@ -52,12 +52,12 @@ std::string RenderProcessRun::Details() const {
                        (t == FrameTransport::VkMemory ? "a Vulkan-allocated image both import (on the GPU)"
                         : t == FrameTransport::DmaBuf ? "dma-buf (on the GPU)" : "shared memory (a copy each way)") +
                        (servers_.Note().empty() ? "" : "; " + servers_.Note()) + "; " + (tiered_ ? "tiered (a quick build in one process, the optimized one in another)" : "untiered") +
-                       "; each one on screen: compile + link / first use / first frame / hand-over set-up ms:";
+                       "; each one on screen: compile + link / first use / first frame / hand-over set-up ms, its images imported here ms:";
     char buf[200];
     for (size_t i = 1; i < servers_.Shown().size(); ++i) {   // [0]: the first program, before the rounds
         const RenderProcess::Ready& r = servers_.Shown()[i];
-        std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f / %.1f;", servers_.ShownQuick()[i] ? "quick " : "", r.buildMs, r.useMs,
-                      r.firstFrameMs, r.shareMs);
+        std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f / %.1f, %.2f;", servers_.ShownQuick()[i] ? "quick " : "", r.buildMs, r.useMs,
+                      r.firstFrameMs, r.shareMs, r.importMs);
         line += buf;
     }
     if (servers_.FailedFrames()) line += " frames the server did not deliver: " + std::to_string(servers_.FailedFrames());

@@ -230,7 +230,9 @@ bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
         ready->text = "the render process answered out of turn";
         return true;
     }
+    const auto t0 = Clock::now();
     if (!Import(payload, ready)) ready->ok = false;
+    ready->importMs = MsSince(t0);
     return true;
 }
 

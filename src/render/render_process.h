@@ -86,6 +86,7 @@ public:
         std::string text;                                  // the error, or a note (a transport refused)
         bool fromCache = false;                            // the program came from the program cache: nothing compiled
         double shareMs = 0;                                // in the server: the hand-over set up (images made, the first frame in)
+        double importMs = 0;                               // here: the answer read and its images imported (PollReady)
     };
     struct BuiltAhead {
         bool ok = false, fromCache = false;   // fromCache: it was there already

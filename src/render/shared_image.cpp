@@ -33,7 +33,7 @@ struct VkDeviceOnce {
     PFN_vkFreeMemory freeMemory = nullptr;
     PFN_vkBindImageMemory bindImageMemory = nullptr;
     PFN_vkGetMemoryFdKHR getMemoryFd = nullptr;
-    bool tried = false;
+    bool made = false;   // Make() succeeded (it is tried once)
     std::string why;   // why there is none
 
     bool Make() {
@@ -116,9 +116,9 @@ VkDeviceOnce* Device(std::string* why) {
     std::lock_guard<std::mutex> lock(g_vkMutex);
     if (!g_vk) {
         g_vk = new VkDeviceOnce;
-        g_vk->tried = g_vk->Make();
+        g_vk->made = g_vk->Make();
     }
-    if (!g_vk->tried) {
+    if (!g_vk->made) {
         *why = g_vk->why;
         return nullptr;
     }
