@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "app/bench_adopt.h"
+#include "app/bench_first_frame.h"
 #include "app/bench_render_process.h"
 #include "app/bench_stage.h"
 #include "app/bench_support.h"
@@ -40,10 +41,7 @@ namespace sdfvj {
 
 namespace {
 
-int Fail(const std::string& what, int code = 2) {
-    std::fprintf(stderr, "sdfvj bench reload: %s\n", what.c_str());
-    return code;
-}
+int Fail(const std::string& what, int code = 2) { return ReloadBenchFail(what, code); }
 
 // Writes like an editor: a temp file renamed over the original.
 void SaveLikeAnEditor(const fs::path& file, const std::string& text) {
@@ -64,78 +62,6 @@ struct Round {
     double loadMs = 0;         // ... its load + first use there
 };
 
-// SDFVJ_GL_DEBUG=1: the driver's debug messages (recompiles "based on GL state", say) to stderr.
-void GLAPIENTRY PrintGlMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message, const void*) {
-    std::fprintf(stderr, "GL debug (type 0x%x, severity 0x%x): %s\n", type, severity, message);
-}
-
-int FirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h, const std::string& cacheLine) {
-    const auto start = Clock::now();
-    HeadlessContext gl;
-    std::string error;
-    if (!gl.Create(&error)) return Fail(error);
-    const double contextMs = MsSince(start);
-    const auto opened = Clock::now();
-    if (const char* dbg = std::getenv("SDFVJ_GL_DEBUG"); dbg && std::string(dbg) == "1") {
-        glEnable(GL_DEBUG_OUTPUT);
-        glDebugMessageCallback(PrintGlMessage, nullptr);
-    }
-    RenderPath path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
-                                                                                      : ProbeRenderPath(scene, nullptr);
-    // `--modes` naming warm: a loader thread (shared context) loads the cached binary and uses it
-    // once before the first frame draws it, as `live` does where the compile process is used.
-    std::unique_ptr<HeadlessContext> shared;
-    std::unique_ptr<CompileWorker> loader;
-    struct Unset { ~Unset() { PendingProgram::SetLoader(nullptr); } } unset;
-    if (("," + o.modes + ",").find(",warm,") != std::string::npos) {
-        shared = std::make_unique<HeadlessContext>();
-        if (!shared->CreateShared(gl, &error, true)) return Fail(error);
-        HeadlessContext* ctx = shared.get();
-        loader = std::make_unique<CompileWorker>([ctx] { return ctx->MakeCurrent(); }, false, [ctx] { ctx->ReleaseCurrent(); });
-        if (!loader->Ok()) return Fail("the loader's context failed");
-        PendingProgram::SetLoader(loader.get());
-    }
-    LiveProgram live;
-    if (o.tiered != "auto") live.SetTiered(o.tiered == "on");
-    live.Request(VariantKey{scene.path, scene.effects, path});
-    while (!live.Current() && live.Pending()) {
-        live.Update({});
-        if (!live.Current()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    if (!live.Current()) return Fail(live.Error(), 1);
-    FrameRenderer fr;
-    if (!fr.Resize(w, h, &error)) return Fail(error);
-    FrameInputs in;
-    for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
-    // SDFVJ_BENCH_PRIME_HERE=1 (diagnosis): the loader's 1x1 priming use, on the render context,
-    // timed on its own before the first real draw.
-    double primeHereMs = -1;
-    if (const char* here = std::getenv("SDFVJ_BENCH_PRIME_HERE"); here && std::string(here) == "1") {
-        const auto t = Clock::now();
-        PrimeProgram(live.Current()->Id(), path, false);
-        primeHereMs = MsSince(t);
-    }
-    const auto drawAt = Clock::now();
-    fr.Draw(*live.Current(), live.Scene(), in);
-    glFinish();
-    const double firstMs = MsSince(opened), drawMs = MsSince(drawAt);
-    const Program& p = *live.Current();
-    std::printf("# sdfvj bench reload --first-frame: %s at %dx%d, %s path, on %s\n", scene.name.c_str(), w, h,
-                RenderPathName(path), gl.Description().c_str());
-    std::printf("driver disk caches: %s; program cache: %s\n", cacheLine.c_str(),
-                ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off");
-    std::printf("first frame %.1f ms after the context was made (context %.1f ms); program %s (%.1f ms); "
-                "its first draw %.1f ms; %s\n", firstMs,
-                contextMs, p.FromCache() ? "from the program cache" : p.QuickTier() ? "compiled, quick tier" : "compiled",
-                p.Origin().buildMs, drawMs,
-                p.Origin().usedBeforeHandOver ? ("loaded and used once on the loader thread first (" +
-                                                  std::to_string((int)(p.Origin().loadMs + 0.5)) + " ms)").c_str()
-                                              : "no loader");
-    if (primeHereMs >= 0) std::printf("a 1x1 priming use on the render context before it: %.1f ms\n", primeHereMs);
-    live.Wait();
-    return 0;
-}
-
 }  // namespace
 
 int RunReloadBench(const ReloadBenchOptions& o) {
@@ -154,7 +80,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     fs::create_directories(root);
     struct Cleanup { fs::path p; ~Cleanup() { std::error_code ec; fs::remove_all(p, ec); } } cleanup{root};
     const std::string cacheLine = SetDriverCaches(o.driverCache, root / "driver-cache", o.firstFrame);
-    if (o.firstFrame) return FirstFrame(o, scene, w, h, cacheLine);
+    if (o.firstFrame) return ReloadFirstFrame(o, scene, w, h, cacheLine);
     if (o.edit == "toggle") return RunToggleBench(o, scene, w, h, cacheLine);
 
     HeadlessContext gl;
