@@ -110,7 +110,7 @@ TEST_CASE("live_gpu timer ring: a poll right after a heavy draw returns without 
     CHECK(got[0].tag == 7);
 }
 
-TEST_CASE("live_gpu effect costs: one row per effect of the variant, and soft shadows cost more than nothing") {
+TEST_CASE("live_gpu effect costs: one row per effect of the variant, and soft shadows cost more than nothing", "[timed]") {
     RequireGl();
     REQUIRE(IsSoftwareRenderer());   // CI: llvmpipe, so the wall clock (glFinish) times the draws
     SceneInfo scene;

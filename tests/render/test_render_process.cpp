@@ -287,7 +287,7 @@ TEST_CASE("render process: a show's server that dies is replaced by one building
     CHECK(CompareImages(ReadTexture(show.Texture()), RenderScene("primitives", scene.effects, RenderPath::Fragment, kW, kH, 2.0), 1).fractionOver == 0.0);
 }
 
-TEST_CASE("render process: the server on screen times its program's draws offscreen, each effect's cost measured there, its frames untouched", "[render_process]") {
+TEST_CASE("render process: the server on screen times its program's draws offscreen, each effect's cost measured there, its frames untouched", "[render_process][timed]") {
     // `live --render-process`'s "measure costs": the draws the overlay asks for are timed by the
     // server (glFinish + wall clock on llvmpipe), into a target of its own, not the one it hands over.
     RequireGl();
@@ -305,23 +305,31 @@ TEST_CASE("render process: the server on screen times its program's draws offscr
     REQUIRE(show.Frame(in));
     const Image before = ReadTexture(show.Texture(), w, h);
 
+    // A wall-clock measure: ctest runs this test alone ([timed], RUN_SERIAL), and a measurement
+    // that a busy machine still turned upside down is taken again, up to three times.
     EffectCosts costs;
-    StartEffectCosts(costs, heavy, 7, true);
-    REQUIRE(costs.rows.size() == 4);
-    int steps = 0;
-    while (!costs.Done() && steps < 1000) {
-        StepEffectCostsTimed(costs, in, [&](const FrameInputs& f) { return show.TimeDraw(f); }, "timed in the render process on screen");
-        ++steps;
-    }
-    REQUIRE(costs.Done());
-    CHECK(steps == 7 * 5);   // every draw answered: all on + 4 one-off variants per round
+    double shadowsMs = 0.0;
     std::string table;
-    for (const EffectCostRow& r : costs.rows) {
-        CHECK(r.diffs.size() == 7);
-        table += r.name + " " + EffectCostText(r, costs) + "\n";
+    for (int attempt = 0; attempt < 3 && shadowsMs <= 0.0; ++attempt) {
+        costs = EffectCosts{};
+        StartEffectCosts(costs, heavy, 7, true);
+        REQUIRE(costs.rows.size() == 4);
+        int steps = 0;
+        while (!costs.Done() && steps < 1000) {
+            StepEffectCostsTimed(costs, in, [&](const FrameInputs& f) { return show.TimeDraw(f); }, "timed in the render process on screen");
+            ++steps;
+        }
+        REQUIRE(costs.Done());
+        CHECK(steps == 7 * 5);   // every draw answered: all on + 4 one-off variants per round
+        table += "attempt " + std::to_string(attempt + 1) + ":\n";
+        for (const EffectCostRow& r : costs.rows) {
+            CHECK(r.diffs.size() == 7);
+            table += r.name + " " + EffectCostText(r, costs) + "\n";
+        }
+        shadowsMs = EffectCostMs(costs.rows[0], costs);
     }
     INFO(table << EffectCostNote(costs));
-    CHECK(EffectCostMs(costs.rows[0], costs) > 0.0);   // soft shadows cost more than nothing
+    CHECK(shadowsMs > 0.0);   // soft shadows cost more than nothing
     CHECK(EffectCostNote(costs).find("timed in the render process on screen") != std::string::npos);
 
     // The frame handed over is still the program's own with every effect on.
