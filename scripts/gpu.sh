@@ -285,7 +285,7 @@ case "${1:-}" in
       # S16_TIERED=on S16_MODES=process,render-process: the quick tier too (in a second server)
       f="$out/reload_${s}_render_process${S16_TIERED:+_tiered_$S16_TIERED}.txt"
       timeout ${S16_TIMEOUT:-200} bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered ${S16_TIERED:-off} \
-        --modes ${S16_MODES:-process,render-process,render-process-sync,render-process-shm} --driver-cache off --rounds 3 > "$f" 2>&1 || true
+        --modes ${S16_MODES:-process,render-process,render-process-sync,render-process-shm} --driver-cache off --rounds ${S16_ROUNDS:-3} > "$f" 2>&1 || true
       grep -h -A6 'modes side by side' "$f" || tail -5 "$f"
       grep -h -E '^render processes|^longest frame before|^median' "$f" | cut -c1-300 || true
     done

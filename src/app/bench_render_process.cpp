@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "app/bench_support.h"
@@ -13,6 +14,17 @@ RenderProcessRun::~RenderProcessRun() { present_.reset(); }   // the render cont
 bool RenderProcessRun::Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) {
     w_ = width;
     h_ = height;
+    if (importThread_ && servers_.Transport() != FrameTransport::Shm) {
+        importContext_ = std::make_unique<HeadlessContext>();
+        if (!importContext_->CreateShared(gl, error, true)) return false;
+        HeadlessContext* c = importContext_.get();
+        importer_ = std::make_unique<ImportThread>([c] { return c->MakeCurrent(); }, [c] { c->ReleaseCurrent(); }, importOptions_);
+        if (!importer_->Ok()) {
+            *error = "the import thread's context could not be made current";
+            return false;
+        }
+        servers_.SetImporter(importer_.get());
+    }
     if (!servers_.Start(ServerLoad{scenePath, true, {}, path, w_, h_}, error)) return false;
     if (!servers_.Texture()) {
         *error = "the render process gave no frame: " + servers_.Note();
@@ -29,6 +41,7 @@ bool RenderProcessRun::Update(const std::vector<std::string>& changed, const std
     if (!changed.empty() && !servers_.Load(ServerLoad{scenePath, true, {}, path, w_, h_}, error)) return false;
     const bool swapped = servers_.Poll(error);
     pollMs_.push_back(MsSince(t0));
+    maxPollMs_ = std::max(maxPollMs_, pollMs_.back());
     if (!swapped) return false;
     const RenderProcess::Ready& r = servers_.Shown().back();
     lastMs_ = r.buildMs + r.useMs + r.firstFrameMs;
@@ -39,11 +52,13 @@ void RenderProcessRun::Draw(const FrameInputs& in) {
     auto t0 = Clock::now();
     const bool ok = servers_.Frame(in, 5000);
     collectMs_.push_back(MsSince(t0));
+    maxCollectMs_ = std::max(maxCollectMs_, collectMs_.back());
     if (!ok) return;   // the last frame stays on screen
     t0 = Clock::now();
     present_->Blit(servers_.Texture());
     servers_.AfterRead(in);
     blitMs_.push_back(MsSince(t0));
+    maxBlitMs_ = std::max(maxBlitMs_, blitMs_.back());
 }
 
 std::string RenderProcessRun::Details() const {
@@ -52,17 +67,27 @@ std::string RenderProcessRun::Details() const {
                        (t == FrameTransport::VkMemory ? "a Vulkan-allocated image both import (on the GPU)"
                         : t == FrameTransport::DmaBuf ? "dma-buf (on the GPU)" : "shared memory (a copy each way)") +
                        (servers_.Note().empty() ? "" : "; " + servers_.Note()) + "; " + (tiered_ ? "tiered (a quick build in one process, the optimized one in another)" : "untiered") +
-                       "; each one on screen: compile + link / first use / first frame / hand-over set-up ms, its images imported here ms:";
+                       "; images imported " +
+                       (importer_ ? std::string("on a thread of their own") + (importOptions_.touch ? ", used once there" : "") +
+                                        (importOptions_.freeThere ? ", freed there" : ", freed on the render thread")
+                                  : std::string("and freed on the render thread")) +
+                       "; each one on screen: compile + link / first use / first frame / hand-over set-up ms, the render thread's part of taking it ms" +
+                       (importer_ ? " (+ the import thread's ms)" : "") + ":";
     char buf[200];
     for (size_t i = 1; i < servers_.Shown().size(); ++i) {   // [0]: the first program, before the rounds
         const RenderProcess::Ready& r = servers_.Shown()[i];
-        std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f / %.1f, %.2f;", servers_.ShownQuick()[i] ? "quick " : "", r.buildMs, r.useMs,
+        std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f / %.1f, %.2f", servers_.ShownQuick()[i] ? "quick " : "", r.buildMs, r.useMs,
                       r.firstFrameMs, r.shareMs, r.importMs);
         line += buf;
+        if (r.importThreadMs >= 0) {
+            std::snprintf(buf, sizeof buf, " (+%.2f)", r.importThreadMs);
+            line += buf;
+        }
+        line += ";";
     }
     if (servers_.FailedFrames()) line += " frames the server did not deliver: " + std::to_string(servers_.FailedFrames());
-    std::snprintf(buf, sizeof buf, "\nthe show's frames, medians: poll %.3f ms, collect %.3f ms, blit + request %.3f ms (then glFinish)",
-                  MedianMs(pollMs_), MedianMs(collectMs_), MedianMs(blitMs_));
+    std::snprintf(buf, sizeof buf, "\nthe show's frames, medians: poll %.3f ms, collect %.3f ms, blit + request %.3f ms (then glFinish); largest: %.3f, %.3f, %.3f ms",
+                  MedianMs(pollMs_), MedianMs(collectMs_), MedianMs(blitMs_), maxPollMs_, maxCollectMs_, maxBlitMs_);
     line += buf;
     return line;
 }

@@ -30,8 +30,14 @@ public:
     // serverEnv: NAME=value entries for the servers' environment (SDFVJ_SERVER_IMAGES=1: frames
     // handed over in one image, not two by turns; SDFVJ_SERVER_PREPARE=0: no Vulkan device made ahead).
     // inTurn: tiered, the optimized build starts once the quick tier is on screen (ServerShow::SetTiersInTurn).
-    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered, std::vector<std::string> serverEnv = {}, bool inTurn = false)
-        : servers_(transport, pipelined, tiered), pipelined_(pipelined), tiered_(tiered) {
+    // importThread: a new server's images are imported on a thread of their own (render/import_thread.h),
+    // as `live` does; false (render-process-import-here): on the render thread, in the frame that
+    // takes the server's answer. importOptions: what else that thread does (render-process-no-touch,
+    // render-process-free-here).
+    RenderProcessRun(FrameTransport transport, bool pipelined, bool tiered, std::vector<std::string> serverEnv = {}, bool inTurn = false,
+                     bool importThread = true, ImportOptions importOptions = {})
+        : servers_(transport, pipelined, tiered), pipelined_(pipelined), tiered_(tiered), importThread_(importThread),
+          importOptions_(importOptions) {
         servers_.SetServerEnv(std::move(serverEnv));
         servers_.SetTiersInTurn(inTurn);
     }
@@ -47,12 +53,18 @@ public:
     FrameTransport Transport() const { return servers_.Transport(); }
 
 private:
+    // Declared before servers_: its servers are stopped (jobs abandoned) before the thread ends,
+    // and the thread ends before its context goes.
+    std::unique_ptr<HeadlessContext> importContext_;
+    std::unique_ptr<ImportThread> importer_;
     ServerShow servers_;
-    bool pipelined_, tiered_;
+    bool pipelined_, tiered_, importThread_;
+    ImportOptions importOptions_;
     std::unique_ptr<PresentTarget> present_;
     int w_ = 0, h_ = 0;
     double lastMs_ = 0;
     std::vector<double> pollMs_, collectMs_, blitMs_;   // each frame's parts on the render thread
+    double maxPollMs_ = 0, maxCollectMs_ = 0, maxBlitMs_ = 0;
 };
 
 }  // namespace sdfvj

@@ -414,6 +414,7 @@ int RunLive(const LiveOptions& o) {
         return 2;
     }
     LiveSession session(o, std::move(state), window.Get());   // GL objects die before the window
+    if (o.renderProcess) session.SetImporter(window.OpenImporter());
     if (!session.Start(&error)) {
         std::fprintf(stderr, "sdfvj live: %s\n", error.c_str());
         return 2;

@@ -24,6 +24,7 @@
 #include "app/live_session.h"
 #include "app/live_sync.h"
 #include "render/compile_worker.h"
+#include "render/import_thread.h"
 #include "render/field_morph.h"
 #include "isf/isf.h"
 #include "audio/audio.h"
@@ -41,11 +42,13 @@ public:
         PendingProgram::SetWorker(nullptr);
         PendingProgram::SetLoader(nullptr);
         worker_.reset();   // no compile may outlive the windows
+        importer_.reset();
         if (imgui_) {
             ImGui_ImplOpenGL3_Shutdown();
             ImGui_ImplGlfw_Shutdown();
             ImGui::DestroyContext();
         }
+        if (importWindow_) glfwDestroyWindow(importWindow_);
         if (compileWindow_) glfwDestroyWindow(compileWindow_);
         if (window_) glfwDestroyWindow(window_);
         if (glfw_) glfwTerminate();
@@ -102,11 +105,31 @@ public:
         return true;
     }
     GLFWwindow* Get() const { return window_; }
+    // `live --render-process`: the thread that imports each new render server's frame images, with a
+    // hidden window's context that shares objects with this one (render/import_thread.h). Null
+    // where it cannot be made: the render thread imports them.
+    ImportThread* OpenImporter() {
+        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+        importWindow_ = glfwCreateWindow(1, 1, "sdfvj importer", nullptr, window_);
+        glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+        if (!importWindow_) return nullptr;
+        GLFWwindow* iw = importWindow_;
+        importer_ = std::make_unique<ImportThread>(
+            [iw] {
+                glfwMakeContextCurrent(iw);
+                return glfwGetCurrentContext() == iw;
+            },
+            [] { glfwMakeContextCurrent(nullptr); });
+        if (!importer_->Ok()) importer_.reset();
+        return importer_.get();
+    }
 private:
     bool glfw_ = false, imgui_ = false;
     GLFWwindow* window_ = nullptr;
     GLFWwindow* compileWindow_ = nullptr;
+    GLFWwindow* importWindow_ = nullptr;
     std::unique_ptr<CompileWorker> worker_;
+    std::unique_ptr<ImportThread> importer_;
 };
 
 // One show: owns what it runs on; Frame() is the frame loop's body (cmd_live.cpp).
@@ -118,6 +141,9 @@ public:
 
     // Everything that may fail with a message before the first frame. False: exit code 2.
     bool Start(std::string* error);
+    // --render-process: the thread that imports each new server's images (LiveWindow::OpenImporter).
+    // Before Start; it outlives the session.
+    void SetImporter(ImportThread* importer) { importer_ = importer; }
     // One frame. False when the show is over (Esc, window closed, --seconds).
     bool Frame();
     void Finish();
@@ -176,6 +202,7 @@ private:
     FrameRenderer renderer_;
     // --render-process: the scene drawn by render servers (live_servers.h); null: drawn here by live_.
     std::unique_ptr<LiveServers> servers_;
+    ImportThread* importer_ = nullptr;
     GLuint serverFbo_ = 0;   // reads the server's frame for the blit to the window
     void StartServers();
     void DrawServerScene(double now, int rw, int rh);

@@ -12,6 +12,7 @@ void LiveSession::StartServers() {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     servers_ = std::make_unique<LiveServers>(LiveProgram::TieredCompileDefault(), live_.LiteralTier());
+    servers_->SetImporter(importer_);   // null: this thread imports each server's images
     std::string error;
     if (servers_->Start(state_.wanted, Scaled(w), Scaled(h), &error))
         return;

@@ -36,6 +36,8 @@ public:
     // The first program at w x h, waited for. False: *error says why (a scene that does not build:
     // the show goes on and the next save that builds goes on screen).
     bool Start(const VariantKey& key, int w, int h, std::string* error);
+    // The thread that imports each server's frame images (ServerShow::SetImporter). Before Start.
+    void SetImporter(ImportThread* importer) { show_.SetImporter(importer); }
     // Each frame: the variant the show wants, the files saved since the last frame and the render
     // size. Lines for the show's report go to *say (a build that failed, a server replaced, a
     // program on screen).

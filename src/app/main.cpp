@@ -148,8 +148,8 @@ int main(int argc, char** argv) {
                           "drawn on that context and presented on the render context), adopt-process (the same with the compile in the compile process), "
                           "stage (each program loaded, used and drawn by a thread of its own with a shared context), render-process (each program compiled, "
                           "used and drawn by a process of its own, its frames handed over on the GPU: a Vulkan-allocated image both "
-                          "processes import (two, by turns), or a dma-buf; by shared memory where the driver offers neither; the frame shown one behind its inputs, so the server draws while "
-                          "the show waits for the display), render-process-sync (the same, every frame a round trip), render-process-one-image (pipelined through one "
+                          "processes import (two, by turns) on a thread of their own, or a dma-buf; by shared memory where the driver offers neither; the frame shown one behind its inputs, so the server draws while "
+                          "the show waits for the display), render-process-import-here (a new server's images imported and freed by the render thread, in a frame), render-process-no-touch (not used once on the import thread), render-process-free-here (freed by the render thread), render-process-sync (the same, every frame a round trip), render-process-one-image (pipelined through one "
                           "image: each request waits for the show's read of the frame before), render-process-in-turn (tiered: the optimized build starts once the quick tier is on screen), render-process+NAME=VALUE[+..] (render-process, these in its servers' "
                           "environment: SDFVJ_SERVER_PREPARE=0, no Vulkan device made ahead), render-process-shm (by shared memory always); comma-separated, rounds interleaved; "
                           "--first-frame: warm = with the loader")

@@ -39,6 +39,20 @@ void RenderProcess::Stop() {
     fds_.clear();
     if (pid_ > 0 && !killed_) ::kill(pid_, SIGTERM);   // it may be in a compile of seconds; it has nothing to save
     killed_ = true;
+    if (importing_ && importing_->Abandon()) {   // done: its textures are ours to free (below)
+        for (int i = 0; i < 2; ++i) {
+            textures_[i] = importing_->textures[i];
+            memories_[i] = importing_->memories[i];
+        }
+    }
+    importing_.reset();
+    if (importer_ && importer_->Settings().freeThere && textures_[0] && transport_ == FrameTransport::VkMemory) {
+        // Freed on the import thread once this context's reads of them are done.
+        GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        glFlush();
+        importer_->Free(textures_, memories_, fence);
+        for (int i = 0; i < 2; ++i) textures_[i] = memories_[i] = 0;
+    }
     for (int i = 0; i < 2; ++i) {
         if (reads_[i]) glDeleteSync((GLsync)reads_[i]);
         reads_[i] = nullptr;
@@ -216,6 +230,8 @@ bool RenderProcess::TakeMessage(uint32_t* type, std::string* payload) {
 }
 
 bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
+    const auto start = Clock::now();
+    if (importing_) return FinishImport(ready, timeoutMs);
     uint32_t type = 0;
     std::string payload;
     if (!Answer(&type, &payload, timeoutMs)) {
@@ -231,12 +247,36 @@ bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
         return true;
     }
     const auto t0 = Clock::now();
-    if (!Import(payload, ready)) ready->ok = false;
+    bool pending = false;
+    if (!Import(payload, ready, &pending)) ready->ok = false;
     ready->importMs = MsSince(t0);
+    if (!pending) return true;
+    importingReady_ = *ready;
+    return FinishImport(ready, timeoutMs - (int)MsSince(start));
+}
+
+bool RenderProcess::FinishImport(Ready* ready, int timeoutMs) {
+    if (!importing_->WaitDone(timeoutMs)) return false;
+    const auto t0 = Clock::now();
+    ImportThread::Job& job = *importing_;
+    *ready = importingReady_;
+    ready->importThreadMs = job.ms;
+    for (int i = 0; i < 2; ++i) {
+        textures_[i] = job.textures[i];
+        memories_[i] = job.memories[i];
+    }
+    importing_.reset();
+    texture_ = textures_[0];
+    images_ = textures_[1] ? 2 : 1;
+    if (!texture_) {
+        ready->ok = false;
+        ready->text = "the render process's image could not be imported here: " + job.why;
+    }
+    ready->importMs += MsSince(t0);
     return true;
 }
 
-bool RenderProcess::Import(const std::string& payload, Ready* ready) {
+bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pending) {
     size_t at = 0;
     uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0;
     uint64_t modifier = 0, memorySize = 0;
@@ -264,6 +304,16 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready) {
     const int fd = fds_.front();
     fds_.erase(fds_.begin());
     shown_ = 0;
+    if (transport_ == FrameTransport::VkMemory && importer_) {
+        int fd2 = -1;
+        if (images == 2) {
+            fd2 = fds_.front();
+            fds_.erase(fds_.begin());
+        }
+        importing_ = importer_->Import(fd, fd2, (int)images, memorySize, width_, height_);
+        *pending = true;
+        return true;
+    }
     if (transport_ == FrameTransport::VkMemory) {
         std::string why;
         textures_[0] = ImportSharedTexture(fd, memorySize, width_, height_, &memories_[0], &why);

@@ -53,9 +53,11 @@
 #include <sys/types.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "render/import_thread.h"
 #include "render/render.h"
 
 namespace sdfvj {
@@ -86,7 +88,8 @@ public:
         std::string text;                                  // the error, or a note (a transport refused)
         bool fromCache = false;                            // the program came from the program cache: nothing compiled
         double shareMs = 0;                                // in the server: the hand-over set up (images made, the first frame in)
-        double importMs = 0;                               // here: the answer read and its images imported (PollReady)
+        double importMs = 0;                               // here, the render thread: the answer read and its images imported (PollReady)
+        double importThreadMs = -1;                        // on the import thread (SetImporter): its imports; -1: none there
     };
     struct BuiltAhead {
         bool ok = false, fromCache = false;   // fromCache: it was there already
@@ -120,7 +123,12 @@ public:
     bool SetLiterals(const std::vector<float>& values);
     // True once the server answered Load (or died: then ready->ok is false). Never blocks; with
     // a timeout > 0 it waits up to that long. On success the frame is importable: Texture().
+    // With an importer (SetImporter), the GPU transport's images are imported on its thread: the
+    // answer is read in one call, and a later call (the next frame's) takes the textures.
     bool PollReady(Ready* ready, int timeoutMs = 0);
+    // The thread that imports this server's images (vkmem); null: the render thread does. Before Load.
+    void SetImporter(ImportThread* importer) { importer_ = importer; }
+    bool Importing() const { return importing_ != nullptr; }   // its images are on the import thread
     // One frame: sends the inputs, waits for the server (up to timeoutMs), makes the frame this
     // process's Texture(). False when the server died or timed out: the caller keeps what it had.
     bool DrawFrame(const FrameInputs& in, int timeoutMs = 5000) { return Request(in) && Collect(timeoutMs); }
@@ -148,7 +156,8 @@ private:
     bool Receive(int timeoutMs);                 // reads what arrived (fds too) into inbox_/fds_
     bool TakeMessage(uint32_t* type, std::string* payload);
     bool Answer(uint32_t* type, std::string* payload, int timeoutMs);   // false: none yet, or the server is gone
-    bool Import(const std::string& payload, Ready* ready);
+    bool Import(const std::string& payload, Ready* ready, bool* pending);
+    bool FinishImport(Ready* ready, int timeoutMs);
     void MarkDead();
     int fd_ = -1;
     pid_t pid_ = -1;
@@ -167,6 +176,9 @@ private:
     size_t shmBytes_ = 0;
     double lastServerMs_ = 0;
     bool outstanding_ = false;
+    ImportThread* importer_ = nullptr;
+    std::shared_ptr<ImportThread::Job> importing_;   // the images being imported there
+    Ready importingReady_;                           // the answer they came with
 };
 
 // The child's main: a headless context of its own, then Load and frames from `fd` until it closes.

@@ -30,6 +30,7 @@ ServerShow::~ServerShow() {
 
 std::unique_ptr<RenderProcess> ServerShow::Spawn(std::string* error) {
     auto p = std::make_unique<RenderProcess>();
+    p->SetImporter(importer_);
     if (!p->Start(error, "/proc/self/exe", env_)) return nullptr;
     return p;
 }

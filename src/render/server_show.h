@@ -43,6 +43,10 @@ public:
     // NAME=value entries over this process's environment for every server started from now on (a
     // bench's program cache folder, say). Before Start.
     void SetServerEnv(std::vector<std::string> env) { env_ = std::move(env); }
+    // The thread that imports each new server's images (render/import_thread.h), so that the frame
+    // that takes a server's answer does not import them. Before Start; it must outlive this show's
+    // frames (a job it has not done when a server is stopped is abandoned, not waited for).
+    void SetImporter(ImportThread* importer) { importer_ = importer; }
     // Tiered: the optimized build starts once the quick tier is on screen (or failed), not beside it,
     // so the quick build has the driver and the CPU to itself (bench reload --modes render-process-in-turn).
     void SetTiersInTurn(bool inTurn) { inTurn_ = inTurn; }
@@ -136,6 +140,7 @@ private:
     bool pipelined_, tiered_;
     bool inTurn_ = false, deferred_ = false;   // deferred_: the optimized build waits for the quick tier
     std::vector<std::string> env_;
+    ImportThread* importer_ = nullptr;
     std::unique_ptr<RenderProcess> onScreen_;
     ServerLoad onScreenLoad_, building_;
     Candidate next_, quick_{nullptr, true, false};

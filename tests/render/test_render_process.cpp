@@ -236,6 +236,74 @@ SceneInfo StartShow(ServerShow* show, const char* name) {
 
 }  // namespace
 
+TEST_CASE("render process: a new server's images are imported on a thread of their own, the render thread only takes the textures", "[render_process]") {
+    // `live --render-process` and bench reload's render-process: the frame that takes a new server's
+    // answer does not import its images (0.6-0.8 ms of a frame on the H200, session 19).
+    RequireGl();
+    SceneInfo midi, primitives;
+    std::string error;
+    REQUIRE(FindScene("midi", &midi, &error));
+    REQUIRE(FindScene("primitives", &primitives, &error));
+    // Never destroyed: this process's tests share the render context, and Mesa once crashed a later
+    // draw after a shared context went (cmd_bench_reload.cpp keeps its own to the end, too).
+    static HeadlessContext* shared = [] {
+        auto* c = new HeadlessContext;
+        std::string why;
+        return c->CreateShared(*TestContext(), &why, true) ? c : nullptr;
+    }();
+    REQUIRE(shared);
+    TestContext()->MakeCurrent();
+    ImportThread importer([] { return shared->MakeCurrent(); }, [] { shared->ReleaseCurrent(); });
+    REQUIRE(importer.Ok());
+    {
+        ServerShow show(FrameTransport::VkMemory, false, false);
+        show.SetImporter(&importer);
+        INFO(error);
+        REQUIRE(show.Start(ServerLoad{midi.path, true, {}, RenderPath::Compute, kW, kH}, &error));
+        if (show.Transport() != FrameTransport::VkMemory) {
+            WARN("no Vulkan-allocated image here (" << show.Note() << "): nothing to import on a thread");
+            return;
+        }
+        CHECK(importer.Imported() == 1);
+        CHECK(show.Shown().back().importThreadMs >= 0.0);
+        REQUIRE(show.Frame(Inputs(midi, 1.0)));
+        CHECK(CompareImages(ReadTexture(show.Texture()), RenderScene("midi", midi.effects, RenderPath::Compute, kW, kH, 1.0), 1).fractionOver == 0.0);
+
+        // A save's server: its images too, while the one on screen goes on.
+        REQUIRE(show.Load(ServerLoad{primitives.path, true, {}, RenderPath::Compute, kW, kH}, &error));
+        REQUIRE(PollUntilChange(&show, &error));
+        CHECK(importer.Imported() == 2);
+        REQUIRE(show.Frame(Inputs(primitives, 1.0)));
+        CHECK(CompareImages(ReadTexture(show.Texture()), RenderScene("primitives", primitives.effects, RenderPath::Compute, kW, kH, 1.0), 1)
+                  .fractionOver == 0.0);
+    }
+    // Both servers' images, the one a save replaced and the one on screen at the end, were freed on
+    // the thread (after the render context's reads of them), not by this one.
+    for (int i = 0; i < 5000 && importer.Freed() < 2; ++i) ::usleep(1000);
+    CHECK(importer.Freed() == 2);
+    // A server stopped while its images may still be on the thread: abandoned, freed there, and
+    // the next server's import works.
+    {
+        RenderProcess proc;
+        proc.SetImporter(&importer);
+        REQUIRE(proc.Start(&error));
+        REQUIRE(proc.Load(ServerLoad{midi.path, true, {}, RenderPath::Compute, kW, kH}, FrameTransport::VkMemory));
+        RenderProcess::Ready ready;
+        bool taken = false;
+        while (proc.Usable() && !(taken = proc.PollReady(&ready, 0)) && !proc.Importing()) ::usleep(200);
+        CHECK(proc.Usable());
+        CHECK((taken || proc.Importing()));   // the answer came: stopped (below) with its import on the thread, or done
+    }
+    RenderProcess proc;
+    proc.SetImporter(&importer);
+    const RenderProcess::Ready ready = StartAndLoad(&proc, midi.path, RenderPath::Compute, FrameTransport::VkMemory);
+    REQUIRE(ready.ok);
+    CHECK(ready.importThreadMs >= 0.0);
+    CHECK(importer.Imported() == 4);
+    REQUIRE(proc.DrawFrame(Inputs(midi, 2.0)));
+    CHECK(CompareImages(ReadTexture(proc.Texture()), RenderScene("midi", midi.effects, RenderPath::Compute, kW, kH, 2.0), 1).fractionOver == 0.0);
+}
+
 TEST_CASE("render process: a show's servers draw the variant a load asks for, and a failed build leaves the one on screen", "[render_process]") {
     ServerShow show(FrameTransport::VkMemory, false, false);
     const SceneInfo scene = StartShow(&show, "midi");
