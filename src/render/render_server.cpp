@@ -4,8 +4,13 @@
 #include <epoxy/gl.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
+#include <charconv>
 #include <cstdlib>
+#include <cstring>
 
 #include "render/compile_worker.h"
 #include "render/field_morph.h"
@@ -195,6 +200,19 @@ int RunRenderServer(int fd) {
         std::string ignored;   // a load that asks for the GPU says why there is none
         const char* prepare = std::getenv("SDFVJ_SERVER_PREPARE");   // 0: not (measured: bench reload --modes render-process+SDFVJ_SERVER_PREPARE=0)
         if (!prepare || std::string(prepare) != "0") SharedImage::Prepare(&ignored);   // the Vulkan device the images come from
+        // SDFVJ_SERVER_NICE=N (1-19): this thread's builds (the compile, and a software renderer's
+        // JIT at the first use) yield the CPU to the frames of the show and of the server on screen.
+        // Only this thread: the renderer's own worker threads (llvmpipe's rasterizer and compute
+        // pools), made with the context above, keep their priority, so the frames this server draws
+        // once on screen do too. Off by default: on llvmpipe (2 cores, 320x180) it cut the longest
+        // frame of a character reload by 16-20 % but made the build 26-44 % slower, and did nothing
+        // for midi's (docs/performance.md, "Session 20").
+        int nice = 0;
+        if (const char* e = std::getenv("SDFVJ_SERVER_NICE")) {
+            const char* end = e + std::strlen(e);
+            if (std::from_chars(e, end, nice).ptr != end || nice < 0 || nice > 19) nice = 0;
+        }
+        if (nice > 0) setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), nice);
     }
     SceneInfo scene;
     Program program;

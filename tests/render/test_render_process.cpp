@@ -11,11 +11,13 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 #include <signal.h>
+#include <sys/resource.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "app/effect_costs.h"
 #include "gl_fixture.h"
@@ -179,6 +181,39 @@ TEST_CASE("render process: on the GPU frames come in two images by turns, the fr
         REQUIRE(proc.DrawFrame(Inputs(scene, 1.0)));
         CHECK(proc.Texture() == first);
         CHECK(CompareImages(ReadTexture(proc.Texture()), at1, 1).fractionOver == 0.0);
+    }
+}
+
+TEST_CASE("render process: with SDFVJ_SERVER_NICE a server's own thread builds at a lower priority, the renderer's threads it draws with keep theirs", "[render_process]") {
+    // On a machine's shared cores a spare's compile (and llvmpipe's JIT at its first use) may yield
+    // to the frames of the server on screen and of the show (measured: a trade, so not by default).
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    const int base = ::getpriority(PRIO_PROCESS, 0);
+    auto niceOf = [](pid_t pid, const std::string& tid) {   // field 19 of /proc/PID/task/TID/stat
+        std::ifstream in("/proc/" + std::to_string(pid) + "/task/" + tid + "/stat");
+        std::string line((std::istreambuf_iterator<char>(in)), {});
+        std::istringstream rest(line.substr(line.rfind(')') + 2));
+        std::string field;
+        for (int i = 3; i <= 19 && rest >> field;) ++i;
+        return std::atoi(field.c_str());
+    };
+    for (const bool off : {false, true}) {
+        INFO((off ? "default" : "SDFVJ_SERVER_NICE=10"));
+        RenderProcess proc;
+        REQUIRE(StartAndLoad(&proc, scene.path, RenderPath::Fragment, FrameTransport::Shm,
+                             off ? std::vector<std::string>{} : std::vector<std::string>{"SDFVJ_SERVER_NICE=10"}).ok);
+        int own = -100, others = 0, lowest = 100;
+        for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(proc.Pid()) + "/task")) {
+            const std::string tid = task.path().filename().string();
+            const int n = niceOf(proc.Pid(), tid);
+            if (tid == std::to_string(proc.Pid())) own = n;
+            else ++others, lowest = std::min(lowest, n);
+        }
+        CHECK(own == (off ? base : std::min(base + 10, 19)));
+        REQUIRE(others > 0);   // the renderer's threads (llvmpipe's, a driver's)
+        CHECK(lowest == base);
     }
 }
 
