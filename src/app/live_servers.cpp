@@ -80,8 +80,9 @@ bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error)
     hash_ = buildingHash_;
     wantPrepare_ = literalTier_;
     const RenderProcess::Ready& r = show_.Shown().back();
-    std::fprintf(stderr, "sdfvj live: the scene is drawn by a render process (frames by %s%s; build %.0f ms, first use %.0f ms)\n",
-                 FrameTransportName(show_.Transport()), show_.Note().empty() ? "" : (": " + show_.Note()).c_str(), r.buildMs, r.useMs);
+    std::fprintf(stderr, "sdfvj live: the scene is drawn by a render process (frames by %s%s%s; build %.0f ms, first use %.0f ms)\n",
+                 FrameTransportName(show_.Transport()), show_.Note().empty() ? "" : (": " + show_.Note()).c_str(),
+                 r.importThreadMs >= 0 ? ", its images imported by a thread of their own" : "", r.buildMs, r.useMs);
     return true;
 }
 
