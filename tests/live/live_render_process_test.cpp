@@ -286,7 +286,7 @@ TEST_CASE("live render process: the variants an effect pad or a preset reaches a
     // build + first use is a fraction of the first program's, which compiled (a ratio, not a time).
     double firstBuild = 0, firstUse = 0, hitBuild = 0, hitUse = 0;
     REQUIRE(std::sscanf(log.c_str() + log.find("the scene is drawn by a render process"),
-                        "the scene is drawn by a render process (frames by %*[a-z-]; build %lf ms, first use %lf ms", &firstBuild, &firstUse) == 2);
+                        "the scene is drawn by a render process (frames by %*[^;]; build %lf ms, first use %lf ms", &firstBuild, &firstUse) == 2);
     show.Osc("/sdfvj/effect/ao", 1.0f);
     REQUIRE_LIVE(show, show.WaitForLog(" from the program cache, first use", 1, 60));
     const std::string after = show.Log();
