@@ -64,7 +64,6 @@ private:
     int w_ = 0, h_ = 0;
     double lastMs_ = 0;
     std::vector<double> pollMs_, collectMs_, blitMs_;   // each frame's parts on the render thread
-    double maxPollMs_ = 0, maxCollectMs_ = 0, maxBlitMs_ = 0;
 };
 
 }  // namespace sdfvj

@@ -66,7 +66,6 @@ void ImportThread::Free(const unsigned textures[2], const unsigned memories[2], 
         job->memories[i] = memories[i];
     }
     job->fence = fence;
-    job->abandoned = true;   // nobody waits for it
     {
         std::lock_guard<std::mutex> lock(mutex_);
         queue_.push_back(job);

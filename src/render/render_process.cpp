@@ -303,13 +303,13 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
     }
     const int fd = fds_.front();
     fds_.erase(fds_.begin());
+    int fd2 = -1;   // the second Vulkan image (images is 2 only on vkmem)
+    if (images == 2) {
+        fd2 = fds_.front();
+        fds_.erase(fds_.begin());
+    }
     shown_ = 0;
     if (transport_ == FrameTransport::VkMemory && importer_) {
-        int fd2 = -1;
-        if (images == 2) {
-            fd2 = fds_.front();
-            fds_.erase(fds_.begin());
-        }
         importing_ = importer_->Import(fd, fd2, (int)images, memorySize, width_, height_);
         *pending = true;
         return true;
@@ -317,11 +317,8 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
     if (transport_ == FrameTransport::VkMemory) {
         std::string why;
         textures_[0] = ImportSharedTexture(fd, memorySize, width_, height_, &memories_[0], &why);
-        if (textures_[0] && images == 2) {
-            const int fd2 = fds_.front();
-            fds_.erase(fds_.begin());
-            textures_[1] = ImportSharedTexture(fd2, memorySize, width_, height_, &memories_[1], &why);
-        }
+        if (fd2 >= 0 && textures_[0]) textures_[1] = ImportSharedTexture(fd2, memorySize, width_, height_, &memories_[1], &why);
+        else if (fd2 >= 0) ::close(fd2);
         texture_ = textures_[0];
         images_ = textures_[1] ? 2 : 1;
         if (!textures_[0] || (images == 2 && !textures_[1])) {
