@@ -5,7 +5,10 @@
 //     the atomic counters. Nothing else.
 //   - liblo server thread: DecodeOscMessage, the queue, the counters, `lastOscProblem` (mutex).
 //   - watcher thread: Poll() every 250 ms (port list, connections) and the once-a-second log.
-//   - caller (render thread): StatusLines(), SendFeedback().
+//   - caller (render thread): StatusLines(), OpenMidiPorts(), SendFeedback(). These read a copy
+//     published under `shownMutex`, never `mutex`: the watcher holds `mutex` across JACK calls
+//     (jack_get_ports, jack_connect), which wait on the JACK server and took 1.3 s once while a
+//     controller was replugged under load; a frame must not wait with them.
 // On JACK there is one input port (the virtual port, `sdfvj:sdfvj`); hardware and software
 // sources are connected to it with jack_connect, so a source is never heard twice and a
 // replugged controller is reconnected at the next poll. On ALSA each source gets its own
@@ -25,56 +28,11 @@
 #include <thread>
 
 #include "control/control.h"
+#include "control/midi_ports.h"
 
 namespace sdfvj {
 
 namespace {
-
-void SilentJack(const char*) {}
-
-// True when a JACK server answers. Opening a client is the only reliable test
-// (`jack_wait -c` exits 0 with no server).
-bool JackServerRunning() {
-    static bool silenced = [] {
-        jack_set_error_function(SilentJack);
-        jack_set_info_function(SilentJack);
-        return true;
-    }();
-    (void)silenced;
-    jack_status_t st;
-    jack_client_t* c = jack_client_open("sdfvj-probe", JackNoStartServer, &st);
-    if (!c) return false;
-    jack_client_close(c);
-    return true;
-}
-
-bool AlsaSequencerPresent() { return access("/dev/snd/seq", R_OK | W_OK) == 0; }
-
-std::string Lower(std::string s) {
-    for (char& c : s) c = char(std::tolower((unsigned char)c));
-    return s;
-}
-
-bool IsIndex(const std::string& s) {
-    return !s.empty() && s.size() < 6 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-// Which of `names` the --midi option selects.
-std::vector<std::string> SelectPorts(const std::vector<std::string>& names, const std::string& want) {
-    std::vector<std::string> out;
-    if (want.empty()) return names;
-    if (IsIndex(want)) {
-        size_t i = size_t(std::stoi(want));
-        if (i < names.size()) out.push_back(names[i]);
-        return out;
-    }
-    std::string w = Lower(want);
-    for (const std::string& n : names)
-        if (Lower(n).find(w) != std::string::npos) out.push_back(n);
-    return out;
-}
-
-void QuietRtMidiError(RtMidiError::Type, const std::string&, void*) {}
 
 thread_local InputSession::Impl* tlOscSession = nullptr;  // set on the liblo thread at start
 thread_local std::string tlOscCreateError;                 // liblo errors while creating the server
@@ -107,6 +65,20 @@ struct InputSession::Impl {
     std::vector<std::string> gone;                 // sources we listened to that vanished (unplugged)
     std::string midiStatus;
     int pollsWithoutMidi = 0;
+
+    // What the render thread reads: copies of midiStatus, connected and oscStatus, published by
+    // whoever holds `mutex` after it changed them (Publish), guarded by this lock alone.
+    mutable std::mutex shownMutex;
+    std::string shownMidi, shownOsc;
+    std::vector<std::string> shownConnected;
+
+    // Caller holds `mutex`.
+    void Publish() {
+        std::lock_guard<std::mutex> g(shownMutex);
+        shownMidi = midiStatus;
+        shownOsc = oscStatus;
+        shownConnected = connected;
+    }
 
     // OSC.
     lo_server_thread osc = nullptr;
@@ -388,6 +360,7 @@ struct InputSession::Impl {
             {
                 std::lock_guard<std::mutex> g(mutex);
                 Reconnect();
+                Publish();
             }
             auto now = steady_clock::now();
             if (opt.log && duration<double>(now - lastLog).count() >= opt.logInterval) {
@@ -418,11 +391,10 @@ struct InputSession::Impl {
 
 InputSession::InputSession(const InputOptions& opt, EventQueue& queue, std::function<double()> clock)
     : impl_(std::make_unique<Impl>(opt, queue, std::move(clock))) {
-    {
-        std::lock_guard<std::mutex> g(impl_->mutex);
-        impl_->StartMidi();
-    }
+    std::lock_guard<std::mutex> g(impl_->mutex);
+    impl_->StartMidi();
     impl_->StartOsc();
+    impl_->Publish();
     impl_->watcher = std::thread([this] { impl_->Watch(); });
 }
 
@@ -444,8 +416,8 @@ InputSession::~InputSession() {
 }
 
 std::vector<std::string> InputSession::StatusLines() const {
-    std::lock_guard<std::mutex> g(impl_->mutex);
-    return {impl_->midiStatus, impl_->oscStatus};
+    std::lock_guard<std::mutex> g(impl_->shownMutex);
+    return {impl_->shownMidi, impl_->shownOsc};
 }
 
 int InputSession::OscPort() const { return impl_->oscPort; }
@@ -453,11 +425,12 @@ int InputSession::OscPort() const { return impl_->oscPort; }
 void InputSession::Poll() {
     std::lock_guard<std::mutex> g(impl_->mutex);
     impl_->Reconnect();
+    impl_->Publish();
 }
 
 std::vector<std::string> InputSession::OpenMidiPorts() const {
-    std::lock_guard<std::mutex> g(impl_->mutex);
-    return impl_->connected;
+    std::lock_guard<std::mutex> g(impl_->shownMutex);
+    return impl_->shownConnected;
 }
 
 const InputCounters& InputSession::Counters() const { return impl_->counters; }
@@ -471,22 +444,6 @@ void InputSession::SendFeedback(const ParamState& params, const std::string& pre
         lo_send(impl_->feedback, ("/sdfvj/param/" + d.name).c_str(), "f", x);
     }
     if (!presetName.empty()) lo_send(impl_->feedback, "/sdfvj/preset", "s", presetName.c_str());
-}
-
-std::vector<std::string> ListMidiPorts() {
-    std::vector<std::string> out;
-    try {
-        RtMidi::Api api;
-        if (JackServerRunning()) api = RtMidi::UNIX_JACK;
-        else if (AlsaSequencerPresent()) api = RtMidi::LINUX_ALSA;
-        else return out;
-        RtMidiIn probe(api, "sdfvj-list");
-        probe.setErrorCallback(QuietRtMidiError, nullptr);
-        for (unsigned i = 0; i < probe.getPortCount(); ++i)
-            out.push_back(std::to_string(i) + ": " + probe.getPortName(i));
-    } catch (const std::exception&) {
-    }
-    return out;
 }
 
 }  // namespace sdfvj

@@ -4,15 +4,23 @@
 #include <rtmidi/RtMidi.h>
 
 #include "midi_out_safe.h"
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <thread>
 
 #include <catch2/catch.hpp>
 
 #include "automation/automation.h"
 #include "test_util.h"
+
+extern char** environ;
 
 using namespace sdfvj;
 using namespace sdfvj::test;
@@ -284,6 +292,65 @@ TEST_CASE("midi replug: a controller port that vanishes and returns is heard aga
         CHECK(status().find(dev) != std::string::npos);
         CHECK(status().find("gone") == std::string::npos);
     }
+}
+
+TEST_CASE("midi stalled server: a status read never waits for a JACK call the watcher is stuck in") {
+    // The stage case behind a 1.3 s frame in the soak: the watcher thread's jack_connect to a
+    // replugged controller waited on a busy JACK server while holding the session's lock, and the
+    // frame's status read waited with it. A private server of this test's own is frozen
+    // (SIGSTOP) right after a controller appears, so the watcher's jack_connect blocks until it
+    // is thawed; every status read meanwhile must return at once.
+    const std::string server = Unique("sdfvj-stall");
+    std::vector<std::string> args = {"jackd", "-n", server, "--no-realtime", "-d", "dummy", "-r", "48000", "-p", "256"};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    pid_t jackd = 0;
+    REQUIRE(posix_spawnp(&jackd, "jackd", &fa, nullptr, argv.data(), environ) == 0);
+    posix_spawn_file_actions_destroy(&fa);
+    struct Reap {
+        pid_t pid;
+        ~Reap() { kill(pid, SIGCONT); kill(pid, SIGTERM); waitpid(pid, nullptr, 0); }
+    } reap{jackd};
+    setenv("JACK_DEFAULT_SERVER", server.c_str(), 1);   // this process's clients use it
+    REQUIRE(WaitFor([&] { return std::system(("jack_lsp -s " + server + " >/dev/null 2>&1").c_str()) == 0; }, 10.0));
+
+    const std::string dev = Unique("stall-controller");
+    MidiRig r(dev, Unique("sdfvj-stall-in"));
+    auto status = [&] { return r.session->StatusLines()[0]; };
+    INFO(status());
+    REQUIRE(status().rfind("MIDI (JACK)", 0) == 0);
+    REQUIRE(status().find("listening to") == std::string::npos);
+
+    auto out = MakeMidiOut(Unique("stall-device"));
+    out->openVirtualPort(dev);   // registered: the server has answered
+    REQUIRE(kill(jackd, SIGSTOP) == 0);
+    const double frozen = Now();
+    std::atomic<double> thawed{0.0};
+    std::thread thaw([&] {   // its own thread: a status read that does wait cannot hang the test
+        std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+        kill(jackd, SIGCONT);
+        thawed = Now();
+    });
+    double longest = 0.0, heardWhileFrozen = -1.0;
+    while (Now() - frozen < 1.5) {   // a show's status reads, 200 a second
+        const double t0 = Now();
+        const std::string s = status();
+        longest = std::max(longest, Now() - t0);
+        if (heardWhileFrozen < 0.0 && thawed == 0.0 && s.find("listening to") != std::string::npos) heardWhileFrozen = Now() - frozen;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    thaw.join();
+    // The watcher really was stuck: it connected the controller only once the server ran again.
+    CHECK(heardWhileFrozen < 0.0);
+    REQUIRE(WaitFor([&] { return status().find("listening to") != std::string::npos; }, 5.0));
+    INFO("connected " << (Now() - thawed.load()) << " s after the thaw; longest status read " << longest * 1e3 << " ms");
+    CHECK(status().find(dev) != std::string::npos);
+    CHECK(longest < 0.1);
 }
 
 TEST_CASE("midi clock: start, 24 pulses a beat and stop through JACK reach the queue and set the tempo") {
