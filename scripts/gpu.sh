@@ -283,7 +283,9 @@ case "${1:-}" in
     # info` there, session 15's part of this name, is in docs/performance/nvidia-h200/s15/.)
     for s in ${S16_SCENES:-midi character}; do
       # S16_TIERED=on S16_MODES=process,render-process: the quick tier too (in a second server)
-      f="$out/reload_${s}_render_process${S16_TIERED:+_tiered_$S16_TIERED}.txt"
+      # S16_TAG=NAME: the file's name ends _NAME (a second run with another environment, say
+      # SDFVJ_CONTEXT_PRIORITY=high for the show's own context, keeps the first's file)
+      f="$out/reload_${s}_render_process${S16_TIERED:+_tiered_$S16_TIERED}${S16_TAG:+_$S16_TAG}.txt"
       timeout ${S16_TIMEOUT:-200} bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered ${S16_TIERED:-off} \
         --modes ${S16_MODES:-process,render-process,render-process-sync,render-process-shm} --driver-cache off --rounds ${S16_ROUNDS:-3} > "$f" 2>&1 || true
       grep -h -A6 'modes side by side' "$f" || tail -5 "$f"

@@ -65,7 +65,7 @@ int RunInfo() {
         Line(e, Yes(epoxy_has_gl_extension(e)));
     for (const char* e : {"EGL_KHR_image_base", "EGL_KHR_gl_texture_2D_image", "EGL_MESA_image_dma_buf_export",
                           "EGL_EXT_image_dma_buf_import", "EGL_KHR_fence_sync", "EGL_ANDROID_native_fence_sync",
-                          "EGL_KHR_stream", "EGL_KHR_stream_cross_process_fd"})
+                          "EGL_KHR_stream", "EGL_KHR_stream_cross_process_fd", "EGL_IMG_context_priority"})
         Line(e, Yes(gl.HasEglExtension(e)));
     std::printf("Shader disk caches (as this environment sets them):\n");
     Line("MESA_SHADER_CACHE_DISABLE", Env("MESA_SHADER_CACHE_DISABLE"));

@@ -2,14 +2,34 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <cstdlib>
+
 #include "render/render.h"
 
 namespace sdfvj {
 
 namespace {
 
+// SDFVJ_CONTEXT_PRIORITY=low|medium|high: the EGL_IMG_context_priority level to ask for (0: none
+// asked, the driver's default). A render server's spares can draw at low priority so the show's
+// own frames go first on a GPU both use (bench reload --modes render-process+SDFVJ_CONTEXT_PRIORITY=low).
+EGLint AskedPriority(std::string* name) {
+    const char* e = std::getenv("SDFVJ_CONTEXT_PRIORITY");
+    *name = e ? e : "";
+    if (*name == "low") return EGL_CONTEXT_PRIORITY_LOW_IMG;
+    if (*name == "medium") return EGL_CONTEXT_PRIORITY_MEDIUM_IMG;
+    if (*name == "high") return EGL_CONTEXT_PRIORITY_HIGH_IMG;
+    return 0;
+}
+
+const char* PriorityName(EGLint level) {
+    return level == EGL_CONTEXT_PRIORITY_LOW_IMG ? "low" : level == EGL_CONTEXT_PRIORITY_MEDIUM_IMG ? "medium"
+         : level == EGL_CONTEXT_PRIORITY_HIGH_IMG ? "high" : "unknown";
+}
+
 // Tries one display: initialise, pick a config-less GL 4.5 core context, make it current.
-bool TryDisplay(EGLDisplay dpy, EGLContext* ctx, std::string* why) {
+// `priority`: what it says about SDFVJ_CONTEXT_PRIORITY (empty when not set).
+bool TryDisplay(EGLDisplay dpy, EGLContext* ctx, std::string* why, std::string* priority) {
     if (dpy == EGL_NO_DISPLAY) { *why = "no display"; return false; }
     EGLint major = 0, minor = 0;
     if (!eglInitialize(dpy, &major, &minor)) { *why = "eglInitialize failed"; return false; }
@@ -18,10 +38,26 @@ bool TryDisplay(EGLDisplay dpy, EGLContext* ctx, std::string* why) {
     EGLConfig config = nullptr;
     EGLint count = 0;
     eglChooseConfig(dpy, configAttribs, &config, 1, &count);   // may be none: then config-less
-    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    std::string askedName;
+    const EGLint asked = AskedPriority(&askedName);
+    const bool offered = epoxy_has_egl_extension(dpy, "EGL_IMG_context_priority");
+    EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                           EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE, 0, EGL_NONE};
+    if (asked && offered) {
+        ctxAttribs[6] = EGL_CONTEXT_PRIORITY_LEVEL_IMG;
+        ctxAttribs[7] = asked;
+    }
     *ctx = eglCreateContext(dpy, count > 0 ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctxAttribs);
     if (*ctx == EGL_NO_CONTEXT) { *why = "no OpenGL 4.5 core context"; eglTerminate(dpy); return false; }
+    priority->clear();
+    if (!askedName.empty()) {
+        EGLint got = 0;
+        if (!asked) *priority = "context priority '" + askedName + "' ignored, expected low, medium or high";
+        else if (!offered) *priority = "context priority " + askedName + " asked, the driver offers none (no EGL_IMG_context_priority)";
+        else if (eglQueryContext(dpy, *ctx, EGL_CONTEXT_PRIORITY_LEVEL_IMG, &got))
+            *priority = std::string("context priority ") + PriorityName(got) + " (asked " + askedName + ")";
+        else *priority = "context priority " + askedName + " asked, the driver does not say what it gave";
+    }
     if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, *ctx)) {
         *why = "eglMakeCurrent without a surface failed";
         eglDestroyContext(dpy, *ctx);
@@ -37,12 +73,12 @@ bool HeadlessContext::Create(std::string* error) {
     std::string tried;
     EGLContext ctx = EGL_NO_CONTEXT;
     auto attempt = [&](const char* name, EGLDisplay dpy) {
-        std::string why;
-        if (TryDisplay(dpy, &ctx, &why)) {
+        std::string why, priority;
+        if (TryDisplay(dpy, &ctx, &why, &priority)) {
             display_ = dpy;
             context_ = ctx;
             description_ = std::string(name) + ": " + (const char*)glGetString(GL_RENDERER) + ", " +
-                           (const char*)glGetString(GL_VERSION);
+                           (const char*)glGetString(GL_VERSION) + (priority.empty() ? "" : "; " + priority);
             return true;
         }
         tried += std::string(tried.empty() ? "" : "; ") + name + ": " + why;

@@ -195,6 +195,8 @@ int RunRenderServer(int fd) {
     HeadlessContext gl;
     std::string glError;
     const bool glOk = gl.Create(&glError);
+    if (glOk && std::getenv("SDFVJ_CONTEXT_PRIORITY"))   // what the driver gave (headless.cpp)
+        std::fprintf(stderr, "sdfvj render-server: %s\n", gl.Description().c_str());
     if (glOk) {   // a spare does these while it waits, off the save's path
         WarmCompiler();
         std::string ignored;   // a load that asks for the GPU says why there is none

@@ -191,3 +191,26 @@ TEST_CASE("literals: every shipped scene's lifted program compiles and draws the
     }
 }
 
+
+TEST_CASE("headless context: SDFVJ_CONTEXT_PRIORITY asks the driver for a priority, says what it got, and the context still renders") {
+    // A word that is not a level is named and ignored (this context is gone before the test's own).
+    setenv("SDFVJ_CONTEXT_PRIORITY", "urgent", 1);
+    {
+        HeadlessContext bogus;
+        std::string error;
+        REQUIRE(bogus.Create(&error));
+        INFO(bogus.Description());
+        CHECK(bogus.Description().find("context priority 'urgent' ignored, expected low, medium or high") != std::string::npos);
+    }
+    setenv("SDFVJ_CONTEXT_PRIORITY", "low", 1);
+    RequireGl();
+    const std::string d = TestContext()->Description();
+    unsetenv("SDFVJ_CONTEXT_PRIORITY");
+    INFO(d);
+    // A driver with EGL_IMG_context_priority (NVIDIA's) says the level it gave; one without
+    // (llvmpipe) says so, and the context is made without asking.
+    if (TestContext()->HasEglExtension("EGL_IMG_context_priority")) CHECK(d.find("(asked low)") != std::string::npos);
+    else CHECK(d.find("context priority low asked, the driver offers none") != std::string::npos);
+    const Image img = RenderScene("midi", EffectSet{}, RenderPath::Fragment, 64, 36);
+    CHECK(MeanLuma(img, 0.0, 0.0, 1.0, 1.0) > 5.0);
+}
