@@ -1,5 +1,7 @@
 #include "app/bench_adopt.h"
 
+#include <chrono>
+
 #include "scene/scene.h"
 #include "shader/shader.h"
 
@@ -24,11 +26,15 @@ void PresentTarget::Create(int width, int height) {
 }
 
 void PresentTarget::Blit(unsigned sharedTexture) {
+    attachMs_ = 0;
     if (readTex_ != sharedTexture) {   // a framebuffer here that reads the other context's texture
+        const auto t0 = std::chrono::steady_clock::now();
         if (!readFbo_) glGenFramebuffers(1, &readFbo_);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
         glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, sharedTexture, 0);
+        glCheckFramebufferStatus(GL_READ_FRAMEBUFFER);   // its validation here, timed with the attach
         readTex_ = sharedTexture;
+        attachMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);

@@ -32,8 +32,12 @@ public:
     ~PresentTarget();   // the render context must be current
     void Create(int width, int height);
     void Blit(unsigned sharedTexture);
+    // The last Blit's attach of a texture it had not read the frame before (glFramebufferTexture2D
+    // and glCheckFramebufferStatus, on the CPU), 0 when it read the same one again.
+    double LastAttachMs() const { return attachMs_; }
 private:
     GLuint tex_ = 0, fbo_ = 0, readFbo_ = 0, readTex_ = 0;
+    double attachMs_ = 0;
     int w_ = 0, h_ = 0;
 };
 

@@ -46,6 +46,7 @@ bool RenderProcessRun::Update(const std::vector<std::string>& changed, const std
     const bool swapped = servers_.Poll(error);
     pollMs_.push_back(MsSince(t0));
     if (!swapped) return false;
+    justSwapped_ = true;
     const RenderProcess::Ready& r = servers_.Shown().back();
     lastMs_ = r.buildMs + r.useMs + r.firstFrameMs;
     return true;
@@ -58,8 +59,15 @@ void RenderProcessRun::Draw(const FrameInputs& in) {
     if (!ok) return;   // the last frame stays on screen
     t0 = Clock::now();
     present_->Blit(servers_.Texture());
+    const double blit = MsSince(t0);
     servers_.AfterRead(in);
     blitMs_.push_back(MsSince(t0));
+    if (justSwapped_) {
+        firstAttachMs_.push_back(present_->LastAttachMs());
+        firstBlitMs_.push_back(blit - present_->LastAttachMs());
+        firstRequestMs_.push_back(blitMs_.back() - blit);
+        justSwapped_ = false;
+    }
 }
 
 std::string RenderProcessRun::Details() const {
@@ -89,6 +97,10 @@ std::string RenderProcessRun::Details() const {
     if (servers_.FailedFrames()) line += " frames the server did not deliver: " + std::to_string(servers_.FailedFrames());
     std::snprintf(buf, sizeof buf, "\nthe show's frames, medians: poll %.3f ms, collect %.3f ms, blit + request %.3f ms (then glFinish); largest: %.3f, %.3f, %.3f ms",
                   MedianMs(pollMs_), MedianMs(collectMs_), MedianMs(blitMs_), Largest(pollMs_), Largest(collectMs_), Largest(blitMs_));
+    line += buf;
+    std::snprintf(buf, sizeof buf, "\nthe first frame after each swap, medians: attach %.3f ms, blit %.3f ms, read fence + request %.3f ms; largest: %.3f, %.3f, %.3f ms",
+                  MedianMs(firstAttachMs_), MedianMs(firstBlitMs_), MedianMs(firstRequestMs_), Largest(firstAttachMs_), Largest(firstBlitMs_),
+                  Largest(firstRequestMs_));
     line += buf;
     return line;
 }

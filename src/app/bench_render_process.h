@@ -64,6 +64,10 @@ private:
     int w_ = 0, h_ = 0;
     double lastMs_ = 0;
     std::vector<double> pollMs_, collectMs_, blitMs_;   // each frame's parts on the render thread
+    // The first frame after each swap, on the render thread: the new image's attach, the blit's
+    // submission, the read fence + next request (what makes a reload's longest frame, session 21)
+    std::vector<double> firstAttachMs_, firstBlitMs_, firstRequestMs_;
+    bool justSwapped_ = false;
 };
 
 }  // namespace sdfvj
