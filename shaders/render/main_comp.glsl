@@ -28,6 +28,7 @@ layout(rgba8, binding = 0) uniform writeonly image2D u_output;
 #endif
 layout(r32f, binding = 1) uniform image2D u_coneStart;
 uniform int u_conePass;
+uniform int u_rowOffset;   // the frame drawn in strips (FrameRenderer::SetStrips): the strip's first row
 const int CONE_TILE = 8;
 
 void main() {
@@ -48,8 +49,9 @@ void main() {
 #endif
         return;
     }
+    pixel.y += u_rowOffset;
     if (pixel.x >= int(u_resolution.x) || pixel.y >= int(u_resolution.y)) return;
-    vec2 fragCoord = vec2(gl_GlobalInvocationID.xy) + 0.5;
+    vec2 fragCoord = vec2(pixel) + 0.5;
     float tStart = u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
     imageStore(u_output, pixel, renderPixel(fragCoord, tStart));
 }

@@ -124,7 +124,13 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
         p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
-        glDispatchCompute(((GLuint)width_ + gx - 1) / gx, ((GLuint)height_ + gy - 1) / gy, 1);
+        // Strips of whole work-groups (main_comp.glsl adds u_rowOffset to each invocation's row).
+        const GLuint rows = (GLuint)height_, perStrip = ((rows + (GLuint)strips_ - 1) / (GLuint)strips_ + gy - 1) / gy * gy;
+        for (GLuint y0 = 0; y0 < rows; y0 += perStrip) {
+            p.Set("u_rowOffset", (float)y0);
+            glDispatchCompute(((GLuint)width_ + gx - 1) / gx, (std::min(perStrip, rows - y0) + gy - 1) / gy, 1);
+            if (strips_ > 1) glFinish();
+        }
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_);

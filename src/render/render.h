@@ -229,6 +229,10 @@ public:
     // and a wall clock on llvmpipe, whose timer queries are meaningless.
     void Draw(const Program& program, const SceneInfo& scene, const FrameInputs& in, bool timeGpu = false);
     double LastGpuMs() const { return lastGpuMs_; }
+    // Compute path: the frame's dispatch split into `n` horizontal strips with a glFinish after
+    // each (1: one dispatch, the default). The same pixels; the GPU is free between strips for
+    // another process's work (a render server's first frame while the show's frames go on).
+    void SetStrips(int n) { strips_ = n < 1 ? 1 : n; }
     // RGBA rows, top row first.
     std::vector<uint8_t> ReadPixels() const;
     // RGBA32F rows of a float target, BOTTOM row first (row y is fragCoord.y = y + 0.5).
@@ -242,6 +246,7 @@ private:
     unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
     unsigned coneTexture_ = 0;   // r32f, one texel per 8x8 tile: the cone pre-pass's start distances
     double lastGpuMs_ = 0.0;
+    int strips_ = 1;
 };
 
 // Mixes two rendered frames (FrameRenderer textures of one size) into a target framebuffer

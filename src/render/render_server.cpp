@@ -188,6 +188,21 @@ bool BuildLoad(const LoadMessage& m, SceneInfo* scene, SceneInfo* from, Program*
     return program->Build(src, m.path, error);
 }
 
+// SDFVJ_SERVER_STRIPS=N (1-64): a server's first frame of a program (and a draw ahead) in N strips
+// with a wait after each, so the show's frames, drawn meanwhile on the same GPU, are not queued
+// behind one whole frame's dispatch (bench reload --modes render-process+SDFVJ_SERVER_STRIPS=8).
+int FirstFrameStrips() {
+    static const int strips = [] {
+        int n = 1;
+        if (const char* e = std::getenv("SDFVJ_SERVER_STRIPS")) {
+            const char* end = e + std::strlen(e);
+            if (std::from_chars(e, end, n).ptr != end || n < 1 || n > 64) n = 1;
+        }
+        return n;
+    }();
+    return strips;
+}
+
 }  // namespace
 
 int RunRenderServer(int fd) {
@@ -303,6 +318,7 @@ int RunRenderServer(int fd) {
                 FrameRenderer target;
                 FrameInputs in;
                 for (const ParamDecl& d : aheadScene.params) in.params.emplace_back(d.name, d.defaultValue);
+                target.SetStrips(FirstFrameStrips());
                 if (target.Resize(w, h, &error)) target.Draw(ahead, aheadScene, in);
                 error.clear();
                 glFinish();
@@ -328,7 +344,9 @@ int RunRenderServer(int fd) {
             glFinish();
             useMs = MsSince(t0);
             t0 = Clock::now();
+            fr.SetStrips(FirstFrameStrips());
             fr.Draw(program, frameScene(in), in);
+            fr.SetStrips(1);
             glFinish();
             frameMs = MsSince(t0);
             t0 = Clock::now();

@@ -29,7 +29,7 @@ void RequireGl() {
 }
 
 Image RenderScene(const std::string& sceneName, const EffectSet& effects, RenderPath path, int width, int height,
-                  double time, const std::vector<std::pair<std::string, float>>& params, const Quality& quality) {
+                  double time, const std::vector<std::pair<std::string, float>>& params, const Quality& quality, int strips) {
     RequireGl();
     SceneInfo scene;
     std::string error;
@@ -48,6 +48,7 @@ Image RenderScene(const std::string& sceneName, const EffectSet& effects, Render
     for (auto& [n, v] : in.params)
         for (const auto& [pn, pv] : params)
             if (n == pn) v = pv;
+    fr.SetStrips(strips);
     fr.Draw(prog, scene, in);
     return Image{width, height, fr.ReadPixels()};
 }

@@ -19,10 +19,11 @@ struct Image {
     std::vector<uint8_t> rgba;   // top row first
 };
 
-// Renders one frame of a scene with an effect set on a path. FAILs on compile errors.
+// Renders one frame of a scene with an effect set on a path. FAILs on compile errors. `strips`:
+// FrameRenderer::SetStrips (the compute path's frame in horizontal strips).
 Image RenderScene(const std::string& scene, const EffectSet& effects, RenderPath path, int width, int height,
                   double time = 1.0, const std::vector<std::pair<std::string, float>>& params = {},
-                  const Quality& quality = {});
+                  const Quality& quality = {}, int strips = 1);
 
 bool LoadPng(const std::string& path, Image* out);
 bool SavePng(const std::string& path, const Image& img);
