@@ -4,23 +4,19 @@
 #include <rtmidi/RtMidi.h>
 
 #include "midi_out_safe.h"
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <thread>
 
 #include <catch2/catch.hpp>
 
 #include "automation/automation.h"
 #include "test_util.h"
-
-extern char** environ;
 
 using namespace sdfvj;
 using namespace sdfvj::test;
@@ -301,23 +297,18 @@ TEST_CASE("midi stalled server: a status read never waits for a JACK call the wa
     // (SIGSTOP) right after a controller appears, so the watcher's jack_connect blocks until it
     // is thawed; every status read meanwhile must return at once.
     const std::string server = Unique("sdfvj-stall");
-    std::vector<std::string> args = {"jackd", "-n", server, "--no-realtime", "-d", "dummy", "-r", "48000", "-p", "256"};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    // Started and stopped by the jackd fixture's own script, under this test's server name.
+    const std::string fixture = std::string("sh ") + SDFVJ_JACKD_FIXTURE + " ", state = "/tmp/" + server;
+    REQUIRE(std::system((fixture + "start " + state + " " + server + " >/dev/null").c_str()) == 0);
+    std::ifstream pidFile(state + ".pid");
     pid_t jackd = 0;
-    REQUIRE(posix_spawnp(&jackd, "jackd", &fa, nullptr, argv.data(), environ) == 0);
-    posix_spawn_file_actions_destroy(&fa);
-    struct Reap {
+    REQUIRE((pidFile >> jackd));
+    struct Stop {
+        std::string command, log;
         pid_t pid;
-        ~Reap() { kill(pid, SIGCONT); kill(pid, SIGTERM); waitpid(pid, nullptr, 0); }
-    } reap{jackd};
+        ~Stop() { kill(pid, SIGCONT); (void)std::system(command.c_str()); std::remove(log.c_str()); }
+    } stop{fixture + "stop " + state + " " + server + " >/dev/null", state + ".log", jackd};
     setenv("JACK_DEFAULT_SERVER", server.c_str(), 1);   // this process's clients use it
-    REQUIRE(WaitFor([&] { return std::system(("jack_lsp -s " + server + " >/dev/null 2>&1").c_str()) == 0; }, 10.0));
 
     const std::string dev = Unique("stall-controller");
     MidiRig r(dev, Unique("sdfvj-stall-in"));
