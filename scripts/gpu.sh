@@ -16,7 +16,7 @@
 #                                 render processes, cold against built ahead).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
-#                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13,
+#                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13, s22 (normals),
 #                                 s15b, s15c, define (DEFINE="NAME VALUE": every scene against a copy
 #                                 with it, frames and compiles); pending = adopt + field + cone.
 #
@@ -324,6 +324,24 @@ case "${1:-}" in
     cat "$out/define_frames.md" 2>/dev/null; grep -h drift "$out/define_frames.txt" || true
     [ "${DEFINE_RELOAD:-1}" = 0 ] || for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
       --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; grep -h '^median' "$out/define_reload_$s.txt" | cut -c1-200; done
+    rm -rf "$root"
+    fi
+    if [ "$part" = s22 ]; then
+    # Session 22, issue 13: normals by forward differences from the march's own value at the hit (3 map()
+    # calls) against the tetrahedron (4, the shipped scenes' choice) and central differences (6), every
+    # bounded scene (S22_SCENES) at 1080p and 4K full lighting, interleaved: copies whose header asks for
+    # "forward" (_forward) and "central" (_central).
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc=""
+    for s in ${S22_SCENES:-midi primitives character field50 field150}; do
+      for n in forward central; do
+        sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$n\"/" -e "s/\"NORMALS\": \"tetrahedron\"/\"NORMALS\": \"$n\"/" \
+          "shaders/scenes/$s.glsl" > "$root/shaders/scenes/${s}_$n.glsl"
+      done
+      sc="$sc $s ${s}_forward ${s}_central"
+    done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout 280 bash "$0" remote bench --scenes $sc --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 20 --warmup 5 --markdown "$out/s22_normals.md" --csv "$out/s22_normals.csv" > "$out/s22_normals.txt" 2>&1 || true
+    cat "$out/s22_normals.md" 2>/dev/null; grep -h drift "$out/s22_normals.txt" || true
     rm -rf "$root"
     fi
     if [ "$part" = s15b ]; then

@@ -42,6 +42,17 @@ vec3 calcNormalForward(vec3 p, float eps) {
                               PROBE_MAP(p + vec3(0.0f, 0.0f, eps)).w - d));
 }
 
+// Forward differences from d, the field's value at p where the caller already has it (a march
+// reads it at its hit): 3 map calls, one call site (a rolled loop).
+vec3 calcNormalForwardFrom(vec3 p, float eps, float d) {
+    vec3 n = vec3(0.0f);
+    for (int i = SDF_LOOP_ZERO; i < 3; i++) {   // +x, +y, +z
+        vec3 axis = vec3(i == 0 ? 1.0f : 0.0f, i == 1 ? 1.0f : 0.0f, i == 2 ? 1.0f : 0.0f);
+        n += axis * (PROBE_MAP(p + axis * eps).w - d);
+    }
+    return safeNormalize(n);
+}
+
 // Tetrahedron: 4 map calls at the corners of a tetrahedron, second-order-ish accurate.
 vec3 calcNormalTetra(vec3 p, float eps) {
     vec3 n = vec3(0.0f);

@@ -36,7 +36,7 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
                 if (map(ro + rd * m).w < hitEpsilon(m)) b = m; else a = m;
             }
             vec4 m = map(ro + rd * b);
-            return Hit(b, steps, true, vec3(m.x, m.y, m.z));
+            return Hit(b, steps, true, vec3(m.x, m.y, m.z), m.w);
         }
         prevT = t;
         t += max(u_fixedStep, 1e-4f);
@@ -67,12 +67,12 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
         if (d < hitEpsilon(t)) { stopped = true; break; }
         t += d * stepScale;
 #endif
-        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f), 0.0f);
     }
     // A hit, or out of steps short of the far plane (creeping along a surface: called a hit, as below).
     if (stopped || steps > 0.0f) {
         vec4 m = map(ro + rd * t);
-        return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+        return Hit(t, steps, true, vec3(m.x, m.y, m.z), m.w);
     }
 #else
     float stepScale = u_stepFactor / max(1.0f, sceneLipschitz());
@@ -92,28 +92,31 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
             stepLen -= omega * stepLen;   // back to the last point plus a plain step
             omega = 1.0f;
         } else {
-            if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+            if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z), m.w);
             stepLen = r * omega;
             prevR = abs(r);
         }
         t += stepLen;
-        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f), 0.0f);
     }
 #else
     for (int i = 0; i < maxSteps; i++) {
         steps += 1.0f;
         m = map(ro + rd * t);
-        if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+        if (m.w < hitEpsilon(t)) return Hit(t, steps, true, vec3(m.x, m.y, m.z), m.w);
         t += m.w * stepScale;
-        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f));
+        if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f), 0.0f);
     }
 #endif
     // Out of steps short of the far plane: the ray is creeping along a surface (grazing
     // silhouettes, a floor at the horizon, a heavily twisted field). Calling it a hit
     // avoids sky-coloured holes; DEBUG_VIEW 1 shows where it happens.
-    if (steps > 0.0f) return Hit(t, steps, true, vec3(m.x, m.y, m.z));
+    if (steps > 0.0f) {
+        m = map(ro + rd * t);   // (m was read one step back)
+        return Hit(t, steps, true, vec3(m.x, m.y, m.z), m.w);
+    }
 #endif
-    return Hit(u_maxDist, steps, false, vec3(0.0f));
+    return Hit(u_maxDist, steps, false, vec3(0.0f), 0.0f);
 }
 
 // (The C++ reference's whole-field march, scene_instance.inc marchWhole.)
@@ -140,7 +143,7 @@ Hit onGround(vec3 ro, vec3 rd, Hit h) {
     if (max(abs(g.x - h.albedo.x), max(abs(g.y - h.albedo.y), abs(g.z - h.albedo.z))) > 1e-4f) return h;
     float tg = -ro.y / rd.y;
     vec4 at = mapGround(ro + rd * tg);
-    return Hit(tg, h.steps, true, vec3(at.x, at.y, at.z));
+    return Hit(tg, h.steps, true, vec3(at.x, at.y, at.z), at.w);
 }
 #endif
 
@@ -177,10 +180,10 @@ Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
 #if SCENE_GROUND
     if (tGround <= u_maxDist) {   // the march found nothing before the floor, so the floor alone is there
         vec4 g = mapGround(ro + rd * tGround);
-        return Hit(tGround, steps + 1.0f, true, vec3(g.x, g.y, g.z));
+        return Hit(tGround, steps + 1.0f, true, vec3(g.x, g.y, g.z), g.w);
     }
 #endif
-    return Hit(u_maxDist, steps, false, vec3(0.0f));
+    return Hit(u_maxDist, steps, false, vec3(0.0f), 0.0f);
 #else
     return marchRange(ro, rd, tmin, u_maxDist, maxSteps);
 #endif

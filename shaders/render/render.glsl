@@ -195,6 +195,7 @@ struct Hit {
     float steps;   // map evaluations used
     bool hit;
     vec3 albedo;   // from map() at the hit
+    float d;       // map().w there: the field's value at the hit (forward normals start from it)
 };
 
 // Unit ray direction through a pixel for the look-at camera (vertical fov u_fov).
@@ -251,15 +252,26 @@ vec2 shadowRange(vec3 ro, vec3 rd, float tmin, float tmax, float k) {
 #endif
 }
 
-// Forward and tetrahedron (4 map() calls, not 6) sample at a tenth of central's offset: the same error.
-vec3 surfaceNormal(vec3 p, float t) {
+// Forward and tetrahedron sample at a tenth of central's offset: the same error (docs/accuracy.md).
+// d: the field's value at p, which the march read with the albedo; forward differences start from
+// it, so they take 3 map() calls (tetrahedron 4, central 6).
+vec3 surfaceNormal(vec3 p, float t, float d) {
     float eps = u_normalEps * max(1.0f, t);
 #if NORMALS == 1
-    return calcNormalForward(p, 0.1f * eps);
+    return calcNormalForwardFrom(p, 0.1f * eps, d);
 #elif NORMALS == 2
     return calcNormalTetra(p, 0.1f * eps);
 #else
     return calcNormalCentral(p, eps);
+#endif
+}
+
+// The same where the field's value at p is not at hand (one map() call more for forward).
+vec3 surfaceNormal(vec3 p, float t) {
+#if NORMALS == 1
+    return surfaceNormal(p, t, PROBE_MAP(p).w);
+#else
+    return surfaceNormal(p, t, 0.0f);
 #endif
 }
 
@@ -342,7 +354,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     for (int bounce = 0; bounce <= bounces; bounce++) {
         Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f, rayMaxSteps(bounce));
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
-        if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t);
+        if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t, h.d);
 #if DEBUG_VIEW == 1
         return vec4(heatmap(h.steps / max(float(u_maxSteps), 1.0f)), 1.0f);
 #elif DEBUG_VIEW == 2
@@ -378,7 +390,7 @@ vec4 pixelColor(vec3 display, vec2 fragCoord) { return vec4(display + vec3(dithe
 // tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
 vec4 renderFrom(vec2 fragCoord, float tStart) {
     callSceneSetup();
-    Hit none = Hit(0.0f, 0.0f, false, vec3(0.0f));
+    Hit none = Hit(0.0f, 0.0f, false, vec3(0.0f), 0.0f);
     vec4 c = traceRay(u_camPos, cameraRay(fragCoord), tStart, none, false);
 #if DEBUG_VIEW
     return c;

@@ -36,7 +36,12 @@ void PresentTarget::Blit(unsigned sharedTexture) {
         readTex_ = sharedTexture;
         attachMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+    Blit(sharedTexture, readFbo_, attachMs_);
+}
+
+void PresentTarget::Blit(unsigned, unsigned readFbo, double attachMs) {
+    attachMs_ = attachMs;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
     glBlitFramebuffer(0, 0, w_, h_, 0, 0, w_, h_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -32,6 +32,9 @@ public:
     ~PresentTarget();   // the render context must be current
     void Create(int width, int height);
     void Blit(unsigned sharedTexture);
+    // The same through readFbo, a framebuffer of this context that already reads it; attachMs: what
+    // getting it took (the caller's, reported as LastAttachMs).
+    void Blit(unsigned sharedTexture, unsigned readFbo, double attachMs);
     // The last Blit's attach of a texture it had not read the frame before (glFramebufferTexture2D
     // and glCheckFramebufferStatus, on the CPU), 0 when it read the same one again.
     double LastAttachMs() const { return attachMs_; }

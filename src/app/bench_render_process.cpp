@@ -58,7 +58,13 @@ void RenderProcessRun::Draw(const FrameInputs& in) {
     collectMs_.push_back(MsSince(t0));
     if (!ok) return;   // the last frame stays on screen
     t0 = Clock::now();
-    present_->Blit(servers_.Texture());
+    if (reattach_) {
+        present_->Blit(servers_.Texture());
+    } else {
+        const auto a0 = Clock::now();
+        const unsigned fbo = servers_.ReadFramebuffer();   // kept per image: attached at its first read only
+        present_->Blit(servers_.Texture(), fbo, MsSince(a0));
+    }
     const double blit = MsSince(t0);
     servers_.AfterRead(in);
     blitMs_.push_back(MsSince(t0));

@@ -51,6 +51,9 @@ public:
     std::string Details() const override;
     bool OnScreenQuick() const override { return servers_.OnScreenQuick(); }
     FrameTransport Transport() const { return servers_.Transport(); }
+    // render-process-reattach: each frame's image attached to one read framebuffer, as before session
+    // 22 (the two images alternate, so every frame attaches), not read through the one kept per image.
+    void SetReattach(bool on) { reattach_ = on; }
 
 private:
     // Declared before servers_: its servers are stopped (jobs abandoned) before the thread ends,
@@ -68,6 +71,7 @@ private:
     // submission, the read fence + next request (what makes a reload's longest frame, session 21)
     std::vector<double> firstAttachMs_, firstBlitMs_, firstRequestMs_;
     bool justSwapped_ = false;
+    bool reattach_ = false;
 };
 
 }  // namespace sdfvj

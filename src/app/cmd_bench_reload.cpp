@@ -180,7 +180,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         ImportOptions importOptions;
         importOptions.touch = modeName != "render-process-no-touch";
         importOptions.freeThere = modeName != "render-process-free-here";
-        if (inTurn || importHere || !importOptions.touch || !importOptions.freeThere) modeName = "render-process";
+        const bool reattach = modeName == "render-process-reattach";
+        if (inTurn || importHere || reattach || !importOptions.touch || !importOptions.freeThere) modeName = "render-process";
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
                    : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6
                    : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : modeName == "render-process" ? 9
@@ -189,7 +190,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode < 0)
             return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
                         "adopt-process, stage, render-process, render-process-sync, render-process-one-image, render-process-in-turn, "
-                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process+NAME=VALUE or render-process-shm");
+                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process+NAME=VALUE or "
+                        "render-process-shm");
         ModeRun m;
         m.name = shownName;
         // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
@@ -253,6 +255,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode >= 9)
             m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11,
                                                             m.live->Tiered(), serverEnv, inTurn, !importHere, importOptions);
+        if (mode >= 9 && reattach) static_cast<RenderProcessRun*>(m.handover.get())->SetReattach(true);
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();

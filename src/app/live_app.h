@@ -206,7 +206,7 @@ private:
     GLuint serverFbo_ = 0;   // reads the server's frame for the blit to the window
     void StartServers();
     void DrawServerScene(double now, int rw, int rh);
-    void PresentServerTexture(unsigned texture, int w, int h, double now);
+    void PresentServerTexture(unsigned texture, int w, int h, double now, unsigned readFbo = 0);
     // live_morph.cpp, --render-process: the field morph drawn by a server held for it.
     void PrepareServerMorph();
     bool ServerFadeMorphsFields();

@@ -74,16 +74,21 @@ void LiveSession::DrawServerScene(double now, int rw, int rh) {
         fade_ = Fade{};
         servers_->DropPrevious();
     }
-    PresentServerTexture(texture, w, h, now);
+    PresentServerTexture(texture, w, h, now, servers_->FrameReadFramebuffer());
     servers_->AfterRead(in_);
 }
 
-// A server's frame (w x h) to the window: through the post chain, or blitted.
-void LiveSession::PresentServerTexture(unsigned texture, int w, int h, double now) {
+// A server's frame (w x h) to the window: through the post chain, or blitted (from readFbo, a
+// framebuffer that already reads it, where the caller has one).
+void LiveSession::PresentServerTexture(unsigned texture, int w, int h, double now, unsigned readFbo) {
     if (DrawPost(texture, w, h, now)) return;
-    if (!serverFbo_) glGenFramebuffers(1, &serverFbo_);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, serverFbo_);
-    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    if (readFbo) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
+    } else {
+        if (!serverFbo_) glGenFramebuffers(1, &serverFbo_);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, serverFbo_);
+        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    }
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     glBlitFramebuffer(0, 0, w, h, 0, 0, fbw_, fbh_, GL_COLOR_BUFFER_BIT, w == fbw_ && h == fbh_ ? GL_NEAREST : GL_LINEAR);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

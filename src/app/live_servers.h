@@ -45,6 +45,7 @@ public:
     // This frame's image: the texture, and its size (the size it was built for, until a build at the
     // new size is on screen). 0 when there is none yet.
     unsigned Frame(const FrameInputs& in, int* w, int* h);
+    unsigned FrameReadFramebuffer() { return show_.ReadFramebuffer(); }   // one reading Frame()'s texture, kept per image
     void AfterRead(const FrameInputs& in) { show_.AfterRead(in); }
     // A build of another scene went on screen (its quick tier, or the optimized program): true once,
     // and the server of the scene before is kept (for a crossfade from its frames) until

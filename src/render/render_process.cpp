@@ -46,6 +46,7 @@ void RenderProcess::Stop() {
         }
     }
     importing_.reset();
+    DropReadFramebuffers();   // before the images go: a name freed may come back as another server's image
     if (importer_ && importer_->Settings().freeThere && textures_[0] && transport_ == FrameTransport::VkMemory) {
         // Freed on the import thread once this context's reads of them are done.
         GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
@@ -266,6 +267,7 @@ bool RenderProcess::FinishImport(Ready* ready, int timeoutMs) {
         memories_[i] = job.memories[i];
     }
     importing_.reset();
+    DropReadFramebuffers();
     texture_ = textures_[0];
     images_ = textures_[1] ? 2 : 1;
     if (!texture_) {
@@ -316,6 +318,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
     }
     if (transport_ == FrameTransport::VkMemory) {
         std::string why;
+        DropReadFramebuffers();
         textures_[0] = ImportSharedTexture(fd, memorySize, width_, height_, &memories_[0], &why);
         if (fd2 >= 0 && textures_[0]) textures_[1] = ImportSharedTexture(fd2, memorySize, width_, height_, &memories_[1], &why);
         else if (fd2 >= 0) ::close(fd2);
@@ -328,6 +331,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
         return texture_ != 0;
     }
     glGenTextures(1, &texture_);
+    DropReadFramebuffers();
     textures_[0] = texture_;
     glBindTexture(GL_TEXTURE_2D, texture_);
     if (transport_ == FrameTransport::Shm) {
@@ -454,5 +458,26 @@ bool RenderProcess::Collect(int timeoutMs) {
     return true;
 }
 
+
+
+unsigned RenderProcess::ReadFramebuffer() {
+    if (!texture_) return 0;
+    const int i = textures_[1] == texture_ ? 1 : 0;
+    if (readTextures_[i] != texture_) {
+        if (!readFbos_[i]) glGenFramebuffers(1, &readFbos_[i]);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbos_[i]);
+        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_, 0);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        readTextures_[i] = texture_;
+    }
+    return readFbos_[i];
+}
+
+void RenderProcess::DropReadFramebuffers() {
+    for (int i = 0; i < 2; ++i) {
+        if (readFbos_[i]) glDeleteFramebuffers(1, &readFbos_[i]);
+        readFbos_[i] = readTextures_[i] = 0;
+    }
+}
 
 }  // namespace sdfvj

@@ -302,6 +302,11 @@ unsigned ServerShow::Texture() const {
     return lastFrame_ ? lastFrame_->Texture() : 0;
 }
 
+unsigned ServerShow::ReadFramebuffer() {
+    if (onScreen_ && onScreen_->Texture()) return onScreen_->ReadFramebuffer();
+    return lastFrame_ ? lastFrame_->ReadFramebuffer() : 0;
+}
+
 bool ServerShow::Frame(const FrameInputs& in, int timeoutMs) {
     lastInputs_ = in;
     if (!onScreen_) return false;

@@ -66,6 +66,7 @@ public:
     void AfterRead(const FrameInputs& in);
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
+    unsigned ReadFramebuffer();                // a framebuffer reading Texture() (RenderProcess::ReadFramebuffer); 0: none
     // Programs held ready off screen, each by a server of its own that a spare becomes, in slots:
     //   Literal  the literal tier (`lifted`: its numbers from uniforms); Poll never puts it on
     //            screen, PromotePrepared does, with new numbers, as a quick tier (an optimized build

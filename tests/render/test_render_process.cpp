@@ -21,6 +21,7 @@
 
 #include "app/effect_costs.h"
 #include "gl_fixture.h"
+#include "render_process_fixture.h"
 #include "render/field_morph.h"
 #include "render/render_process.h"
 #include "render/server_show.h"
@@ -30,32 +31,6 @@ using namespace sdfvj;
 using namespace sdfvj::test;
 
 namespace {
-
-constexpr int kW = 64, kH = 48;
-
-FrameInputs Inputs(const SceneInfo& scene, double time) {
-    FrameInputs in;
-    in.time = time;
-    for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
-    return in;
-}
-
-// The render process's frame as this context sees it, top row first (as FrameRenderer::ReadPixels).
-Image ReadTexture(unsigned texture, int w = kW, int h = kH) {
-    GLuint fbo = 0;
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
-    std::vector<uint8_t> raw((size_t)w * h * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteFramebuffers(1, &fbo);
-    Image img{w, h, std::vector<uint8_t>(raw.size())};
-    for (int y = 0; y < h; ++y)
-        std::copy_n(raw.begin() + (long)y * w * 4, w * 4, img.rgba.begin() + (long)(h - 1 - y) * w * 4);
-    return img;
-}
 
 RenderProcess::Ready StartAndLoad(RenderProcess* proc, const std::string& scenePath, RenderPath path, FrameTransport t,
                                   const std::vector<std::string>& env = {}) {
@@ -243,17 +218,6 @@ TEST_CASE("render process: a server makes its Vulkan device before a load asks, 
 
 // ServerShow (render/server_show.h): the servers behind a show.
 namespace {
-
-// Polls the show until the server on screen changes or a build fails (*error), up to 120 s.
-bool PollUntilChange(ServerShow* show, std::string* error) {
-    for (int i = 0; i < 60000; ++i) {
-        if (show->Poll(error)) return true;
-        if (!error->empty()) return false;
-        ::usleep(2000);
-    }
-    *error = "nothing changed in 120 s";
-    return false;
-}
 
 // A load of `path` with its own effects at the tests' size.
 ServerLoad OwnEffects(const std::string& path) { return ServerLoad{path, true, {}, RenderPath::Fragment, kW, kH}; }
