@@ -8,7 +8,7 @@
     {"NAME": "spin", "TYPE": "float", "DEFAULT": 0.6, "MIN": 0.0, "MAX": 3.0, "LABEL": "Spin speed"},
     {"NAME": "floorBlend", "TYPE": "float", "DEFAULT": 0.1, "MIN": 0.0, "MAX": 0.3, "LABEL": "Floor blend"}
   ],
-  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "tetrahedron"},
+  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "forward"},
   "CAMERA": {"POSITION": [0, 5.2, -11.5], "TARGET": [0, 0.0, 1.0], "FOV": 50},
   "LIGHT": {"DIRECTION": [0.45, 0.85, -0.3], "COLOR": [1, 0.96, 0.9]},
   "MATERIAL": {"ROUGHNESS": 0.35, "METALNESS": 0.0}

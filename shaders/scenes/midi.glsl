@@ -7,7 +7,7 @@
     {"NAME": "smoothness", "TYPE": "float", "DEFAULT": 0.35, "MIN": 0.0, "MAX": 1.0, "LABEL": "Smoothness"},
     {"NAME": "spin", "TYPE": "float", "DEFAULT": 0.3, "MIN": 0.0, "MAX": 2.0, "LABEL": "Spin speed"}
   ],
-  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "tetrahedron"},
+  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "forward"},
   "CAMERA": {"POSITION": [0, 2, -6], "TARGET": [0, 1.1, 0], "FOV": 45},
   "LIGHT": {"DIRECTION": [0.6, 0.8, -0.4], "COLOR": [1, 0.96, 0.9]},
   "MATERIAL": {"ROUGHNESS": 0.35, "METALNESS": 0.0}

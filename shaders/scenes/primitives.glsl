@@ -6,7 +6,7 @@
     {"NAME": "bob", "TYPE": "float", "DEFAULT": 0.5, "MIN": 0.0, "MAX": 1.0, "LABEL": "Bob height"},
     {"NAME": "checker", "TYPE": "bool", "DEFAULT": true, "LABEL": "Checker floor"}
   ],
-  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "tetrahedron"},
+  "EFFECTS": {"SHADOWS": "soft", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "forward"},
   "CAMERA": {"POSITION": [0, 2.6, -7.5], "TARGET": [0, 0.6, 0], "FOV": 45},
   "LIGHT": {"DIRECTION": [0.6, 0.8, -0.4], "COLOR": [1, 0.96, 0.9]},
   "MATERIAL": {"ROUGHNESS": 0.4, "METALNESS": 0.0}

@@ -97,12 +97,13 @@ TEST_CASE("render: fragment and compute paths give the same image", "[render]") 
     }
 }
 
-// A scene that declares "NORMALS": "tetrahedron" (4 map() calls at a tenth of central's offset,
-// render.glsl surfaceNormal) draws what central differences draw: the accuracy report measures it
-// against the CPU double reference (docs/accuracy.md); here the two images, full lighting: up to
-// 0.07 % of pixels past 8/255. It fails with the tetrahedron at central's own offset (0.14-0.22 %
-// on the three scenes: its first-order error).
-TEST_CASE("render: a scene's tetrahedron normals draw the image central differences draw", "[render]") {
+// A scene that declares first-order normals ("NORMALS": "forward", 3 map() calls from the march's
+// value at the hit, or "tetrahedron", 4; both at a tenth of central's offset, render.glsl
+// surfaceNormal) draws what central differences draw: the accuracy report measures it against the
+// CPU double reference (docs/accuracy.md); here the two images, full lighting: up to 0.07 % of
+// pixels past 8/255. It fails with the tetrahedron at central's own offset (0.14-0.22 % on the
+// three scenes: its first-order error).
+TEST_CASE("render: a scene's first-order normals (forward or tetrahedron) draw the image central differences draw", "[render]") {
     int declared = 0;
     for (const std::string& scene : ListScenes()) {
         SceneInfo info;
