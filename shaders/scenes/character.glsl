@@ -6,7 +6,7 @@
     {"NAME": "blend", "TYPE": "float", "DEFAULT": 0.06, "MIN": 0.0, "MAX": 0.25, "LABEL": "Joint blend"},
     {"NAME": "floorBlend", "TYPE": "float", "DEFAULT": 0.12, "MIN": 0.0, "MAX": 0.5, "LABEL": "Floor blend"}
   ],
-  "EFFECTS": {"SHADOWS": "improved", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "tetrahedron"},
+  "EFFECTS": {"SHADOWS": "improved", "AO": true, "SPECULAR": true, "PBR": false, "REFLECTIONS": 0, "FOG": true, "NORMALS": "forward"},
   "CAMERA": {"POSITION": [1.2, 1.5, -4.0], "TARGET": [0, 0.95, 0], "FOV": 40},
   "LIGHT": {"DIRECTION": [0.5, 0.8, -0.35], "COLOR": [1, 0.95, 0.88]},
   "MATERIAL": {"ROUGHNESS": 0.5, "METALNESS": 0.0}
@@ -23,9 +23,14 @@
 // Unit direction of a limb hanging down and swung forward (towards -Z) by angle a.
 vec3 limbDir(float a) { return vec3(0.0f, -cos(a), -sin(a)); }
 
-// Bounding volume for the renderer (render.glsl BOUNDS): the figure and the floor apart.
+// Bounding volume for the renderer (render.glsl BOUNDS): the figure and the floor apart, and a box
+// around this frame's pose (sceneSetup) inside the sphere: a floor point beside it is shaded with
+// the floor alone, and a ray that enters the sphere but not the box marches nothing.
 #define SCENE_BOUND 1
 #define SCENE_GROUND 1
+#ifndef SCENE_BOX   // (a copy defines it 0 to measure the sphere alone)
+#define SCENE_BOX 1
+#endif
 
 // The compute path's work-group (render/main_comp.glsl): 16x16, not 8x8. On the H200, against
 // 8x8, 8x4, 16x8 and 8x16 in one interleaved run: 4K full lighting 0.854 -> 0.798 ms, 1080p
@@ -63,6 +68,8 @@ SCENE_STATE float g_armRadiusL;
 SCENE_STATE float g_armRadiusR;
 SCENE_STATE float g_legRadiusL;
 SCENE_STATE float g_legRadiusR;
+SCENE_STATE vec3 g_boxLo;   // the box around this frame's parts, margins included (sceneBoxMin/Max)
+SCENE_STATE vec3 g_boxHi;
 // The skeleton for this frame (u_time, u_speed, u_wave): once per invocation (render.glsl's
 // SCENE_SETUP), not in every map() call. NVIDIA H200, 4K: 1.34 -> 1.05 ms (docs/performance.md).
 void sceneSetup() {
@@ -105,6 +112,27 @@ void sceneSetup() {
                        length(g_ankleL + toe - g_kneeL) + 0.06f) + 1e-3f;
     g_legRadiusR = max(max(length(g_hipR - g_kneeR) + 0.085f, length(g_ankleR - g_kneeR) + 0.07f),
                        length(g_ankleR + toe - g_kneeR) + 0.06f) + 1e-3f;
+
+    // The box: every joint +- the radius of the parts that end there (a capsule lies in the box of
+    // its two end balls; the torso's lower end, pelvis + 0.1 up, lies in the pelvis's and the chest's),
+    // widened as the sphere is: the joint blends swell the figure by at most blend / 4, and past
+    // blend + floorBlend the floor's smooth union leaves the floor exact (SCENE_GROUND's contract);
+    // above the top, map() >= the height over it (render.glsl SCENE_BOX).
+    vec3 lo = min(min(g_head - vec3(0.14f), g_pelvis - vec3(0.19f)), g_chest - vec3(0.19f));
+    vec3 hi = max(max(g_head + vec3(0.14f), g_pelvis + vec3(0.19f)), g_chest + vec3(0.19f));
+    lo = min(lo, min(min(g_shoulderL, g_shoulderR), min(g_elbowL, g_elbowR)) - vec3(0.065f));
+    hi = max(hi, max(max(g_shoulderL, g_shoulderR), max(g_elbowL, g_elbowR)) + vec3(0.065f));
+    lo = min(lo, min(g_handL, g_handR) - vec3(0.06f));
+    hi = max(hi, max(g_handL, g_handR) + vec3(0.06f));
+    lo = min(lo, min(min(g_hipL, g_hipR), min(g_kneeL, g_kneeR)) - vec3(0.085f));
+    hi = max(hi, max(max(g_hipL, g_hipR), max(g_kneeL, g_kneeR)) + vec3(0.085f));
+    lo = min(lo, min(g_ankleL, g_ankleR) - vec3(0.07f));
+    hi = max(hi, max(g_ankleL, g_ankleR) + vec3(0.07f));
+    lo = min(lo, min(g_ankleL, g_ankleR) + toe - vec3(0.06f));
+    hi = max(hi, max(g_ankleL, g_ankleR) + toe + vec3(0.06f));
+    float margin = max(u_blend, 0.0f) + max(u_floorBlend, 0.0f) + 0.02f;
+    g_boxLo = lo - vec3(margin);
+    g_boxHi = hi + vec3(margin);
 }
 #define SCENE_SETUP 1
 
@@ -163,6 +191,9 @@ vec4 map(vec3 p) {
 // can swell it by about the blend radius, and beyond radius + floor blend the smooth union with
 // the floor leaves the floor exact (the renderer's contract for SCENE_GROUND).
 vec4 sceneBound() { return vec4(0.0f, 0.95f, 0.0f, 1.3f + max(u_blend, 0.0f) + max(u_floorBlend, 0.0f) + 0.02f); }
+
+vec3 sceneBoxMin() { return g_boxLo; }
+vec3 sceneBoxMax() { return g_boxHi; }
 
 // Spheres and capsules are exact; smooth unions keep |grad| <= 1.
 float sceneLipschitz() { return 1.0f; }
