@@ -100,6 +100,11 @@
 #ifndef SCENE_BOUND
 #define SCENE_BOUND 0
 #endif
+// SHADOW_BOX_RANGE (on): a soft shadow ray marches only where it passes near the scene's box as
+// well as its sphere (shadowRange). 0: the sphere's penumbra cone and the box's top alone.
+#ifndef SHADOW_BOX_RANGE
+#define SHADOW_BOX_RANGE 1
+#endif
 #ifndef SCENE_GROUND
 #define SCENE_GROUND 0
 #endif
@@ -234,10 +239,10 @@ float hitEpsilon(float t) {
 // a huge k, which leaves just the sphere). Returns (from, to), empty if from > to.
 vec2 shadowRange(vec3 ro, vec3 rd, float tmin, float tmax, float k) {
 #if USE_BOX
+    float ks = k * sceneStepScale();
     // Above the box a sample's penumbra term is at least k * s * (height above it) / t, which
     // stays >= 1 from t = k s (top - ro.y) / (k s rd.y - 1) on (s: the step scale the shadow
     // applies to map()); the ray's stretch past that changes nothing.
-    float ks = k * sceneStepScale();
     if (ks * rd.y > 1.0f) tmax = min(tmax, ks * (sceneBoxMax().y - ro.y) / (ks * rd.y - 1.0f));
 #endif
 #if USE_BOUND
@@ -246,7 +251,17 @@ vec2 shadowRange(vec3 ro, vec3 rd, float tmin, float tmax, float k) {
     if (ro.y < 0.0f || k * rd.y < 1.0f) return vec2(tmin, tmax);
 #endif
     vec2 r = penumbraInterval(ro, rd, sceneBound(), k);
-    return vec2(max(r.x, tmin), min(r.y, tmax));
+    r = vec2(max(r.x, tmin), min(r.y, tmax));
+#if USE_BOX && SHADOW_BOX_RANGE
+    // Beside the box too: up to the stretch's end T, a sample farther than T / (k s) from the box
+    // is farther than t / (k s) from every object, so its penumbra term is >= 1; the ray can darken
+    // nothing past where it leaves the box widened by that, nor at all if it never enters it. (Its
+    // start stays the sphere's: a later one would move every sample, and the penumbra with them.)
+    float e = r.y / max(ks, 1e-6f);
+    vec2 near = boxInterval(ro, rd, sceneBoxMin() - vec3(e), sceneBoxMax() + vec3(e));
+    r.y = near.x <= near.y ? min(r.y, near.y) : -1e30f;
+#endif
+    return r;
 #else
     return vec2(tmin, tmax);
 #endif

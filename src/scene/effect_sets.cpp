@@ -43,6 +43,13 @@ LightingTest ShowSupersampledLightingTest(bool exact) {
     return t;
 }
 
+std::vector<LightingTest> FramePartTests() {
+    EffectSet march, normals;
+    march.debugView = 2;
+    normals.debugView = 3;
+    return {{"march", march}, {"normals", normals}};
+}
+
 LightingTest ShowDirectReflectionsLightingTest() {
     LightingTest t = ShowLightingTest();
     t.effects.directReflections = true;

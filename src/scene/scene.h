@@ -95,6 +95,10 @@ LightingTest ShowSupersampledLightingTest(bool exact);
 // The show lighting with `direct_reflections` (`bench --tests show_direct`): the reflected surface
 // lit directly, unshadowed and unoccluded, its march at most 48 steps.
 LightingTest ShowDirectReflectionsLightingTest();
+// Where a frame goes, part by part (`bench --tests march normals none full`): "march", the cone
+// pre-pass and the primary march alone (the depth view: no normal, albedo or light is computed);
+// "normals", those and the surface normal (the normals view).
+std::vector<LightingTest> FramePartTests();
 
 // A preset: a scene with parameter values and effect overrides, optionally a mapping and a take.
 struct Preset {
