@@ -224,14 +224,6 @@ float coneDistance(vec3 p, float t, float alpha, float inv) {
 #endif
 }
 
-// CONE_BOUND_START (on where the floor is no stop, or there is none): the cone starts where its
-// bundle can first reach the bounding sphere and ends where it has left it, both solved, not
-// marched (a 1080p frame's pre-pass is a few thousand tiles marching in series: their steps, not
-// their number, set its time). 0: marched from the eye (a copy defines it to measure).
-#ifndef CONE_BOUND_START
-#define CONE_BOUND_START 1
-#endif
-#define CONE_SOLVED (USE_BOUND && CONE_BOUND_START && (!SCENE_GROUND || CONE_THROUGH_FLOOR))
 float coneStart(vec2 lo, vec2 hi) {
     callSceneSetup();
     // A distance *estimate* (sceneLipschitz() > 1: the Mandelbulb's) is no bound to build on: a
@@ -250,20 +242,7 @@ float coneStart(vec2 lo, vec2 hi) {
     if (ro.y < 0.0f) return 0.0f;   // under the floor the primary march takes no shortcut either
 #endif
     float t = 0.0f;
-#if CONE_SOLVED
-    // Every surface but the (analytic) floor lies inside the sphere, with a margin; a pixel ray is
-    // within t alpha of the centre ray's point, so it can be inside the sphere (widened by the
-    // farthest hit epsilon there) only where that point is within radius + t alpha of the centre.
-    vec4 bound = sceneBound();
-    float reach = length(ro - vec3(bound.x, bound.y, bound.z)) + bound.w;
-    vec2 inside = penumbraInterval(ro, rc, vec4(bound.x, bound.y, bound.z, bound.w + hitEpsilon(reach)), 1.0f / alpha);
-    if (inside.x > inside.y || inside.y < 0.0f) return u_maxDist;   // the bundle misses it: sky or floor alone
-    t = max(inside.x, 0.0f);
-#endif
     for (int i = 0; i < u_maxSteps; i++) {
-#if CONE_SOLVED
-        if (t > inside.y) return u_maxDist;   // through it without stopping: nothing on these rays
-#endif
 #if USE_GROUND && CONE_THROUGH_FLOOR
         // every pixel ray of the bundle (within t alpha of the centre's point) is under the floor:
         // each met the floor before t, and nothing else before it
