@@ -156,9 +156,7 @@ Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
     float a = tmin, b = u_maxDist;   // under the floor no shortcut: the whole field from tmin
     if (SCENE_GROUND == 0 || ro.y >= 0.0f) {
 #if SCENE_GROUND
-        // (a start past it, tmin: the cone pre-pass went through the bare floor, which no march
-        // needs to find; the floor is met here all the same)
-        if (rd.y < 0.0f) tGround = -ro.y / rd.y;
+        if (rd.y < 0.0f) tGround = max(-ro.y / rd.y, tmin);
 #endif
         vec2 inside = sphereInterval(ro, rd, sceneBound());
         a = max(inside.x, tmin);
@@ -200,20 +198,12 @@ Hit march(vec3 ro, vec3 rd, float tmin) { return march(ro, rd, tmin, u_maxSteps)
 // point at t, whose nearest surface is d away: every pixel ray is at least e = hitEpsilon(t + d)
 // from any surface up to the returned distance, so no pixel march could have stopped before it.
 // d is a lower bound of the distance: map() over the scene's Lipschitz bound (and the step
-// factor where it under-relaxes), or outside the bounding volume the distance to it. The bare
-// floor there is no surface the cone must stop at: the primary march meets it analytically
-// (march(): a ray whose start is past its floor hit is given that hit), so the cone goes on
-// through it, where it once crept along it in ever smaller steps (a tile at the horizon took up
-// to the step budget), and stops once its whole bundle is under the floor. Used as the primary
-// ray's tmin; 0 where the pre-pass is off or the field is an estimate. CONE_THROUGH_FLOOR 0: the
-// cone stops at the floor as before session 22 (a copy defines it to measure the difference).
-#ifndef CONE_THROUGH_FLOOR
-#define CONE_THROUGH_FLOOR 1
-#endif
+// factor where it under-relaxes), or outside the bounding volume the distance to it and to the
+// ground. Used as the primary ray's tmin; 0 where the pre-pass is off or the field is an estimate.
 float coneDistance(vec3 p, float t, float alpha, float inv) {
 #if USE_BOUND
     float d = boundDistance(p);
-#if SCENE_GROUND && !CONE_THROUGH_FLOOR
+#if SCENE_GROUND
     d = min(d, mapGround(p).w);
 #endif
     // The cheap bound only while it still lets the cone step on; then the field itself.
@@ -243,11 +233,6 @@ float coneStart(vec2 lo, vec2 hi) {
 #endif
     float t = 0.0f;
     for (int i = 0; i < u_maxSteps; i++) {
-#if USE_GROUND && CONE_THROUGH_FLOOR
-        // every pixel ray of the bundle (within t alpha of the centre's point) is under the floor:
-        // each met the floor before t, and nothing else before it
-        if (u_camPos.y + rc.y * t < -t * alpha) break;
-#endif
         float d = coneDistance(ro + rc * t, t, alpha, inv);
         float s = (d - hitEpsilon(t + max(d, 0.0f)) - t * alpha) / (1.0f + alpha);
         if (s < hitEpsilon(t)) break;   // the bundle is near a surface: the pixel rays go on alone
