@@ -117,10 +117,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatTarget_ ? GL_RGBA32F : GL_RGBA8);
         glBindImageTexture(1, coneTexture_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
         const GLuint gx = (GLuint)std::max(p.GroupX(), 1), gy = (GLuint)std::max(p.GroupY(), 1);
-        // main_comp.glsl CONE_IN_GROUP: the frame's groups make their own tiles' cones
-        const bool coneInGroup = q.conePrepass && p.HasUniform("u_coneInGroup");
-        if (coneInGroup) p.Set("u_coneInGroup", 1.0f);
-        if (q.conePrepass && !coneInGroup) {   // one invocation per 8x8 tile, in the program's groups
+        if (q.conePrepass) {   // one invocation per 8x8 tile, in the program's groups
             p.Set("u_conePass", 1.0f);
             const GLuint tilesX = (GLuint)(width_ + kConeTile - 1) / kConeTile, tilesY = (GLuint)(height_ + kConeTile - 1) / kConeTile;
             glDispatchCompute((tilesX + gx - 1) / gx, (tilesY + gy - 1) / gy, 1);

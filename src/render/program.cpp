@@ -59,11 +59,6 @@ bool Program::Build(const ShaderSource& src, RenderPath path, std::string* log) 
     return pending.Finish(this, log);
 }
 
-bool Program::HasUniform(const std::string& name) const {
-    auto it = uniforms_.find(name);
-    return it != uniforms_.end() && it->second.location >= 0;
-}
-
 void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin) {
     if (id_) glDeleteProgram(id_);
     id_ = id;

@@ -111,8 +111,6 @@ public:
     // defines them): FrameRenderer sizes its dispatches from it.
     int GroupX() const { return group_[0]; }
     int GroupY() const { return group_[1]; }
-    // Whether the program declares (and uses) this uniform.
-    bool HasUniform(const std::string& name) const;
     const ShaderSource& Source() const { return source_; }
     // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
     void Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin = {});
