@@ -214,6 +214,12 @@ float coneDistance(vec3 p, float t, float alpha, float inv) {
 #endif
 }
 
+// CONE_MAX_STEPS: the cone's own step budget (u_maxSteps where it is larger). Any step the cone
+// stops at is a safe start, so a lower budget only leaves the last steps to the pixel rays, while
+// the pre-pass, a dispatch of few invocations, lasts as long as its slowest cone.
+#ifndef CONE_MAX_STEPS
+#define CONE_MAX_STEPS 100000
+#endif
 float coneStart(vec2 lo, vec2 hi) {
     callSceneSetup();
     // A distance *estimate* (sceneLipschitz() > 1: the Mandelbulb's) is no bound to build on: a
@@ -232,7 +238,7 @@ float coneStart(vec2 lo, vec2 hi) {
     if (ro.y < 0.0f) return 0.0f;   // under the floor the primary march takes no shortcut either
 #endif
     float t = 0.0f;
-    for (int i = 0; i < u_maxSteps; i++) {
+    for (int i = 0; i < min(u_maxSteps, CONE_MAX_STEPS); i++) {
         float d = coneDistance(ro + rc * t, t, alpha, inv);
         float s = (d - hitEpsilon(t + max(d, 0.0f)) - t * alpha) / (1.0f + alpha);
         if (s < hitEpsilon(t)) break;   // the bundle is near a surface: the pixel rays go on alone
