@@ -216,9 +216,13 @@ float coneDistance(vec3 p, float t, float alpha, float inv) {
 
 // CONE_MAX_STEPS: the cone's own step budget (u_maxSteps where it is larger). Any step the cone
 // stops at is a safe start, so a lower budget only leaves the last steps to the pixel rays, while
-// the pre-pass, a dispatch of few invocations, lasts as long as its slowest cone.
+// the pre-pass, a dispatch of few invocations, lasts as long as its slowest cone (the tiles that
+// graze a silhouette creep). NVIDIA H200, against no budget (u_maxSteps, 128), one interleaved run:
+// 32 took 3-13 % off every bounded scene at 1080p (midi 0.185 -> 0.161 ms, field50 0.506 -> 0.469)
+// and 1-4 % at 4K; 24 and 12 gained more at 1080p but lost the fields 3-15 % at 4K; 40 less
+// everywhere (docs/performance.md, session 22).
 #ifndef CONE_MAX_STEPS
-#define CONE_MAX_STEPS 100000
+#define CONE_MAX_STEPS 32
 #endif
 float coneStart(vec2 lo, vec2 hi) {
     callSceneSetup();
