@@ -1,9 +1,8 @@
-// MIDI end to end through JACK's dummy server (the `jackd` ctest fixture starts it): an RtMidiOut
+// MIDI end to end through JACK's dummy server (the `jackd` ctest fixture starts it): a fake device (jack_midi_out.h)
 // on the JACK API sends into InputSession's ports; the tests assert the parameter values that
 // come out of the mapping. Unique port names per process keep parallel runs apart.
-#include <rtmidi/RtMidi.h>
 
-#include "midi_out_safe.h"
+#include "jack_midi_out.h"
 #include <signal.h>
 #include <unistd.h>
 
@@ -25,7 +24,7 @@ namespace {
 
 std::string Unique(const char* base) { return std::string(base) + "-" + std::to_string(getpid()); }
 
-// Opens an RtMidiOut connected to the first port whose name contains `needle`.
+// Opens a fake device connected to the first port whose name contains `needle`.
 MidiOutPtr ConnectTo(const std::string& needle) {
     auto out = MakeMidiOut(Unique("midi-test"));
     for (unsigned i = 0; i < out->getPortCount(); ++i)
@@ -37,7 +36,7 @@ MidiOutPtr ConnectTo(const std::string& needle) {
     return nullptr;
 }
 
-void Send(RtMidiOut& out, std::vector<unsigned char> bytes) { out.sendMessage(&bytes); }
+void Send(JackMidiOut& out, std::vector<unsigned char> bytes) { out.sendMessage(&bytes); }
 
 struct MidiRig {
     EventQueue queue;
@@ -176,7 +175,7 @@ TEST_CASE("midi reconnect: a controller plugged in later and replugged is picked
 TEST_CASE("midi list shows JACK ports, and a missing device is a status line") {
     std::string dev = Unique("Lister");
     MidiOutPtr outOwner = MakeMidiOut(Unique("lister-client"));
-    RtMidiOut& out = *outOwner;
+    JackMidiOut& out = *outOwner;
     out.openVirtualPort(dev);
     bool found = false;
     REQUIRE(WaitFor([&] {
@@ -199,7 +198,7 @@ TEST_CASE("midi learn: the next control that moves is written to the mapping fil
     int rc = -1;
     std::thread learner([&] { rc = RunLearn("twist", path, 5.0); });
     MidiOutPtr outOwner = MakeMidiOut(Unique("learn-client"));
-    RtMidiOut& out = *outOwner;
+    JackMidiOut& out = *outOwner;
     out.openVirtualPort(Unique("learn-src"));
     uint8_t v = 0;
     // A pad-like single value does not count; a knob sending different values does.
@@ -224,7 +223,7 @@ TEST_CASE("midi learn: an NRPN control is learned as nrpn") {
     int rc = -1;
     std::thread learner([&] { rc = RunLearn("displacement", path, 5.0); });
     MidiOutPtr outOwner = MakeMidiOut(Unique("learn-nrpn-client"));
-    RtMidiOut& out = *outOwner;
+    JackMidiOut& out = *outOwner;
     out.openVirtualPort(Unique("learn-nrpn-src"));
     WaitFor([&] {
         Send(out, {0xB0, 99, 3});

@@ -1,11 +1,10 @@
 // Learn through the overlay with a real MIDI control: the overlay's learn button is clicked
-// (ImGui input, headless_imgui.h), real CCs go from an RtMidiOut through JACK's dummy server
+// (ImGui input, headless_imgui.h), real CCs go from a fake device (jack_midi_out.h) through JACK's dummy server
 // (ctest fixture `jackd`) into an InputSession's virtual port, and the frame's stages of `live`
 // run over them in order: drain the queue, ObserveEvents (learn), ApplyControl, the learn stage
 // (FinishLearn writes the mapping file), the folder watcher, ApplyFileChanges (reload).
-#include <rtmidi/RtMidi.h>
 
-#include "../control/midi_out_safe.h"
+#include "../control/jack_midi_out.h"
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -74,7 +73,7 @@ TEST_CASE("live_learn jack: the learn button, a real CC through JACK, the mappin
     INFO(input.StatusLines()[0]);
     REQUIRE(input.StatusLines()[0].rfind("MIDI (JACK)", 0) == 0);
     MidiOutPtr outOwner = MakeMidiOut("learn-test-out-" + std::to_string(getpid()));
-    RtMidiOut& out = *outOwner;
+    JackMidiOut& out = *outOwner;
     bool connected = false;
     for (unsigned i = 0; i < out.getPortCount() && !connected; ++i)
         if (out.getPortName(i).find(vname) != std::string::npos) {

@@ -1,11 +1,10 @@
 // `live --sync mtc` as a show runs it: a real window on Xvfb (fixture `xvfb`), MIDI Time Code from
-// an RtMidiOut through JACK's dummy server (fixture `jackd`) into live's virtual port. The show
+// a fake device (jack_midi_out.h) through JACK's dummy server (fixture `jackd`) into live's virtual port. The show
 // clock is --log-params's time column; each new line is compared with the master's time when the
 // test saw it: it follows within a frame while the master runs, across a seek, holds where a
 // stop's full frame puts it, and freewheels through a dropout (said once).
-#include <rtmidi/RtMidi.h>
 
-#include "../control/midi_out_safe.h"
+#include "../control/jack_midi_out.h"
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -30,7 +29,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-void Send(RtMidiOut& out, const std::vector<uint8_t>& bytes, size_t from, size_t n) {
+void Send(JackMidiOut& out, const std::vector<uint8_t>& bytes, size_t from, size_t n) {
     std::vector<unsigned char> m(bytes.begin() + from, bytes.begin() + from + n);
     out.sendMessage(&m);
 }
@@ -56,7 +55,7 @@ MtcRun RunMtcScenario(const std::string& dir, double stopAt) {
 
     MidiOutPtr outOwner = MakeMidiOut(port);
 
-    RtMidiOut& out = *outOwner;
+    JackMidiOut& out = *outOwner;
     bool connected = false;
     REQUIRE(PollFor(5, [&] {
         for (unsigned i = 0; i < out.getPortCount() && !connected; ++i)

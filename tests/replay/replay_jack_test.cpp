@@ -3,7 +3,7 @@
 // Live side, in this process: JACK's dummy server (ctest fixture `jackd`), InputSession with its
 // virtual JACK port, EventQueue, the generic mapping, smoothing, and a TakeRecorder that records
 // every drained event, on a fixed 60 fps frame clock of its own (frame k starts at t0 + k/60; it
-// drains the events stamped up to that time). An RtMidiOut on the JACK API sends 48 CCs on the
+// drains the events stamped up to that time). A fake device on JACK (jack_midi_out.h) sends 48 CCs on the
 // four knobs with uneven sleeps from another thread.
 // Replay side: ReadTake + MakeReplayDriver on the recorded file, at the same frame times.
 //
@@ -12,11 +12,11 @@
 // and replay applied it to. When they agree everywhere (the usual case), every parameter must
 // match at every frame (to 1e-6); when one slipped, the frames before the first slip must match
 // and the final values (0.5 s after the last event) must agree to 1e-4.
-#include <rtmidi/RtMidi.h>
 
-#include "../control/midi_out_safe.h"
+#include "../control/jack_midi_out.h"
 using sdfvj::test::MakeMidiOut;
 using sdfvj::test::MidiOutPtr;
+using sdfvj::test::JackMidiOut;
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -72,7 +72,7 @@ TEST_CASE("replay of a take recorded through JACK gives the live run's parameter
 
     MidiOutPtr outOwner = MakeMidiOut("replay-test-out-" + std::to_string(getpid()));
 
-    RtMidiOut& out = *outOwner;
+    JackMidiOut& out = *outOwner;
     bool connected = false;
     for (unsigned i = 0; i < out.getPortCount() && !connected; ++i)
         if (out.getPortName(i).find(vname) != std::string::npos) {
