@@ -130,17 +130,44 @@ float shadowSoftImproved(vec3 ro, vec3 rd, float tmin, float tmax, int steps, fl
 
 // ---- ambient occlusion ------------------------------------------------------------------
 // Samples the field along the normal; 1 = open, 0 = fully occluded.
+//
+// AO_FARTHEST_FIRST (a scene opts in: the fields do, lib/field_scene.glsl; off by default): the farthest probe goes
+// first. The probed field is 1-Lipschitz (times stepScale), so when it reads d >= h there, every
+// nearer probe reads d(p + n h') >= d - (h - h') >= h': none adds occlusion (each adds h' - d' <= 0),
+// and the result is 1 whatever they read. Open surfaces (the floor, a convex limb) take one
+// probe instead of all; an occluded one takes the same probes as before, the farthest last in
+// the sum as it always was. One map() call site.
+#ifndef AO_FARTHEST_FIRST
+#define AO_FARTHEST_FIRST 0
+#endif
 float ambientOcclusion(vec3 p, vec3 n, int samples) {
     float stepScale = sceneStepScale();
     float occ = 0.0f;
     float weight = 1.0f;
     float denom = max(float(samples - 1), 1.0f);
+#if AO_FARTHEST_FIRST
+    float farthest = 0.0f;   // the farthest probe's h - d, added last with its weight
+    for (int j = 0; j < samples; j++) {
+        int i = j == 0 ? samples - 1 : j - 1;
+        float h = 0.01f + 0.15f * float(i) / denom;
+        float d = PROBE_MAP(p + n * h).w * stepScale;
+        if (j == 0) {
+            if (d >= h) return 1.0f;
+            farthest = h - d;
+        } else {
+            occ += (h - d) * weight;
+            weight *= 0.9f;
+        }
+    }
+    occ += farthest * weight;
+#else
     for (int i = 0; i < samples; i++) {
         float h = 0.01f + 0.15f * float(i) / denom;
         float d = PROBE_MAP(p + n * h).w * stepScale;
         occ += (h - d) * weight;
         weight *= 0.9f;
     }
+#endif
     // normalised so 5 samples give iq's classic 1 - 3 * occ
     return saturate(1.0f - 15.0f * occ / max(float(samples), 1.0f));
 }
