@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <thread>
 
 #include "app/effect_costs.h"
@@ -120,28 +121,41 @@ TEST_CASE("live_gpu effect costs: one row per effect of the variant, and soft sh
     REQUIRE(fr.Resize(320, 180, &error));
     FrameInputs in;
     in.time = 1.0;
+    // A measurement the machine disturbed (CI's 2 cores beside a parallel test once read shadows
+    // -0.91 ms of a 8.8 ms draw; alone they cost about a fifth of it) says nothing about the costs:
+    // it is taken again, at most twice, and the third is checked whatever it reads. Effects that
+    // cost nothing would fail all three.
     EffectCosts costs;
-    StartEffectCosts(costs, HeavyEffects(), 7, true);
-    REQUIRE(costs.rows.size() == 4);
-    CHECK(costs.rows[0].name == "shadows");
-    CHECK(costs.rows[1].name == "ao");
-    CHECK(costs.rows[2].name == "specular");
-    CHECK(costs.rows[3].name == "fog");
-    CHECK(EffectCostText(costs.rows[0], costs) == "...");
-    int steps = 0;
-    while (!costs.Done() && steps < 1000) {
-        StepEffectCosts(costs, fr, *program, scene, in);
-        ++steps;
-    }
-    REQUIRE(costs.Done());
-    CHECK(steps == 7 * 5);   // one draw a step, all on + 4 one-off variants per round
-    const double allOn = MedianMs({costs.ms.begin(), costs.ms.end()});
     std::string table;
-    for (const EffectCostRow& r : costs.rows) {
-        CHECK(r.diffs.size() == 7);
-        table += r.name + " " + EffectCostText(r, costs) + "\n";
+    for (int attempt = 1; attempt <= 3; ++attempt) {
+        costs = EffectCosts{};
+        StartEffectCosts(costs, HeavyEffects(), 7, true);
+        REQUIRE(costs.rows.size() == 4);
+        CHECK(costs.rows[0].name == "shadows");
+        CHECK(costs.rows[1].name == "ao");
+        CHECK(costs.rows[2].name == "specular");
+        CHECK(costs.rows[3].name == "fog");
+        CHECK(EffectCostText(costs.rows[0], costs) == "...");
+        int steps = 0;
+        while (!costs.Done() && steps < 1000) {
+            StepEffectCosts(costs, fr, *program, scene, in);
+            ++steps;
+        }
+        REQUIRE(costs.Done());
+        CHECK(steps == 7 * 5);   // one draw a step, all on + 4 one-off variants per round
+        const double allOn = MedianMs({costs.ms.begin(), costs.ms.end()});
+        table.clear();
+        for (const EffectCostRow& r : costs.rows) {
+            CHECK(r.diffs.size() == 7);
+            table += r.name + " " + EffectCostText(r, costs) + "\n";
+        }
+        table += EffectCostNote(costs) + "\nmedian draw " + std::to_string(allOn) + " ms";
+        const bool disturbed = EffectCostMs(costs.rows[0], costs) <= 0.0;
+        std::printf("live_gpu effect costs: measurement %d:\n%s%s\n", attempt, table.c_str(),
+                    disturbed && attempt < 3 ? "\ndisturbed (shadows cost nothing): measured again" : "");
+        if (!disturbed) break;
     }
-    INFO(table << EffectCostNote(costs) << "\nmedian draw " << allOn << " ms");
+    INFO(table);
     CHECK(EffectCostMs(costs.rows[0], costs) > 0.0);
     CHECK(EffectCostNote(costs).find("median of 7 frame pairs") != std::string::npos);
     CHECK(EffectCostNote(costs).find("wall clock") != std::string::npos);
