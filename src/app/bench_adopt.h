@@ -57,6 +57,8 @@ public:
     virtual bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) = 0;
     // One frame: drawn where the program on screen lives, presented on the render context.
     virtual void Draw(const FrameInputs& in) = 0;
+    // The frame's GPU work is done (the bench's glFinish): what waits for the gap between frames.
+    virtual void FrameDone() {}
     // The program that went on screen last: its build, ms (with its load, first use and first
     // frame where the mode does those elsewhere).
     virtual double LastBuildMs() const = 0;

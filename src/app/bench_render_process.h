@@ -47,6 +47,7 @@ public:
     bool Start(HeadlessContext& gl, const std::string& scenePath, RenderPath path, int width, int height, std::string* error) override;
     bool Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) override;
     void Draw(const FrameInputs& in) override;
+    void FrameDone() override { servers_.FrameDone(); }
     double LastBuildMs() const override { return lastMs_; }
     std::string Details() const override;
     bool OnScreenQuick() const override { return servers_.OnScreenQuick(); }
@@ -54,6 +55,7 @@ public:
     // render-process-reattach: each frame's image attached to one read framebuffer, as before session
     // 22 (the two images alternate, so every frame attaches), not read through the one kept per image.
     void SetReattach(bool on) { reattach_ = on; }
+    ServerShow& Show() { return servers_; }   // its measured ways (SetRetireAtOnce, SetSkipOldRequest)
 
 private:
     // Declared before servers_: its servers are stopped (jobs abandoned) before the thread ends,

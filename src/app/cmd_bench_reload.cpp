@@ -60,6 +60,8 @@ struct Round {
     bool quickSeen = false, fromCache = false, ok = false;
     bool usedBefore = false;   // a program on screen this round was used on the loader before the hand-over
     double loadMs = 0;         // ... its load + first use there
+    std::vector<double> around;   // the 3 frames before the swap to the optimized program, its own, the 3 after
+    double longestAfter = 0;      // the longest frame in the 300 ms after that swap (what it replaced is retired then)
 };
 
 }  // namespace
@@ -180,8 +182,14 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         ImportOptions importOptions;
         importOptions.touch = modeName != "render-process-no-touch";
         importOptions.freeThere = modeName != "render-process-free-here";
+        const bool atOnce = modeName == "render-process-at-once";   // both as before session 24
+        importOptions.afterFrame = modeName != "render-process-import-now" && !atOnce;
         const bool reattach = modeName == "render-process-reattach";
-        if (inTurn || importHere || reattach || !importOptions.touch || !importOptions.freeThere) modeName = "render-process";
+        const bool retireNow = modeName == "render-process-retire-now" || atOnce;
+        const bool skipOld = modeName == "render-process-skip-old";
+        if (inTurn || importHere || reattach || retireNow || skipOld || !importOptions.touch || !importOptions.freeThere ||
+            !importOptions.afterFrame)
+            modeName = "render-process";
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
                    : modeName == "warm" ? 4 : modeName == "adopt" ? 5 : modeName == "adopt-process" ? 6
                    : modeName == "process-source" ? 7 : modeName == "stage" ? 8 : modeName == "render-process" ? 9
@@ -190,7 +198,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode < 0)
             return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
                         "adopt-process, stage, render-process, render-process-sync, render-process-one-image, render-process-in-turn, "
-                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process+NAME=VALUE or "
+                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process-retire-now, render-process-skip-old, render-process-import-now, render-process-at-once, "
+                        "render-process+NAME=VALUE or "
                         "render-process-shm");
         ModeRun m;
         m.name = shownName;
@@ -256,6 +265,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11,
                                                             m.live->Tiered(), serverEnv, inTurn, !importHere, importOptions);
         if (mode >= 9 && reattach) static_cast<RenderProcessRun*>(m.handover.get())->SetReattach(true);
+        if (mode >= 9) {
+            static_cast<RenderProcessRun*>(m.handover.get())->Show().SetRetireAtOnce(retireNow);
+            static_cast<RenderProcessRun*>(m.handover.get())->Show().SetSkipOldRequest(skipOld);
+        }
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();
@@ -279,6 +292,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             m.fr->Draw(*m.live->Current(), m.live->Scene(), m.in);
         }
         glFinish();
+        if (m.handover) m.handover->FrameDone();
         const double ms = MsSince(t0);
         PaceFrame(ms, o.fps);
         return ms;
@@ -297,9 +311,12 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         bool swapped = false;
         SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * m.entry + round) : original + "// round " + std::to_string(round) + "\n");
         const auto saved = Clock::now();
+        std::vector<double> recent;   // the last frames, for r.around
         while (MsSince(saved) < 120000) {
             const double ms = frameOnce(m, &swapped);
             ++r.frames;
+            recent.push_back(ms);
+            if (recent.size() > 4) recent.erase(recent.begin());
             if (ms > r.longestFrame) r.longestAt = MsSince(saved) - ms;
             r.longestFrame = std::max(r.longestFrame, ms);
             r.longestUpdate = std::max(r.longestUpdate, updateMs);
@@ -346,6 +363,16 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                 break;
             }
         }
+        if (r.ok) {   // the frames after the swap, while what it replaced is retired (counted apart)
+            r.around = recent;
+            r.around.insert(r.around.begin(), 4 - recent.size(), 0.0);
+            const auto swapAt = Clock::now();
+            for (int i = 0; MsSince(swapAt) < 300; ++i) {
+                const double ms = frameOnce(m, &swapped);
+                if (i < 3) r.around.push_back(ms);
+                r.longestAfter = std::max(r.longestAfter, ms);
+            }
+        }
         // A round that timed out leaves no build behind for the next mode's globals.
         if (live.Pending()) live.Wait();
         return r;
@@ -364,7 +391,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             else m.failedRounds.push_back(round);
         }
 
-    struct Summary { std::string mode; double first, optimized, longest, ratio, steady; };
+    struct Summary { std::string mode; double first, optimized, longest, ratio, steady, after; };
     std::vector<Summary> summary;
     for (ModeRun& m : runs) {
         LiveProgram& live = *m.live;
@@ -430,16 +457,28 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds; "
                     "the longest frame began %.1f ms after the save (%.2f of the way to the first swap), medians of rounds\n",
                     MedianMs(before), MedianMs(at), MedianMs(atShare));
+        std::vector<double> after;
+        std::vector<std::vector<double>> around(7);
+        for (const Round& r : m.rounds) {
+            after.push_back(std::max(r.longestFrame, r.longestAfter));
+            for (size_t i = 0; i < r.around.size() && i < around.size(); ++i) around[i].push_back(r.around[i]);
+        }
+        std::printf("frames around the swap, medians of rounds (ms): -3 %.2f, -2 %.2f, -1 %.2f, the swap %.2f, +1 %.2f, +2 %.2f, +3 %.2f; "
+                    "longest frame with the 300 ms after the swap %.1f ms = %.1fx the steady median\n",
+                    MedianMs(around[0]), MedianMs(around[1]), MedianMs(around[2]), MedianMs(around[3]), MedianMs(around[4]),
+                    MedianMs(around[5]), MedianMs(around[6]), MedianMs(after),
+                    m.steadyMedian > 0 ? MedianMs(after) / m.steadyMedian : 0.0);
         if (m.handover && !m.handover->Details().empty()) std::printf("%s\n", m.handover->Details().c_str());
-        summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian});
+        summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(after)});
     }
     if (o.driverCache == "fresh") std::printf("%s", DriverCacheContents(root / "driver-cache").c_str());
     if (summary.size() > 1) {
         std::printf("\n## modes side by side (rounds interleaved; medians)\n| mode | save -> first tier ms | save -> optimized ms | "
-                    "longest frame ms | x steady median | steady median ms |\n|---|---:|---:|---:|---:|---:|\n");
+                    "longest frame ms | x steady median | steady median ms | longest with the 300 ms after the swap ms | x steady |\n"
+                    "|---|---:|---:|---:|---:|---:|---:|---:|\n");
         for (const Summary& s : summary)
-            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f |\n", s.mode.c_str(), s.first, s.optimized, s.longest, s.ratio,
-                        s.steady);
+            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.1f | %.1f |\n", s.mode.c_str(), s.first, s.optimized, s.longest, s.ratio,
+                        s.steady, s.after, s.steady > 0 ? s.after / s.steady : 0.0);
     }
     return 0;
 }

@@ -137,6 +137,7 @@ bool LiveSession::Frame() {
     Guard("costs", [&] { MeasureEffectCosts(); });
     Guard("overlay", [&] { DrawOverlay(); });
     Present();
+    Guard("servers", [&] { if (servers_) servers_->FrameDone(); });   // the servers this frame retired end in the gap
     return true;
 }
 

@@ -47,6 +47,7 @@ public:
     unsigned Frame(const FrameInputs& in, int* w, int* h);
     unsigned FrameReadFramebuffer() { return show_.ReadFramebuffer(); }   // one reading Frame()'s texture, kept per image
     void AfterRead(const FrameInputs& in) { show_.AfterRead(in); }
+    void FrameDone() { show_.FrameDone(); }   // after the swap: the servers this frame retired end now
     // A build of another scene went on screen (its quick tier, or the optimized program): true once,
     // and the server of the scene before is kept (for a crossfade from its frames) until
     // DropPrevious. A build of the same scene ends the one it replaced at once.

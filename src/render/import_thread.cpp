@@ -53,6 +53,8 @@ std::shared_ptr<ImportThread::Job> ImportThread::Import(int fd0, int fd1, int im
     job->height = height;
     {
         std::lock_guard<std::mutex> lock(mutex_);
+        job->frame = frames_;
+        job->queued = std::chrono::steady_clock::now();
         queue_.push_back(job);
     }
     wake_.notify_all();
@@ -68,9 +70,28 @@ void ImportThread::Free(const unsigned textures[2], const unsigned memories[2], 
     job->fence = fence;
     {
         std::lock_guard<std::mutex> lock(mutex_);
+        job->frame = frames_;
+        job->queued = std::chrono::steady_clock::now();
         queue_.push_back(job);
     }
     wake_.notify_all();
+}
+
+void ImportThread::FrameDone() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++frames_;
+    }
+    wake_.notify_all();
+}
+
+bool ImportThread::Startable(std::chrono::steady_clock::time_point now) const {
+    // Gated once frames are told (frames_ > 0): a job waits for the end of the frame it was queued
+    // in, or kMaxHoldMs (a caller polling without frames is never held up longer).
+    if (queue_.empty()) return false;
+    const Job& front = *queue_.front();
+    return !options_.afterFrame || frames_ == 0 || front.frame < frames_ ||
+           now - front.queued >= std::chrono::milliseconds(ImportOptions::kMaxHoldMs);
 }
 
 namespace {
@@ -97,7 +118,10 @@ void ImportThread::Run(std::function<bool()> bind, std::function<void()> release
         bool stopping = false;
         {
             std::unique_lock<std::mutex> lock(mutex_);
-            wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+            while (!stop_ && !Startable(std::chrono::steady_clock::now())) {
+                if (queue_.empty()) wake_.wait(lock);
+                else wake_.wait_until(lock, queue_.front()->queued + std::chrono::milliseconds(ImportOptions::kMaxHoldMs));
+            }
             if (queue_.empty()) break;   // stopping, nothing left
             job = std::move(queue_.front());
             queue_.pop_front();

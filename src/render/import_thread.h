@@ -15,6 +15,7 @@
 //   process.SetImporter(&importer);   // RenderProcess::PollReady hands its vkmem images over to it
 #pragma once
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -31,6 +32,11 @@ namespace sdfvj {
 struct ImportOptions {
     bool touch = true;      // each imported image used once (a one-pixel copy) before it is handed over
     bool freeThere = true;  // RenderProcess::Stop hands its images to Free
+    // Once the show says its frames end (FrameDone), a job queued during a frame starts after that
+    // frame's GPU work is done, in the gap before the next, not beside it, or after kMaxHoldMs if
+    // no frame ends before (false: at once).
+    bool afterFrame = true;
+    static constexpr int kMaxHoldMs = 100;
 };
 
 class ImportThread {
@@ -58,6 +64,8 @@ public:
         std::condition_variable wake;
         bool done = false, abandoned = false;
         void* fence = nullptr;   // a free job (textures and memories given): wait for it, then delete
+        uint64_t frame = 0;      // the frames ended (FrameDone) when it was queued
+        std::chrono::steady_clock::time_point queued;
     };
 
     // bind runs once on the thread and must make a context current there that shares objects with
@@ -72,6 +80,9 @@ public:
     // Frees textures and their memory objects (GL names of the shared context) once `fence` (a
     // GLsync of the render thread's context, flushed; taken) has signalled. Never blocks.
     void Free(const unsigned textures[2], const unsigned memories[2], void* fence);
+    // The show's frame is done (its GPU work finished, or presented): jobs queued until now may start.
+    // Until the first call nothing waits (a user without frames is never held up).
+    void FrameDone();
     const ImportOptions& Settings() const { return options_; }
     int Imported() const { return imported_; }   // import jobs done, for tests
     int Freed() const { return freed_; }         // free jobs done, for tests
@@ -82,7 +93,9 @@ private:
     std::condition_variable wake_;
     std::deque<std::shared_ptr<Job>> queue_;
     bool stop_ = false, started_ = false, ok_ = false;
+    uint64_t frames_ = 0;   // FrameDone calls
     ImportOptions options_;
+    bool Startable(std::chrono::steady_clock::time_point now) const;   // mutex_ held: the front job may start
     std::atomic<int> imported_{0}, freed_{0};
     std::thread thread_;
 };

@@ -25,6 +25,7 @@ ServerShow::~ServerShow() {
     spareWake_.notify_all();
     if (spawner_.joinable()) spawner_.join();
     spares_.clear();
+    ending_.clear();
     retired_.clear();
 }
 
@@ -79,8 +80,25 @@ void ServerShow::SpawnLoop() {
 
 void ServerShow::Retire(std::unique_ptr<RenderProcess> p) {
     if (!p) return;
+    if (retireAfterFrame_) {   // ended at FrameDone, after the frame that retired it
+        ending_.push_back(std::move(p));
+        return;
+    }
     p->Stop();
     retired_.push_back(std::move(p));
+}
+
+void ServerShow::EndRetired() {
+    for (std::unique_ptr<RenderProcess>& p : ending_) {
+        p->Stop();
+        retired_.push_back(std::move(p));
+    }
+    ending_.clear();
+}
+
+void ServerShow::FrameDone() {
+    EndRetired();
+    if (importer_) importer_->FrameDone();   // a new server's images imported in the gap too
 }
 
 bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) {
@@ -258,6 +276,7 @@ void ServerShow::StepBuildAhead() {
 
 bool ServerShow::Poll(std::string* error) {
     error->clear();
+    EndRetired();   // a show that does not call FrameDone: those the last frame retired end now
     for (size_t i = 0; i < retired_.size();)
         if (retired_[i]->TryReap()) retired_.erase(retired_.begin() + (long)i);
         else ++i;
@@ -312,6 +331,7 @@ bool ServerShow::Frame(const FrameInputs& in, int timeoutMs) {
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;
     // A server just put on screen: its first frame is here already (pipelined), or drawn now.
+    if (!fresh_ && !p.Outstanding() && skipOldRequest_ && (next_.asked || quick_.asked)) return true;   // its last frame again
     const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs) : p.DrawFrame(in, timeoutMs));
     fresh_ = false;
     if (!ok) ++failedFrames_;   // the last frame stays on screen
@@ -323,6 +343,7 @@ void ServerShow::AfterRead(const FrameInputs& in) {
     // What read the frame is fenced; the request waits for the read of the image it will be drawn
     // into (with two images, the frame before's: done by now).
     onScreen_->Read();
+    if (skipOldRequest_ && (next_.asked || quick_.asked)) return;   // a build draws its first frame: the GPU is its
     if (!onScreen_->Request(in)) ++failedFrames_;
 }
 

@@ -64,6 +64,17 @@ public:
     // Pipelined: the show has issued what reads Texture() (fenced: RenderProcess::Read); the server
     // may draw the next frame.
     void AfterRead(const FrameInputs& in);
+    // The frame is on screen and its GPU work done (after the swap, or a bench's glFinish): the servers
+    // retired during it end now, and the import thread takes the images of a server that answered
+    // during it (ImportOptions::afterFrame), so that the driver's teardown and imports fall in the
+    // gap before the next frame rather than beside this one. A show that never calls this ends
+    // retired servers in its next Poll and imports at once.
+    void FrameDone();
+    // Measured ways (bench reload --modes render-process-retire-now, -skip-old): servers retired end
+    // at once, in the frame that retired them; no frame is asked of the server on screen while a
+    // build draws its first one (the last frame is shown again meanwhile).
+    void SetRetireAtOnce(bool on) { retireAfterFrame_ = !on; }
+    void SetSkipOldRequest(bool on) { skipOldRequest_ = on; }
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
     unsigned ReadFramebuffer();                // a framebuffer reading Texture() (RenderProcess::ReadFramebuffer); 0: none
@@ -134,6 +145,7 @@ private:
     bool Promote(Candidate& c, std::string* error);   // true when c went on screen
     void PutOnScreen(std::unique_ptr<RenderProcess> p, const ServerLoad& load, bool quick);
     void Retire(std::unique_ptr<RenderProcess> p);
+    void EndRetired();   // Stop() the ones retired since the last call
     bool Send(Candidate& c, const ServerLoad& load, std::string* error);
     void StepBuildAhead();
 
@@ -155,6 +167,9 @@ private:
     int spawnWanted_ = 0, spawning_ = 0;                    // spares asked of the spawner; being spawned
     std::vector<std::unique_ptr<RenderProcess>> spares_;    // guarded by spareMutex_
     std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
+    std::vector<std::unique_ptr<RenderProcess>> ending_;    // retired during this frame: ended at FrameDone
+    bool retireAfterFrame_ = true;
+    bool skipOldRequest_ = false;   // SetSkipOldRequest
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
     std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
     ServerLoad previousLoad_;
