@@ -55,7 +55,7 @@ public:
     // render-process-reattach: each frame's image attached to one read framebuffer, as before session
     // 22 (the two images alternate, so every frame attaches), not read through the one kept per image.
     void SetReattach(bool on) { reattach_ = on; }
-    ServerShow& Show() { return servers_; }   // its measured ways (SetRetireAtOnce, SetSkipOldRequest)
+    ServerShow& Show() { return servers_; }   // the way before, measured (SetRetireAtOnce)
 
 private:
     // Declared before servers_: its servers are stopped (jobs abandoned) before the thread ends,

@@ -186,8 +186,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         importOptions.afterFrame = modeName != "render-process-import-now" && !atOnce;
         const bool reattach = modeName == "render-process-reattach";
         const bool retireNow = modeName == "render-process-retire-now" || atOnce;
-        const bool skipOld = modeName == "render-process-skip-old";
-        if (inTurn || importHere || reattach || retireNow || skipOld || !importOptions.touch || !importOptions.freeThere ||
+        if (inTurn || importHere || reattach || retireNow || !importOptions.touch || !importOptions.freeThere ||
             !importOptions.afterFrame)
             modeName = "render-process";
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
@@ -198,7 +197,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode < 0)
             return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
                         "adopt-process, stage, render-process, render-process-sync, render-process-one-image, render-process-in-turn, "
-                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process-retire-now, render-process-skip-old, render-process-import-now, render-process-at-once, "
+                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process-retire-now, render-process-import-now, render-process-at-once, "
                         "render-process+NAME=VALUE or "
                         "render-process-shm");
         ModeRun m;
@@ -265,10 +264,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11,
                                                             m.live->Tiered(), serverEnv, inTurn, !importHere, importOptions);
         if (mode >= 9 && reattach) static_cast<RenderProcessRun*>(m.handover.get())->SetReattach(true);
-        if (mode >= 9) {
-            static_cast<RenderProcessRun*>(m.handover.get())->Show().SetRetireAtOnce(retireNow);
-            static_cast<RenderProcessRun*>(m.handover.get())->Show().SetSkipOldRequest(skipOld);
-        }
+        if (mode >= 9) static_cast<RenderProcessRun*>(m.handover.get())->Show().SetRetireAtOnce(retireNow);
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();

@@ -331,7 +331,6 @@ bool ServerShow::Frame(const FrameInputs& in, int timeoutMs) {
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;
     // A server just put on screen: its first frame is here already (pipelined), or drawn now.
-    if (!fresh_ && !p.Outstanding() && skipOldRequest_ && (next_.asked || quick_.asked)) return true;   // its last frame again
     const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs) : p.DrawFrame(in, timeoutMs));
     fresh_ = false;
     if (!ok) ++failedFrames_;   // the last frame stays on screen
@@ -343,7 +342,6 @@ void ServerShow::AfterRead(const FrameInputs& in) {
     // What read the frame is fenced; the request waits for the read of the image it will be drawn
     // into (with two images, the frame before's: done by now).
     onScreen_->Read();
-    if (skipOldRequest_ && (next_.asked || quick_.asked)) return;   // a build draws its first frame: the GPU is its
     if (!onScreen_->Request(in)) ++failedFrames_;
 }
 

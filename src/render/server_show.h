@@ -70,11 +70,9 @@ public:
     // gap before the next frame rather than beside this one. A show that never calls this ends
     // retired servers in its next Poll and imports at once.
     void FrameDone();
-    // Measured ways (bench reload --modes render-process-retire-now, -skip-old): servers retired end
-    // at once, in the frame that retired them; no frame is asked of the server on screen while a
-    // build draws its first one (the last frame is shown again meanwhile).
+    // The way before (bench reload --modes render-process-retire-now): servers retired end at once,
+    // in the frame that retired them.
     void SetRetireAtOnce(bool on) { retireAfterFrame_ = !on; }
-    void SetSkipOldRequest(bool on) { skipOldRequest_ = on; }
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
     unsigned ReadFramebuffer();                // a framebuffer reading Texture() (RenderProcess::ReadFramebuffer); 0: none
@@ -169,7 +167,6 @@ private:
     std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
     std::vector<std::unique_ptr<RenderProcess>> ending_;    // retired during this frame: ended at FrameDone
     bool retireAfterFrame_ = true;
-    bool skipOldRequest_ = false;   // SetSkipOldRequest
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
     std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
     ServerLoad previousLoad_;
