@@ -68,6 +68,21 @@ bool Running(pid_t pid) {
     return line[close + 2] != 'Z' && line[close + 2] != 'X';
 }
 
+struct Scenes {
+    SceneInfo midi, primitives;
+};
+// The two scenes the saves switch between; the import thread's context made, the render context current.
+Scenes TwoScenes() {
+    RequireGl();
+    Scenes s;
+    std::string error;
+    REQUIRE(FindScene("midi", &s.midi, &error));
+    REQUIRE(FindScene("primitives", &s.primitives, &error));
+    REQUIRE(ImportContext());
+    TestContext()->MakeCurrent();
+    return s;
+}
+
 double MsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -75,13 +90,9 @@ double MsSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 TEST_CASE("render process read: one framebuffer kept per image reads that image's latest frame, and a new server's images never read through the last one's", "[render_process]") {
-    RequireGl();
-    SceneInfo midi, primitives;
+    const Scenes scenes = TwoScenes();
+    const SceneInfo &midi = scenes.midi, &primitives = scenes.primitives;
     std::string error;
-    REQUIRE(FindScene("midi", &midi, &error));
-    REQUIRE(FindScene("primitives", &primitives, &error));
-    REQUIRE(ImportContext());
-    TestContext()->MakeCurrent();
     ImportThread importer([] { return ImportContext()->MakeCurrent(); }, [] { ImportContext()->ReleaseCurrent(); });
     REQUIRE(importer.Ok());
     ServerShow show(FrameTransport::VkMemory, false, false);
@@ -118,13 +129,9 @@ TEST_CASE("render process read: one framebuffer kept per image reads that image'
 TEST_CASE("render process gap: a new server's images are imported after the frame they arrived in (or within 100 ms without one), and the server a swap replaced ends once the frame is done", "[render_process]") {
     // On the H200 the import beside a frame made it 1.2-1.8 ms against 0.53 (two frames before the
     // swap), and the replaced server's end 1.3-1.5 ms (the swap's frame): docs/performance.md, "Session 24".
-    RequireGl();
-    SceneInfo midi, primitives;
+    const Scenes scenes = TwoScenes();
+    const SceneInfo &midi = scenes.midi, &primitives = scenes.primitives;
     std::string error;
-    REQUIRE(FindScene("midi", &midi, &error));
-    REQUIRE(FindScene("primitives", &primitives, &error));
-    REQUIRE(ImportContext());
-    TestContext()->MakeCurrent();
     ImportThread importer([] { return ImportContext()->MakeCurrent(); }, [] { ImportContext()->ReleaseCurrent(); });
     REQUIRE(importer.Ok());
     INFO(error);
