@@ -58,6 +58,7 @@ int RunServerToggleWays(const ReloadBenchOptions& o, const SceneInfo& scene, Ren
         if (!error.empty()) m.error = error;
         if (m.show->Frame(m.in, 5000)) m.present->Blit(m.show->Texture());
         glFinish();
+        m.show->FrameDone();   // as live does after the swap
         const double ms = MsSince(t0);
         PaceFrame(ms, o.fps);
         return ms;
