@@ -263,8 +263,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode >= 9)
             m.handover = std::make_unique<RenderProcessRun>(mode == 10 ? FrameTransport::Shm : FrameTransport::VkMemory, mode != 11,
                                                             m.live->Tiered(), serverEnv, inTurn, !importHere, importOptions);
-        if (mode >= 9 && reattach) static_cast<RenderProcessRun*>(m.handover.get())->SetReattach(true);
-        if (mode >= 9) static_cast<RenderProcessRun*>(m.handover.get())->Show().SetRetireAtOnce(retireNow);
+        if (mode >= 9) {
+            auto* run = static_cast<RenderProcessRun*>(m.handover.get());
+            run->SetReattach(reattach);
+            run->Show().SetRetireAtOnce(retireNow);
+        }
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
             gl.MakeCurrent();

@@ -51,13 +51,7 @@ std::shared_ptr<ImportThread::Job> ImportThread::Import(int fd0, int fd1, int im
     job->size = size;
     job->width = width;
     job->height = height;
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        job->frame = frames_;
-        job->queued = std::chrono::steady_clock::now();
-        queue_.push_back(job);
-    }
-    wake_.notify_all();
+    Enqueue(job);
     return job;
 }
 
@@ -68,21 +62,27 @@ void ImportThread::Free(const unsigned textures[2], const unsigned memories[2], 
         job->memories[i] = memories[i];
     }
     job->fence = fence;
+    Enqueue(std::move(job));
+}
+
+void ImportThread::Enqueue(std::shared_ptr<Job> job) {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         job->frame = frames_;
         job->queued = std::chrono::steady_clock::now();
-        queue_.push_back(job);
+        queue_.push_back(std::move(job));
     }
     wake_.notify_all();
 }
 
-void ImportThread::FrameDone() {
+void ImportThread::FrameDone() {   // every frame of the show: wakes the thread only when a job waits
+    bool waiting = false;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         ++frames_;
+        waiting = !queue_.empty();
     }
-    wake_.notify_all();
+    if (waiting) wake_.notify_all();
 }
 
 bool ImportThread::Startable(std::chrono::steady_clock::time_point now) const {

@@ -96,6 +96,7 @@ private:
     uint64_t frames_ = 0;   // FrameDone calls
     ImportOptions options_;
     bool Startable(std::chrono::steady_clock::time_point now) const;   // mutex_ held: the front job may start
+    void Enqueue(std::shared_ptr<Job> job);   // stamped with the frame and time it was queued
     std::atomic<int> imported_{0}, freed_{0};
     std::thread thread_;
 };

@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include "gl_fixture.h"
@@ -83,6 +84,26 @@ Scenes TwoScenes() {
     return s;
 }
 
+// An import thread on ImportContext(), as `live` has one.
+std::unique_ptr<ImportThread> ImportOnContext() {
+    auto t = std::make_unique<ImportThread>([] { return ImportContext()->MakeCurrent(); }, [] { ImportContext()->ReleaseCurrent(); });
+    REQUIRE(t->Ok());
+    return t;
+}
+
+// A new server loading `scene` on the GPU, polled until its answer came: true when it was taken
+// whole (*ready filled), false while its images are on the import thread.
+bool LoadUntilImporting(RenderProcess* proc, ImportThread* importer, const SceneInfo& scene, RenderProcess::Ready* ready) {
+    std::string error;
+    proc->SetImporter(importer);
+    INFO(error);
+    REQUIRE(proc->Start(&error));
+    REQUIRE(proc->Load(ServerLoad{scene.path, true, {}, RenderPath::Compute, kW, kH}, FrameTransport::VkMemory));
+    bool taken = false;
+    while (proc->Usable() && !(taken = proc->PollReady(ready, 0)) && !proc->Importing()) ::usleep(200);
+    return taken;
+}
+
 double MsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -93,8 +114,8 @@ TEST_CASE("render process read: one framebuffer kept per image reads that image'
     const Scenes scenes = TwoScenes();
     const SceneInfo &midi = scenes.midi, &primitives = scenes.primitives;
     std::string error;
-    ImportThread importer([] { return ImportContext()->MakeCurrent(); }, [] { ImportContext()->ReleaseCurrent(); });
-    REQUIRE(importer.Ok());
+    const std::unique_ptr<ImportThread> thread = ImportOnContext();
+    ImportThread& importer = *thread;
     ServerShow show(FrameTransport::VkMemory, false, false);
     show.SetImporter(&importer);
     INFO(error);
@@ -132,18 +153,14 @@ TEST_CASE("render process gap: a new server's images are imported after the fram
     const Scenes scenes = TwoScenes();
     const SceneInfo &midi = scenes.midi, &primitives = scenes.primitives;
     std::string error;
-    ImportThread importer([] { return ImportContext()->MakeCurrent(); }, [] { ImportContext()->ReleaseCurrent(); });
-    REQUIRE(importer.Ok());
+    const std::unique_ptr<ImportThread> thread = ImportOnContext();
+    ImportThread& importer = *thread;
     INFO(error);
     {   // The import thread alone: held for the frame's end once frames are told.
-        RenderProcess proc;
-        proc.SetImporter(&importer);
-        REQUIRE(proc.Start(&error));
-        REQUIRE(proc.Load(ServerLoad{midi.path, true, {}, RenderPath::Compute, kW, kH}, FrameTransport::VkMemory));
         importer.FrameDone();   // a show's frame ended: from now on imports wait for the next end
+        RenderProcess proc;
         RenderProcess::Ready ready;
-        bool taken = false;
-        while (proc.Usable() && !(taken = proc.PollReady(&ready, 0)) && !proc.Importing()) ::usleep(200);
+        const bool taken = LoadUntilImporting(&proc, &importer, midi, &ready);
         if (taken && ready.transport != FrameTransport::VkMemory) {
             WARN("no Vulkan-allocated image here (" << ready.text << "): nothing to import on a thread");
             return;
@@ -164,11 +181,8 @@ TEST_CASE("render process gap: a new server's images are imported after the fram
     }
     {   // No frame ends: the import still comes, after the 100 ms hold.
         RenderProcess proc;
-        proc.SetImporter(&importer);
-        REQUIRE(proc.Start(&error));
-        REQUIRE(proc.Load(ServerLoad{primitives.path, true, {}, RenderPath::Compute, kW, kH}, FrameTransport::VkMemory));
         RenderProcess::Ready ready;
-        while (proc.Usable() && !proc.PollReady(&ready, 0) && !proc.Importing()) ::usleep(200);
+        LoadUntilImporting(&proc, &importer, primitives, &ready);
         REQUIRE(proc.Importing());
         const auto seen = std::chrono::steady_clock::now();
         REQUIRE(proc.PollReady(&ready, 5000));
