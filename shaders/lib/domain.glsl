@@ -35,6 +35,8 @@ mat3 rotationZ(float a) {
 vec3 pRotateX(vec3 p, float a) { return rotationX(-a) * p; }
 vec3 pRotateY(vec3 p, float a) { return rotationY(-a) * p; }
 vec3 pRotateZ(vec3 p, float a) { return rotationZ(-a) * p; }
+// pRotateY by the angle whose cosine and sine are c and s.
+vec3 pRotateYcs(vec3 p, float c, float s) { return mat3(c, 0.0f, s, 0.0f, 1.0f, 0.0f, -s, 0.0f, c) * p; }
 // Rotate the object by the rotation matrix m (orthonormal).
 vec3 pRotate(vec3 p, mat3 m) { return transpose(m) * p; }
 

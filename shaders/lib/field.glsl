@@ -60,29 +60,49 @@ float fieldLift(float i, float j, float wave, float phase) {
 // Highest point of any shape: the capsule's top at lift = wave.
 float fieldTop(float size, float wave) { return 0.95f * FIELD_UNIT * max(size, 0.05f) + max(wave, 0.0f); }
 
-// The shape of cell (i, j), q relative to the cell's centre on the floor: its distance, exact;
-// every shape lies within FIELD_RADIUS * size of the cell's vertical axis, at y >= lift >= 0.
-float fieldShape(vec3 q, float i, float j, float size, float wave, float phase, float spin) {
-    float s = max(size, 0.05f) * FIELD_UNIT;
+// What a cell's shape depends on besides the point: (lift, cos turn, sin turn, kind). Uniforms and the
+// cell only, so a scene may compute it once per work-group (field_scene.glsl FIELD_CELL_TABLE).
+vec4 fieldCellParams(float i, float j, float wave, float phase, float spin) {
     float lift = fieldLift(i, j, wave, phase);
     float turn = spin * (mod(i + j, 2.0f) < 0.5f ? 1.0f : -1.0f) + 0.9f * i + 0.4f * j;
     float kind = mod(i + 3.0f * j + floor(0.5f * i), 4.0f);
+    return vec4(lift, cos(turn), sin(turn), kind);
+}
+
+// The shape of a cell with parameters c (fieldCellParams), q relative to the cell's centre on the
+// floor: its distance, exact; every shape lies within FIELD_RADIUS * size of the cell's vertical
+// axis, at y >= lift >= 0.
+float fieldShapeOf(vec3 q, float size, vec4 c) {
+    float s = max(size, 0.05f) * FIELD_UNIT;
+    float lift = c.x;
+    float kind = c.w;
     float d;
     if (kind < 0.5f) {
         d = fSphere(pTranslate(q, vec3(0.0f, 0.36f * s + lift, 0.0f)), 0.36f * s);   // r 0.36
     } else if (kind < 1.5f) {
-        vec3 b = pRotateY(pTranslate(q, vec3(0.0f, 0.30f * s + lift, 0.0f)), turn);
+        vec3 b = pRotateYcs(pTranslate(q, vec3(0.0f, 0.30f * s + lift, 0.0f)), c.y, c.z);
         d = fRoundBox(b, vec3(0.26f, 0.30f, 0.26f) * s, 0.06f * s);                 // corner 0.368
     } else if (kind < 2.5f) {
-        vec3 t = pRotateY(pTranslate(q, vec3(0.0f, 0.38f * s + lift, 0.0f)), turn);
+        vec3 t = pRotateYcs(pTranslate(q, vec3(0.0f, 0.38f * s + lift, 0.0f)), c.y, c.z);
         d = fTorus(pRotateX(t, 0.5f * PI), 0.11f * s, 0.27f * s);                   // outer 0.38
     } else {
         vec3 a = vec3(0.0f, 0.2f * s + lift, 0.0f);
-        vec3 tip = vec3(0.165f * cos(turn), 0.525f, 0.165f * sin(turn)) * s;        // 0.55 long, tilted
+        vec3 tip = vec3(0.165f * c.y, 0.525f, 0.165f * c.z) * s;                    // 0.55 long, tilted
         d = fCapsule(q, a, a + tip, 0.2f * s);                                      // 0.165 + 0.2
     }
     return d;
 }
+float fieldShape(vec3 q, float i, float j, float size, float wave, float phase, float spin) {
+    return fieldShapeOf(q, size, fieldCellParams(i, j, wave, phase, spin));
+}
+
+// A cell's parameters inside fieldMap: computed, unless the scene keeps a table (FIELD_CELL_TABLE,
+// which defines FIELD_CELL_PARAMS). They are read after the skip test: reading them before it, to
+// bound each shape in height as well (the slab lift .. lift + its height), was exact but slower on
+// the H200 (field150 1080p 0.543 -> 0.639 ms, field50 0.426 -> 0.500; docs/performance.md, session 25).
+#ifndef FIELD_CELL_PARAMS
+#define FIELD_CELL_PARAMS(i, j, wave, phase, spin) fieldCellParams(i, j, wave, phase, spin)
+#endif
 
 // The two nearest of a set of shapes: (i, j, 0, distance) each; colours are looked up last.
 struct FieldPair {
@@ -106,7 +126,7 @@ FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, f
     vec3 q = p - vec3(i - 0.5f * (nx - 1.0f), 0.0f, j - 0.5f * (nz - 1.0f));
     float reach = min(n.next.w, n.near.w + max(blend, 0.0f));
     if (length(vec2(q.x, q.z)) - FIELD_RADIUS * max(size, 0.05f) >= reach) return n;
-    return fieldInsert(n, vec4(i, j, 0.0f, fieldShape(q, i, j, size, wave, phase, spin)));
+    return fieldInsert(n, vec4(i, j, 0.0f, fieldShapeOf(q, size, FIELD_CELL_PARAMS(i, j, wave, phase, spin))));
 }
 
 // The pair's blend with its colours.

@@ -2,6 +2,17 @@
 // bounding sphere and Lipschitz bound of FIELD_NX x FIELD_NZ cells of lib/field.glsl. The scene
 // file declares its header, `const float FIELD_NX, FIELD_NZ` and includes this once.
 #include "lib/common.glsl"
+// FIELD_CELL_TABLE (on the compute path: lib/common.glsl SCENE_TABLES): every cell's parameters
+// (its lift, turn and kind: uniforms only) computed once per work-group, by all its invocations
+// together (sceneSetupLanes), not in every map() call. H200, full lighting, one interleaved run:
+// field150 1080p 0.591 -> 0.545 ms, 4K 1.703 -> 1.559; field50 0.462 -> 0.429, 1.346 -> 1.235.
+#ifndef FIELD_CELL_TABLE
+#define FIELD_CELL_TABLE SCENE_TABLES
+#endif
+#if FIELD_CELL_TABLE
+shared vec4 sceneCells[int(FIELD_NX * FIELD_NZ)];
+#define FIELD_CELL_PARAMS(i, j, wave, phase, spin) sceneCells[int(i) + int(j) * int(FIELD_NX)]
+#endif
 #include "lib/field.glsl"
 
 // Bounding volume for the renderer (render.glsl BOUNDS): the shapes and the floor apart.
@@ -19,6 +30,16 @@ vec4 mapGround(vec3 p) {
     float grid = max(smoothstep(0.47f, 0.5f, abs(fract(p.x) - 0.5f)), smoothstep(0.47f, 0.5f, abs(fract(p.z) - 0.5f)));
     return vec4(mix(vec3(0.16f), vec3(0.10f), grid), p.y);
 }
+
+#if FIELD_CELL_TABLE
+#define SCENE_SETUP_LANES 1
+void sceneSetupLanes(uint lane, uint lanes) {
+    for (uint k = lane; k < uint(FIELD_NX * FIELD_NZ); k += lanes) {
+        float j = floor(float(k) / FIELD_NX);
+        sceneCells[k] = fieldCellParams(float(k) - j * FIELD_NX, j, u_wave, u_time * u_speed * 2.0f, u_time * u_spin);
+    }
+}
+#endif
 
 vec4 map(vec3 p) {
     vec4 shapes = fieldMap(p, FIELD_NX, FIELD_NZ, u_size, u_blend, u_wave, u_time * u_speed * 2.0f, u_time * u_spin);

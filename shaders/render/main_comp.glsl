@@ -32,6 +32,15 @@ uniform int u_rowOffset;   // the frame drawn in strips (FrameRenderer::SetStrip
 const int CONE_TILE = 8;
 
 void main() {
+#ifndef SCENE_SETUP_LANES
+#define SCENE_SETUP_LANES 0
+#endif
+#if SCENE_TABLES && SCENE_SETUP_LANES
+    // The scene's tables (lib/common.glsl SCENE_TABLES): filled by the whole group, in shared memory.
+    sceneSetupLanes(gl_LocalInvocationIndex, gl_WorkGroupSize.x * gl_WorkGroupSize.y);
+    memoryBarrierShared();
+    barrier();
+#endif
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (u_conePass == 1) {
         ivec2 tiles = (ivec2(u_resolution) + CONE_TILE - 1) / CONE_TILE;

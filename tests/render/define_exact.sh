@@ -3,7 +3,7 @@
 # renders against a copy of itself (NAME_alt) with one #define after its header, over 6 frames
 # of its animation, once per knob set (each set one argument; "" = the default knobs).
 #   define_exact.sh SDFVJ SOURCE OUTDIR "NAME VALUE" PATH "SCENE ..." [KNOBS ...]
-# Used by render_part_skip_exact (character's CHARACTER_SKIP) and render_ao_farthest_exact
+# Used by render_part_skip_exact (character's CHARACTER_SKIP), render_field_cells_exact and render_ao_farthest_exact
 # (lib/shading.glsl AO_FARTHEST_FIRST, both ways).
 set -eu
 bin="$1"; src="$2"; out="$3"; define="$4"; path="$5"; scenes="$6"; shift 6
