@@ -14,6 +14,17 @@
 #ifndef SCENE_STATE
 #define SCENE_STATE
 #endif
+// SCENE_SETUP_FRAME (1 on the compute path): sceneSetup() runs once per frame, in the cone
+// pre-pass's first invocation (or a dispatch of its own without the pre-pass), which stores the
+// state in a buffer; every pixel of the frame loads it from there as a uniform block
+// (main_comp.glsl; the blocks are generated from the SCENE_STATE lines, which must therefore stand
+// unconditionally at the start of a line, src/shader/shader.cpp SceneStateBlocks).
+#if defined(SDFVJ_COMPUTE) && !defined(SCENE_SETUP_FRAME)
+#define SCENE_SETUP_FRAME 1
+#endif
+#ifndef SCENE_SETUP_FRAME
+#define SCENE_SETUP_FRAME 0
+#endif
 
 // SCENE_TABLES (1 on the compute path): a scene may keep tables of values that depend on uniforms
 // only (the fields' cells) in the work-group's shared memory, filled by all of the group's

@@ -42,6 +42,18 @@ void main() {
     barrier();
 #endif
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+#if SCENE_STATE_FRAME
+    // The scene's state for the frame (lib/common.glsl SCENE_SETUP_FRAME): the cone pre-pass computes
+    // it in every invocation and its first leaves it in the buffer; u_conePass 3, a dispatch of one
+    // group, only that. The frame reads it as a uniform block.
+    if (u_conePass == 1 || u_conePass == 3) {
+        sceneSetup();
+        if (pixel == ivec2(0)) sceneStateStore();
+        if (u_conePass == 3) return;
+    } else {
+        sceneStateLoad();
+    }
+#endif
     if (u_conePass == 1) {
         ivec2 tiles = (ivec2(u_resolution) + CONE_TILE - 1) / CONE_TILE;
         if (pixel.x >= tiles.x || pixel.y >= tiles.y) return;

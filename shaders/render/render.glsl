@@ -115,8 +115,11 @@
 #ifndef SCENE_SETUP
 #define SCENE_SETUP 0
 #endif
+#ifndef SCENE_STATE_FRAME
+#define SCENE_STATE_FRAME 0   // set by the blocks src/shader/shader.cpp generates (SCENE_SETUP_FRAME)
+#endif
 void callSceneSetup() {
-#if SCENE_SETUP
+#if SCENE_SETUP && !SCENE_STATE_FRAME
     sceneSetup();
 #endif
 }

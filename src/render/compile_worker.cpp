@@ -58,7 +58,7 @@ void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
     glGetIntegerv(GL_CURRENT_PROGRAM, &current);
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &boundVao);
-    GLuint tex = 0, fbo = 0, vao = 0, cone = 0;
+    GLuint tex = 0, fbo = 0, vao = 0, cone = 0, state = 0;
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
     glTexStorage2D(GL_TEXTURE_2D, 1, floatImage ? GL_RGBA32F : GL_RGBA8, 1, 1);
@@ -71,6 +71,12 @@ void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
         glBindTexture(GL_TEXTURE_2D, cone);
         glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, 1, 1);
         glBindImageTexture(1, cone, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+        // And the scene's frame state (FrameRenderer, main_comp.glsl SCENE_STATE_FRAME), as a uniform block.
+        glGenBuffers(1, &state);
+        glBindBuffer(GL_UNIFORM_BUFFER, state);
+        glBufferStorage(GL_UNIFORM_BUFFER, kSceneStateBytes, nullptr, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSceneStateBinding, state);
+        glBindBufferBase(GL_UNIFORM_BUFFER, kSceneStateBinding, state);
         glDispatchCompute(1, 1, 1);
     } else {
         glGenFramebuffers(1, &fbo);
@@ -86,6 +92,7 @@ void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
     if (fbo) glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &tex);
     if (cone) glDeleteTextures(1, &cone);
+    if (state) glDeleteBuffers(1, &state);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)drawFbo);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)readFbo);

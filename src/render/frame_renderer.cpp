@@ -23,7 +23,8 @@ void FrameRenderer::Release() {
     if (vao_) glDeleteVertexArrays(1, &vao_);
     if (query_) glDeleteQueries(1, &query_);
     if (coneTexture_) glDeleteTextures(1, &coneTexture_);
-    fbo_ = texture_ = vao_ = query_ = coneTexture_ = 0;
+    if (stateBuffer_) glDeleteBuffers(1, &stateBuffer_);
+    fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = 0;
 }
 
 bool FrameRenderer::Resize(int width, int height, std::string* error, bool floatTarget) {
@@ -52,6 +53,10 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
     glGenTextures(1, &coneTexture_);
     glBindTexture(GL_TEXTURE_2D, coneTexture_);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (width + kConeTile - 1) / kConeTile, (height + kConeTile - 1) / kConeTile);
+    glGenBuffers(1, &stateBuffer_);
+    glBindBuffer(GL_UNIFORM_BUFFER, stateBuffer_);
+    glBufferStorage(GL_UNIFORM_BUFFER, kSceneStateBytes, nullptr, 0);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
     glGenVertexArrays(1, &vao_);
     glGenQueries(1, &query_);
     width_ = width;
@@ -117,11 +122,20 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, floatTarget_ ? GL_RGBA32F : GL_RGBA8);
         glBindImageTexture(1, coneTexture_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
         const GLuint gx = (GLuint)std::max(p.GroupX(), 1), gy = (GLuint)std::max(p.GroupY(), 1);
+        if (p.FrameState()) {   // the scene's setup once for the frame: the pre-pass stores it, or a group of its own
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSceneStateBinding, stateBuffer_);
+            glBindBufferBase(GL_UNIFORM_BUFFER, kSceneStateBinding, stateBuffer_);
+            if (!q.conePrepass) {
+                p.Set("u_conePass", 3.0f);
+                glDispatchCompute(1, 1, 1);
+                glMemoryBarrier(GL_UNIFORM_BARRIER_BIT);
+            }
+        }
         if (q.conePrepass) {   // one invocation per 8x8 tile, in the program's groups
             p.Set("u_conePass", 1.0f);
             const GLuint tilesX = (GLuint)(width_ + kConeTile - 1) / kConeTile, tilesY = (GLuint)(height_ + kConeTile - 1) / kConeTile;
             glDispatchCompute((tilesX + gx - 1) / gx, (tilesY + gy - 1) / gy, 1);
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
         }
         p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
         // Strips of whole work-groups (main_comp.glsl adds u_rowOffset to each invocation's row).

@@ -70,6 +70,8 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const
     group_[0] = group_[1] = 8;
     group_[2] = 1;
     if (path == RenderPath::Compute) glGetProgramiv(id, GL_COMPUTE_WORK_GROUP_SIZE, group_);
+    frameState_ = path == RenderPath::Compute &&
+                  glGetProgramResourceIndex(id, GL_SHADER_STORAGE_BLOCK, "SceneStateOut") != GL_INVALID_INDEX;
     GLint count = 0;
     glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
     for (GLint i = 0; i < count; ++i) {

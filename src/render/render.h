@@ -111,6 +111,9 @@ public:
     // defines them): FrameRenderer sizes its dispatches from it.
     int GroupX() const { return group_[0]; }
     int GroupY() const { return group_[1]; }
+    // A compute program whose scene's setup runs once per frame (main_comp.glsl SCENE_STATE_FRAME):
+    // FrameRenderer binds the state's buffer and has it filled before the frame.
+    bool FrameState() const { return frameState_; }
     const ShaderSource& Source() const { return source_; }
     // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
     void Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin = {});
@@ -135,6 +138,7 @@ private:
     unsigned id_ = 0;
     RenderPath path_ = RenderPath::Fragment;
     int group_[3] = {8, 8, 1};
+    bool frameState_ = false;
     ShaderSource source_;
     ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;
@@ -245,6 +249,7 @@ private:
     bool floatTarget_ = false;
     unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
     unsigned coneTexture_ = 0;   // r32f, one texel per 8x8 tile: the cone pre-pass's start distances
+    unsigned stateBuffer_ = 0;   // the scene's frame state (Program::FrameState), kSceneStateBytes
     double lastGpuMs_ = 0.0;
     int strips_ = 1;
 };

@@ -23,6 +23,11 @@ using Vec3f = std::array<float, 3>;
 // Every field becomes a #define; an effect that is 0 is not in the program at all.
 // A reflection's step budget under `direct_reflections` (render.glsl BOUNCE_STEPS).
 constexpr int kDirectReflectionSteps = 48;
+// The compute path's frame state (main_comp.glsl SCENE_STATE_FRAME): the buffer binding (uniform and
+// storage) of the blocks AssembleProgram generates from a scene's SCENE_STATE globals, and the size
+// FrameRenderer gives it (std140; 16 KB, the smallest GL_MAX_UNIFORM_BLOCK_SIZE GL allows).
+constexpr int kSceneStateBinding = 2;
+constexpr int kSceneStateBytes = 16384;
 
 struct EffectSet {
     int shadows = 0;        // 0 none, 1 hard, 2 soft, 3 improved soft

@@ -133,8 +133,36 @@ std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
     return d;
 }
 
-// After the scene: the raymarcher, the pixel entry (supersampling) and the path's main().
+// The scene's SCENE_STATE globals (lib/common.glsl), found in its text: "SCENE_STATE <type> <name>[N];"
+// at the start of a line. Each becomes a member of the blocks the compute path's frame setup writes
+// and reads (main_comp.glsl SCENE_STATE_FRAME): sceneSetup() runs once per frame, not once per pixel.
+static std::string SceneStateBlocks(const std::string& text) {
+    static const std::regex kDecl(R"(^[ \t]*SCENE_STATE[ \t]+([A-Za-z_]\w*)[ \t]+([A-Za-z_]\w*)[ \t]*(\[[ \t]*\d+[ \t]*\])?[ \t]*;)");
+    std::string in, out, load, store;
+    std::stringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        std::smatch m;
+        if (!std::regex_search(line, m, kDecl)) continue;
+        const std::string type = m[1], name = m[2], array = m[3];
+        in += "    " + type + " sceneIn_" + name + array + ";\n";
+        out += "    " + type + " sceneOut_" + name + array + ";\n";
+        load += "    " + name + " = sceneIn_" + name + ";\n";
+        store += "    sceneOut_" + name + " = " + name + ";\n";
+    }
+    if (in.empty()) return "";
+    // Both blocks std140 over one buffer: the same offsets whatever the members.
+    return "#if SCENE_SETUP && SCENE_SETUP_FRAME\n#define SCENE_STATE_FRAME 1\n"
+           "layout(std140, binding = " + std::to_string(kSceneStateBinding) + ") uniform SceneStateIn {\n" + in + "};\n"
+           "layout(std140, binding = " + std::to_string(kSceneStateBinding) + ") buffer SceneStateOut {\n" + out + "};\n"
+           "void sceneStateLoad() {\n" + load + "}\nvoid sceneStateStore() {\n" + store + "}\n#endif\n";
+}
+
+// After the scene: its frame state's blocks, the raymarcher, the pixel entry (supersampling) and the
+// path's main().
 static bool ExpandRenderer(const fs::path& root, RenderPath path, ShaderSource* s, std::string* error) {
+    const std::string blocks = path == RenderPath::Compute ? SceneStateBlocks(s->text) : std::string();
+    if (!blocks.empty()) s->text += LineDirective(1, 0) + blocks;
     const char* mainFile = path == RenderPath::Compute ? "main_comp.glsl" : "main_frag.glsl";
     for (const char* file : {"render.glsl", "supersample.glsl", mainFile})
         if (!ExpandIncludes((root / "render" / file).string(), s, error)) return false;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "gl_fixture.h"
 
@@ -238,5 +239,51 @@ TEST_CASE("render: over-relaxed sphere tracing finds the surfaces plain sphere t
         Image plain = RenderScene(file.string(), info.effects, RenderPath::Fragment, 160, 90);
         Image shipped = RenderScene("mandelbulb", info.effects, RenderPath::Fragment, 160, 90);
         CHECK(plain.rgba == shipped.rgba);
+    }
+}
+
+// A scene's setup once per frame on the compute path (lib/common.glsl SCENE_SETUP_FRAME): the cone
+// pre-pass's first invocation (or a group of its own without the pre-pass) stores what sceneSetup()
+// computes, and every pixel loads it as a uniform block. The frames are what a per-pixel setup (a
+// copy with SCENE_SETUP_FRAME 0) draws, within rounding: llvmpipe may contract sceneSetup's
+// arithmetic differently in the two programs (4 of 129,600 pixels of character by 1/255 at
+// 480x270). Without the store, the frame reads an empty skeleton; without the load, the program
+// is the per-pixel one.
+TEST_CASE("render: a scene's setup runs once per frame on the compute path and draws what the per-pixel setup draws", "[render]") {
+    RequireGl();
+    const fs::path dir = fs::path(SDFVJ_TEST_OUTPUT_DIR) / "setup_frame";
+    fs::create_directories(dir);
+    for (const char* scene : {"character", "mandelbulb"}) {
+        SceneInfo info;
+        std::string error;
+        REQUIRE(FindScene(scene, &info, &error));
+        const fs::path copy = dir / (std::string(scene) + "_pixel.glsl");
+        REQUIRE(WriteSceneCopy(scene, "#define SCENE_SETUP_FRAME 0", copy));
+        SceneInfo pixelInfo;
+        REQUIRE(LoadScene(copy.string(), &pixelInfo, &error));
+        // The shipped scene's compute program has the frame state; the copy's and the fragment path's do not.
+        for (const auto& [sceneInfo, path, want] : {std::tuple{info, RenderPath::Compute, true},
+                                                    std::tuple{pixelInfo, RenderPath::Compute, false},
+                                                    std::tuple{info, RenderPath::Fragment, false}}) {
+            ShaderSource src;
+            REQUIRE(AssembleProgram(sceneInfo, VariantKey{sceneInfo.path, sceneInfo.effects, path}, &src, &error));
+            Program prog;
+            INFO(scene << " " << (path == RenderPath::Compute ? "compute" : "fragment") << ": " << error);
+            REQUIRE(prog.Build(src, path, &error));
+            CHECK(prog.FrameState() == want);
+        }
+        for (bool cone : {true, false})
+            for (int strips : {1, 3}) {
+                Quality q;
+                q.conePrepass = cone;
+                const Image a = RenderScene(scene, info.effects, RenderPath::Compute, 96, 54, 1.7, {}, q, strips);
+                const Image b = RenderScene(copy.string(), info.effects, RenderPath::Compute, 96, 54, 1.7, {}, q, strips);
+                REQUIRE(a.rgba.size() == b.rgba.size());
+                const ImageDiff d = CompareImages(a, b, 2);
+                INFO(scene << ", cone pre-pass " << cone << ", " << strips << " strips: " << d.fractionOver * 100
+                           << " % of pixels past 2/255, by up to " << d.maxAbs);
+                CHECK(d.fractionOver < 0.001);
+                CHECK(d.maxAbs <= 4);
+            }
     }
 }
