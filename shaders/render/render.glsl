@@ -207,7 +207,19 @@ struct Hit {
 };
 
 // Unit ray direction through a pixel for the look-at camera (vertical fov u_fov).
+// CAMERA_UNIFORMS (on for the GPU): the basis from uniforms.glsl's u_camForward, u_camDX, u_camDY,
+// not computed in every pixel.
+#if !defined(CAMERA_UNIFORMS) && (defined(SDFVJ_COMPUTE) || defined(SDFVJ_FRAGMENT))
+#define CAMERA_UNIFORMS 1
+#endif
+#ifndef CAMERA_UNIFORMS
+#define CAMERA_UNIFORMS 0
+#endif
 vec3 cameraRay(vec2 fragCoord) {
+#if CAMERA_UNIFORMS
+    vec2 c = fragCoord - 0.5f * u_resolution;
+    return normalize(u_camForward + c.x * u_camDX + c.y * u_camDY);
+#endif
     vec3 forward = safeNormalize(u_camTarget - u_camPos);
     vec3 up = abs(forward.y) > 0.999f ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f, 1.0f, 0.0f);
     // x is screen-right when looking down +Z (the Unity-style convention of the seeds and
@@ -221,6 +233,9 @@ vec3 cameraRay(vec2 fragCoord) {
 
 // Angle subtended by one pixel (vertically) at the camera.
 float pixelAngle() {
+#if CAMERA_UNIFORMS
+    return u_pixelAngle;
+#endif
     return 2.0f * tan(radians(clamp(u_fov, 1.0f, 179.0f)) * 0.5f) / max(u_resolution.y, 1.0f);
 }
 

@@ -19,6 +19,16 @@ uniform float u_bpm;         // tempo: tap, MIDI clock or the preset's "bpm" (12
 uniform vec3 u_camPos;       // camera position
 uniform vec3 u_camTarget;    // point the camera looks at
 uniform float u_fov;         // vertical field of view, degrees
+// The camera's basis, which depends on uniforms only, set by FrameRenderer (MakeCameraBasis) for
+// render.glsl's cameraRay() and pixelAngle() (CAMERA_UNIFORMS; the C++ reference computes them):
+// ray(fragCoord) = normalize(u_camForward + (fragCoord.x - w/2) u_camDX + (fragCoord.y - h/2) u_camDY),
+// u_pixelAngle = 2 tan(fov/2) / h.
+#if defined(SDFVJ_COMPUTE) || defined(SDFVJ_FRAGMENT)
+uniform vec3 u_camForward;
+uniform vec3 u_camDX;
+uniform vec3 u_camDY;
+uniform float u_pixelAngle;
+#endif
 uniform vec3 u_lightDir;     // unit direction TOWARDS the directional light
 uniform vec3 u_lightColor;   // light colour/intensity (linear)
 uniform int u_maxSteps;      // primary-ray march steps (default 128)

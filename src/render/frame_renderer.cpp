@@ -65,6 +65,32 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
     return true;
 }
 
+CameraBasis MakeCameraBasis(const Vec3f& pos, const Vec3f& target, float fovDegrees, int height) {
+    // render.glsl cameraRay, in float as the GPU computes it: forward, the screen's right and up.
+    auto sub = [](const Vec3f& a, const Vec3f& b) { return Vec3f{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+    auto cross = [](const Vec3f& a, const Vec3f& b) {
+        return Vec3f{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    };
+    auto normalize = [](const Vec3f& v) {
+        const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        return len > 1e-20f ? Vec3f{v[0] / len, v[1] / len, v[2] / len} : Vec3f{0.0f, 1.0f, 0.0f};   // safeNormalize
+    };
+    const Vec3f forward = normalize(sub(target, pos));
+    const Vec3f up = std::fabs(forward[1]) > 0.999f ? Vec3f{0.0f, 0.0f, 1.0f} : Vec3f{0.0f, 1.0f, 0.0f};
+    const Vec3f right = normalize(cross(up, forward));
+    const Vec3f camUp = cross(forward, right);
+    const float tanHalf = std::tan(std::clamp(fovDegrees, 1.0f, 179.0f) * float(M_PI / 180.0) * 0.5f);
+    const float perPixel = 2.0f * tanHalf / std::max((float)height, 1.0f);
+    CameraBasis b;
+    b.forward = forward;
+    for (int i = 0; i < 3; ++i) {
+        b.dx[i] = right[i] * perPixel;
+        b.dy[i] = camUp[i] * perPixel;
+    }
+    b.pixelAngle = perPixel;
+    return b;
+}
+
 Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch) {
     if (yaw == 0.0f && pitch == 0.0f) return scene.camPos;
     const double ox = scene.camPos[0] - scene.camTarget[0], oy = scene.camPos[1] - scene.camTarget[1],
@@ -91,6 +117,13 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     p.Set("u_camPos", cam[0], cam[1], cam[2]);
     p.Set("u_camTarget", scene.camTarget[0], scene.camTarget[1], scene.camTarget[2]);
     p.Set("u_fov", scene.fov);
+    {   // render.glsl cameraRay's basis, once for the frame (uniforms.glsl CAMERA_UNIFORMS)
+        const CameraBasis b = MakeCameraBasis(cam, scene.camTarget, scene.fov, height_);
+        p.Set("u_camForward", b.forward[0], b.forward[1], b.forward[2]);
+        p.Set("u_camDX", b.dx[0], b.dx[1], b.dx[2]);
+        p.Set("u_camDY", b.dy[0], b.dy[1], b.dy[2]);
+        p.Set("u_pixelAngle", b.pixelAngle);
+    }
     p.Set("u_lightDir", scene.lightDir[0], scene.lightDir[1], scene.lightDir[2]);
     p.Set("u_lightColor", scene.lightColor[0], scene.lightColor[1], scene.lightColor[2]);
     p.Set("u_roughness", scene.roughness);

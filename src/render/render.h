@@ -74,6 +74,15 @@ struct FrameInputs {
 // `pitch` up or down (kept short of the poles); the distance to the target is kept.
 Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch);
 
+// render.glsl cameraRay's basis for a camera at `pos` looking at `target` (uniforms.glsl
+// CAMERA_UNIFORMS): forward, and the screen's right and up scaled to one pixel, so that the ray
+// through fragCoord is normalize(forward + (x - w/2) dx + (y - h/2) dy); pixelAngle = 2 tan(fov/2) / h.
+struct CameraBasis {
+    Vec3f forward{}, dx{}, dy{};
+    float pixelAngle = 0.0f;
+};
+CameraBasis MakeCameraBasis(const Vec3f& pos, const Vec3f& target, float fovDegrees, int height);
+
 // How a program came to be: a test or the bench reads it, the frame ignores it.
 struct ProgramOrigin {
     bool fromCache = false;   // loaded from the on-disk program cache (program_cache.h): nothing compiled

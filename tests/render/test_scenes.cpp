@@ -287,3 +287,48 @@ TEST_CASE("render: a scene's setup runs once per frame on the compute path and d
             }
     }
 }
+
+// The camera's basis set once per frame (uniforms.glsl, FrameRenderer's MakeCameraBasis) draws what
+// render.glsl's cameraRay() computed in every pixel (a copy with CAMERA_UNIFORMS 0), on both paths,
+// from the scene's camera and from a mouse orbit (live), in a frame wider than tall and one taller
+// than wide. The rays differ in their last bits only. A basis with right and up swapped, or
+// scaled by the width, moves most of the frame.
+TEST_CASE("render: the camera's basis set once per frame draws what the per-pixel camera ray draws", "[render]") {
+    RequireGl();
+    const fs::path dir = fs::path(SDFVJ_TEST_OUTPUT_DIR) / "camera_uniforms";
+    fs::create_directories(dir);
+    const fs::path copy = dir / "midi_pixel_camera.glsl";
+    REQUIRE(WriteSceneCopy("midi", "#define CAMERA_UNIFORMS 0", copy));
+    SceneInfo shipped, perPixel;
+    std::string error;
+    REQUIRE(FindScene("midi", &shipped, &error));
+    REQUIRE(LoadScene(copy.string(), &perPixel, &error));
+    for (RenderPath path : {RenderPath::Compute, RenderPath::Fragment}) {
+        Program a, b;
+        for (auto [info, prog] : {std::pair{&shipped, &a}, std::pair{&perPixel, &b}}) {
+            ShaderSource src;
+            REQUIRE(AssembleProgram(*info, VariantKey{info->path, info->effects, path}, &src, &error));
+            INFO(error);
+            REQUIRE(prog->Build(src, path, &error));
+        }
+        for (const auto& [w, h] : {std::pair{96, 54}, std::pair{48, 80}})
+            for (float yaw : {0.0f, 0.7f}) {
+                FrameInputs in;
+                in.time = 1.3;
+                in.orbitYaw = yaw;
+                in.orbitPitch = yaw * 0.5f;
+                for (const ParamDecl& d : shipped.params) in.params.emplace_back(d.name, d.defaultValue);
+                FrameRenderer fa, fb;
+                REQUIRE(fa.Resize(w, h, &error));
+                REQUIRE(fb.Resize(w, h, &error));
+                fa.Draw(a, shipped, in);
+                fb.Draw(b, perPixel, in);
+                const Image ia{w, h, fa.ReadPixels()}, ib{w, h, fb.ReadPixels()};
+                const ImageDiff d = CompareImages(ia, ib, 8);
+                INFO((path == RenderPath::Compute ? "compute " : "fragment ") << w << "x" << h << ", orbit " << yaw << ": "
+                     << d.fractionOver * 100 << " % of pixels past 8/255, by up to " << d.maxAbs);
+                CHECK(d.fractionOver < 0.005);
+                CHECK(d.meanAbs < 0.2);
+            }
+    }
+}
