@@ -17,8 +17,9 @@
 // SCENE_SETUP_FRAME (1 on the compute path): sceneSetup() runs once per frame, in the cone
 // pre-pass's first invocation (or a dispatch of its own without the pre-pass), which stores the
 // state in a buffer; every pixel of the frame loads it from there as a uniform block
-// (main_comp.glsl; the blocks are generated from the SCENE_STATE lines, which must therefore stand
-// unconditionally at the start of a line, src/shader/shader.cpp SceneStateBlocks).
+// (main_comp.glsl; the blocks are generated from the SCENE_STATE lines, src/shader/shader.cpp
+// SceneStateBlocks: a line it cannot read for certain, inside an #if or with an initialiser, keeps
+// the program's setup per invocation).
 #if defined(SDFVJ_COMPUTE) && !defined(SCENE_SETUP_FRAME)
 #define SCENE_SETUP_FRAME 1
 #endif

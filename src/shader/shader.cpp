@@ -133,22 +133,47 @@ std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
     return d;
 }
 
-// The scene's SCENE_STATE globals (lib/common.glsl), found in its text: "SCENE_STATE <type> <name>[N];"
-// at the start of a line. Each becomes a member of the blocks the compute path's frame setup writes
-// and reads (main_comp.glsl SCENE_STATE_FRAME): sceneSetup() runs once per frame, not once per pixel.
+// The scene's SCENE_STATE globals (lib/common.glsl), found in its text: "SCENE_STATE <type> <name>[N],
+// <name>...;" at the start of a line. Each becomes a member of the blocks the compute path's frame
+// setup writes and reads (main_comp.glsl SCENE_STATE_FRAME): sceneSetup() runs once per frame, not
+// once per pixel. A declaration this cannot read for certain (inside an #if, or with an initialiser
+// or anything else past plain names) leaves the program as it was: its setup per invocation.
 static std::string SceneStateBlocks(const std::string& text) {
-    static const std::regex kDecl(R"(^[ \t]*SCENE_STATE[ \t]+([A-Za-z_]\w*)[ \t]+([A-Za-z_]\w*)[ \t]*(\[[ \t]*\d+[ \t]*\])?[ \t]*;)");
+    static const std::regex kDecl(R"(^[ \t]*SCENE_STATE\b(.*)$)");
+    static const std::regex kTyped(R"(^[ \t]+([A-Za-z_]\w*)[ \t]+([^;]*);[ \t]*(//.*)?$)");
+    static const std::regex kName(R"(^[ \t]*([A-Za-z_]\w*)[ \t]*(\[[ \t]*\d+[ \t]*\])?[ \t]*$)");
+    static const std::regex kOpen(R"(^[ \t]*#[ \t]*if)"), kClose(R"(^[ \t]*#[ \t]*endif)");
     std::string in, out, load, store;
     std::stringstream lines(text);
     std::string line;
+    int depth = 0;
+    bool comment = false;
     while (std::getline(lines, line)) {
+        if (comment) {   // inside a /* */ comment: only its end matters
+            comment = line.find("*/") == std::string::npos;
+            continue;
+        }
+        const size_t open = line.find("/*");
+        if (open != std::string::npos && line.find("*/", open + 2) == std::string::npos) comment = true;
+        if (std::regex_search(line, kOpen)) ++depth;
+        if (std::regex_search(line, kClose)) --depth;
         std::smatch m;
         if (!std::regex_search(line, m, kDecl)) continue;
-        const std::string type = m[1], name = m[2], array = m[3];
-        in += "    " + type + " sceneIn_" + name + array + ";\n";
-        out += "    " + type + " sceneOut_" + name + array + ";\n";
-        load += "    " + name + " = sceneIn_" + name + ";\n";
-        store += "    sceneOut_" + name + " = " + name + ";\n";
+        std::smatch typed;
+        const std::string rest = m[1];
+        if (depth > 0 || !std::regex_match(rest, typed, kTyped)) return "";
+        const std::string type = typed[1];
+        std::stringstream names(typed[2].str());
+        std::string one;
+        while (std::getline(names, one, ',')) {
+            std::smatch n;
+            if (!std::regex_match(one, n, kName)) return "";
+            const std::string name = n[1], array = n[2];
+            in += "    " + type + " sceneIn_" + name + array + ";\n";
+            out += "    " + type + " sceneOut_" + name + array + ";\n";
+            load += "    " + name + " = sceneIn_" + name + ";\n";
+            store += "    sceneOut_" + name + " = " + name + ";\n";
+        }
     }
     if (in.empty()) return "";
     // Both blocks std140 over one buffer: the same offsets whatever the members.

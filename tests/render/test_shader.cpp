@@ -214,3 +214,55 @@ TEST_CASE("headless context: SDFVJ_CONTEXT_PRIORITY asks the driver for a priori
     const Image img = RenderScene("midi", EffectSet{}, RenderPath::Fragment, 64, 36);
     CHECK(MeanLuma(img, 0.0, 0.0, 1.0, 1.0) > 5.0);
 }
+
+// The compute path's frame state (src/shader/shader.cpp SceneStateBlocks): every SCENE_STATE name
+// becomes a member of the blocks, names in a list too; a declaration it cannot read for certain
+// (inside an #if, with an initialiser) leaves the program with its setup per invocation rather than
+// a frame that reads a member never stored. Each program builds and draws the same frame as the
+// fragment path, which always sets up per invocation.
+TEST_CASE("shader: a scene's SCENE_STATE lines become the frame state (lists too) and what it cannot read keeps the setup per pixel", "[shader]") {
+    RequireGl();
+    const fs::path dir = TempDir("scene-state");
+    const std::string body =
+        "void sceneSetup() { g_a = vec3(0.0f, 0.5f + 0.2f * sin(u_time), 0.0f); g_b = vec3(0.3f, 0.0f, 0.0f);"
+        " g_c[0] = 0.35f; g_c[1] = u_r; }\n"
+        "#define SCENE_SETUP 1\n"
+        "vec4 map(vec3 p) { return vec4(0.8f, 0.5f, 0.3f, min(fSphere(p - g_a - g_b, g_c[0]), p.y + 1.0f + g_c[1])); }\n"
+        "float sceneLipschitz() { return 1.0f; }\n";
+    struct Case { const char* name; const char* decls; bool frameState; };
+    const Case cases[] = {
+        {"list", "SCENE_STATE vec3 g_a, g_b;   // two names\nSCENE_STATE float g_c[2];\n", true},
+        {"conditional", "SCENE_STATE vec3 g_a, g_b;\n#if 1\nSCENE_STATE float g_c[2];\n#endif\n", false},
+        {"initialiser", "SCENE_STATE vec3 g_a = vec3(0.0f), g_b;\nSCENE_STATE float g_c[2];\n", false},
+    };
+    for (const Case& c : cases) {
+        INFO(c.name);
+        const fs::path file = dir / (std::string(c.name) + ".glsl");
+        Write(file, std::string(kHeader) + "#include \"lib/primitives.glsl\"\n" + c.decls + body);
+        SceneInfo scene;
+        std::string error;
+        REQUIRE(LoadScene(file.string(), &scene, &error));
+        Image frames[2];
+        for (RenderPath path : {RenderPath::Compute, RenderPath::Fragment}) {
+            ShaderSource src;
+            REQUIRE(AssembleProgram(scene, VariantKey{scene.path, {}, path}, &src, &error));
+            const bool compute = path == RenderPath::Compute;
+            CHECK((src.text.find("sceneIn_g_b;") != std::string::npos) == (compute && c.frameState));
+            CHECK((src.text.find("sceneIn_g_c[2];") != std::string::npos) == (compute && c.frameState));
+            Program prog;
+            if (!prog.Build(src, path, &error)) FAIL(error);
+            CHECK(prog.FrameState() == (compute && c.frameState));
+            FrameRenderer fr;
+            REQUIRE(fr.Resize(64, 36, &error));
+            FrameInputs in;
+            in.time = 0.8;
+            in.params = {{"r", 0.25f}};
+            fr.Draw(prog, scene, in);
+            frames[compute ? 0 : 1] = Image{64, 36, fr.ReadPixels()};
+        }
+        const ImageDiff d = CompareImages(frames[0], frames[1], 8);
+        INFO("compute against fragment: " << d.fractionOver * 100 << " % of pixels past 8/255");
+        CHECK(d.fractionOver < 0.01);
+        CHECK(MeanLuma(frames[0], 0.4, 0.3, 0.6, 0.7) > 20.0);   // the sphere is there
+    }
+}
