@@ -95,24 +95,29 @@ TEST_CASE("field morph: t = 0 draws the first scene, t = 1 the second, half way 
     CHECK(CompareImages(avg, half, 16).fractionOver > 0.05);
 }
 
-TEST_CASE("field morph: a field morphs on the compute path too: its cell table in shared memory is filled, t = 0 draws the field",
+TEST_CASE("field morph: a field and the character morph on the compute path too: the cell table and the frame state are filled, t = 0 draws the scene",
           "[field_morph]") {
     RequireGl();
     const int w = 160, h = 90;
-    const SceneInfo a = Scene("field150"), b = Scene("midi");
-    const EffectSet fx = UnionEffects(a.effects, b.effects);
-    FieldMorph morph;
-    morph.Prepare(a, b, fx, RenderPath::Compute);
-    INFO(morph.Error());
-    REQUIRE(morph.Wait() == FieldMorph::State::Ready);
-    // The morph first: on llvmpipe a group's shared memory may still hold what the scene's own
-    // program left there.
-    const Image m0 = DrawMorph(morph, b, 0.0f, w, h);
-    const Image ia = RenderScene("field150", fx, RenderPath::Compute, w, h);
-    // An empty table (every cell a sphere on the floor, no wave) would move most of the field.
-    const ImageDiff d0 = CompareImages(ia, m0, 8);
-    CHECK(d0.meanAbs < 1.0);
-    CHECK(d0.fractionOver < 0.01);
+    // field150: its cell table in shared memory (SCENE_SETUP_LANES); character: its skeleton stored
+    // once per frame (SCENE_STATE_FRAME) from the morph's combined sceneSetup().
+    for (const char* name : {"field150", "character"}) {
+        const SceneInfo a = Scene(name), b = Scene("midi");
+        const EffectSet fx = UnionEffects(a.effects, b.effects);
+        FieldMorph morph;
+        morph.Prepare(a, b, fx, RenderPath::Compute);
+        INFO(name << ": " << morph.Error());
+        REQUIRE(morph.Wait() == FieldMorph::State::Ready);
+        if (std::string(name) == "character") CHECK(morph.Current()->FrameState());
+        // The morph first: on llvmpipe a group's shared memory may still hold what the scene's own
+        // program left there.
+        const Image m0 = DrawMorph(morph, b, 0.0f, w, h);
+        const Image ia = RenderScene(name, fx, RenderPath::Compute, w, h);
+        // An empty table (every cell a sphere on the floor, no wave) or skeleton moves most of it.
+        const ImageDiff d0 = CompareImages(ia, m0, 8);
+        CHECK(d0.meanAbs < 1.0);
+        CHECK(d0.fractionOver < 0.01);
+    }
 }
 
 TEST_CASE("field morph: the mixed Lipschitz bound never oversteps: hits agree with quarter-length steps",
