@@ -6,7 +6,8 @@
 // The cone pre-pass (render/march.glsl's coneStart; Quality::conePrepass): u_conePass 1 is a dispatch
 // of one invocation per 8x8 tile, ceil(w/64) x ceil(h/64) groups, that writes each tile's start
 // distance into image unit 1 (r32f, ceil(w/8) x ceil(h/8)); u_conePass 2 is the frame, every
-// primary ray starting at its tile's distance; 0 is the frame from the eye, no pre-pass.
+// primary ray starting at its tile's distance; 0 is the frame from the eye, no pre-pass; 3 (a scene
+// with a frame state, without the pre-pass) is one group that only stores the scene's state.
 // CONE_PREPASS 0 (the quick tier of a tiered compile, QuickTierText) leaves coneStart out of the
 // program: one map() call site less to compile; its tiles then start at 0, from the eye.
 #ifndef CONE_PREPASS
