@@ -31,18 +31,22 @@ vec4 mapGround(vec3 p) {
     return vec4(mix(vec3(0.16f), vec3(0.10f), grid), p.y);
 }
 
+// The wave's phase and the shapes' spin now (map() and the cell table alike).
+float fieldPhase() { return u_time * u_speed * 2.0f; }
+float fieldSpin() { return u_time * u_spin; }
+
 #if FIELD_CELL_TABLE
 #define SCENE_SETUP_LANES 1
 void sceneSetupLanes(uint lane, uint lanes) {
     for (uint k = lane; k < uint(FIELD_NX * FIELD_NZ); k += lanes) {
         float j = floor(float(k) / FIELD_NX);
-        sceneCells[k] = fieldCellParams(float(k) - j * FIELD_NX, j, u_wave, u_time * u_speed * 2.0f, u_time * u_spin);
+        sceneCells[k] = fieldCellParams(float(k) - j * FIELD_NX, j, u_wave, fieldPhase(), fieldSpin());
     }
 }
 #endif
 
 vec4 map(vec3 p) {
-    vec4 shapes = fieldMap(p, FIELD_NX, FIELD_NZ, u_size, u_blend, u_wave, u_time * u_speed * 2.0f, u_time * u_spin);
+    vec4 shapes = fieldMap(p, FIELD_NX, FIELD_NZ, u_size, u_blend, u_wave, fieldPhase(), fieldSpin());
     return fOpUnionSmoothColor(mapGround(p), shapes, u_floorBlend);
 }
 

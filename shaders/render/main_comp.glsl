@@ -32,10 +32,11 @@ uniform int u_conePass;
 uniform int u_rowOffset;   // the frame drawn in strips (FrameRenderer::SetStrips): the strip's first row
 const int CONE_TILE = 8;
 
-void main() {
 #ifndef SCENE_SETUP_LANES
 #define SCENE_SETUP_LANES 0
 #endif
+
+void main() {
 #if SCENE_TABLES && SCENE_SETUP_LANES
     // The scene's tables (lib/common.glsl SCENE_TABLES): filled by the whole group, in shared memory.
     sceneSetupLanes(gl_LocalInvocationIndex, gl_WorkGroupSize.x * gl_WorkGroupSize.y);

@@ -219,7 +219,7 @@ vec3 cameraRay(vec2 fragCoord) {
 #if CAMERA_UNIFORMS
     vec2 c = fragCoord - 0.5f * u_resolution;
     return normalize(u_camForward + c.x * u_camDX + c.y * u_camDY);
-#endif
+#else
     vec3 forward = safeNormalize(u_camTarget - u_camPos);
     vec3 up = abs(forward.y) > 0.999f ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f, 1.0f, 0.0f);
     // x is screen-right when looking down +Z (the Unity-style convention of the seeds and
@@ -229,14 +229,16 @@ vec3 cameraRay(vec2 fragCoord) {
     vec2 uv = (fragCoord - 0.5f * u_resolution) / max(u_resolution.y, 1.0f);
     float tanHalf = tan(radians(clamp(u_fov, 1.0f, 179.0f)) * 0.5f);
     return normalize(forward + (uv.x * right + uv.y * camUp) * (2.0f * tanHalf));
+#endif
 }
 
 // Angle subtended by one pixel (vertically) at the camera.
 float pixelAngle() {
 #if CAMERA_UNIFORMS
     return u_pixelAngle;
-#endif
+#else
     return 2.0f * tan(radians(clamp(u_fov, 1.0f, 179.0f)) * 0.5f) / max(u_resolution.y, 1.0f);
+#endif
 }
 
 // Hit threshold grows with distance so far surfaces need no more precision than a pixel.

@@ -10,6 +10,7 @@
 
 #include "render/gl_stages.h"
 #include "render/program_cache.h"
+#include "render/render.h"
 
 namespace sdfvj {
 
@@ -72,11 +73,8 @@ void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
         glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, 1, 1);
         glBindImageTexture(1, cone, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
         // And the scene's frame state (FrameRenderer, main_comp.glsl SCENE_STATE_FRAME), as a uniform block.
-        glGenBuffers(1, &state);
-        glBindBuffer(GL_UNIFORM_BUFFER, state);
-        glBufferStorage(GL_UNIFORM_BUFFER, kSceneStateBytes, nullptr, 0);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSceneStateBinding, state);
-        glBindBufferBase(GL_UNIFORM_BUFFER, kSceneStateBinding, state);
+        state = CreateSceneStateBuffer();
+        BindSceneStateBuffer(state);
         glDispatchCompute(1, 1, 1);
     } else {
         glGenFramebuffers(1, &fbo);

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "render/gpu_timer.h"
 #include "render/render.h"
 
@@ -53,10 +55,7 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
     glGenTextures(1, &coneTexture_);
     glBindTexture(GL_TEXTURE_2D, coneTexture_);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (width + kConeTile - 1) / kConeTile, (height + kConeTile - 1) / kConeTile);
-    glGenBuffers(1, &stateBuffer_);
-    glBindBuffer(GL_UNIFORM_BUFFER, stateBuffer_);
-    glBufferStorage(GL_UNIFORM_BUFFER, kSceneStateBytes, nullptr, 0);
-    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+    stateBuffer_ = CreateSceneStateBuffer();
     glGenVertexArrays(1, &vao_);
     glGenQueries(1, &query_);
     width_ = width;
@@ -67,28 +66,31 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
 
 CameraBasis MakeCameraBasis(const Vec3f& pos, const Vec3f& target, float fovDegrees, int height) {
     // render.glsl cameraRay, in float as the GPU computes it: forward, the screen's right and up.
-    auto sub = [](const Vec3f& a, const Vec3f& b) { return Vec3f{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
-    auto cross = [](const Vec3f& a, const Vec3f& b) {
-        return Vec3f{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    };
-    auto normalize = [](const Vec3f& v) {
-        const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        return len > 1e-20f ? Vec3f{v[0] / len, v[1] / len, v[2] / len} : Vec3f{0.0f, 1.0f, 0.0f};   // safeNormalize
-    };
-    const Vec3f forward = normalize(sub(target, pos));
-    const Vec3f up = std::fabs(forward[1]) > 0.999f ? Vec3f{0.0f, 0.0f, 1.0f} : Vec3f{0.0f, 1.0f, 0.0f};
-    const Vec3f right = normalize(cross(up, forward));
-    const Vec3f camUp = cross(forward, right);
-    const float tanHalf = std::tan(std::clamp(fovDegrees, 1.0f, 179.0f) * float(M_PI / 180.0) * 0.5f);
+    const glm::vec3 toTarget = glm::vec3(target[0], target[1], target[2]) - glm::vec3(pos[0], pos[1], pos[2]);
+    const float len = glm::length(toTarget);
+    const glm::vec3 forward = len > 1e-20f ? toTarget / len : glm::vec3(0.0f, 1.0f, 0.0f);   // safeNormalize
+    const glm::vec3 up = std::fabs(forward.y) > 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    const glm::vec3 side = glm::cross(up, forward);
+    const glm::vec3 right = side / glm::length(side);   // divided, as before (not glm::normalize's reciprocal)
+    const glm::vec3 camUp = glm::cross(forward, right);
+    const float tanHalf = std::tan(glm::radians(std::clamp(fovDegrees, 1.0f, 179.0f)) * 0.5f);
     const float perPixel = 2.0f * tanHalf / std::max((float)height, 1.0f);
-    CameraBasis b;
-    b.forward = forward;
-    for (int i = 0; i < 3; ++i) {
-        b.dx[i] = right[i] * perPixel;
-        b.dy[i] = camUp[i] * perPixel;
-    }
-    b.pixelAngle = perPixel;
-    return b;
+    const glm::vec3 dx = right * perPixel, dy = camUp * perPixel;
+    return CameraBasis{{forward.x, forward.y, forward.z}, {dx.x, dx.y, dx.z}, {dy.x, dy.y, dy.z}, perPixel};
+}
+
+unsigned CreateSceneStateBuffer() {
+    GLuint buffer = 0;
+    glGenBuffers(1, &buffer);
+    glBindBuffer(GL_UNIFORM_BUFFER, buffer);
+    glBufferStorage(GL_UNIFORM_BUFFER, kSceneStateBytes, nullptr, 0);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+    return buffer;
+}
+
+void BindSceneStateBuffer(unsigned buffer) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSceneStateBinding, buffer);   // the setup stores it
+    glBindBufferBase(GL_UNIFORM_BUFFER, kSceneStateBinding, buffer);          // the frame reads it
 }
 
 Vec3f OrbitCamera(const SceneInfo& scene, float yaw, float pitch) {
@@ -156,8 +158,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glBindImageTexture(1, coneTexture_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
         const GLuint gx = (GLuint)std::max(p.GroupX(), 1), gy = (GLuint)std::max(p.GroupY(), 1);
         if (p.FrameState()) {   // the scene's setup once for the frame: the pre-pass stores it, or a group of its own
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSceneStateBinding, stateBuffer_);
-            glBindBufferBase(GL_UNIFORM_BUFFER, kSceneStateBinding, stateBuffer_);
+            BindSceneStateBuffer(stateBuffer_);
             if (!q.conePrepass) {
                 p.Set("u_conePass", 3.0f);
                 glDispatchCompute(1, 1, 1);

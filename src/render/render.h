@@ -83,6 +83,12 @@ struct CameraBasis {
 };
 CameraBasis MakeCameraBasis(const Vec3f& pos, const Vec3f& target, float fovDegrees, int height);
 
+// The buffer of a scene's frame state (Program::FrameState, main_comp.glsl SCENE_STATE_FRAME):
+// kSceneStateBytes, bound at kSceneStateBinding both as the storage block the setup writes and as
+// the uniform block the frame reads.
+unsigned CreateSceneStateBuffer();
+void BindSceneStateBuffer(unsigned buffer);
+
 // How a program came to be: a test or the bench reads it, the frame ignores it.
 struct ProgramOrigin {
     bool fromCache = false;   // loaded from the on-disk program cache (program_cache.h): nothing compiled
