@@ -54,6 +54,15 @@ struct LiveRun {
         }
         return false;
     }
+    // Waits until the show has logged its first frame (--log-params): a message sent before it would
+    // move the first frame's value, which the tests read as the value before the message.
+    bool WaitForFirstFrame(double seconds) const {
+        for (double t = 0; t < seconds; t += 0.01) {
+            if (ReadText(params).find('\n') != std::string::npos) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
     void Osc(const std::string& address, const std::string& type, const std::string& value) const {
         int rc = Run({"oscsend", "localhost", std::to_string(oscPort), address, type, value}, dir + "/oscsend.log", 10);
         INFO(ReadText(dir + "/oscsend.log"));
@@ -81,13 +90,14 @@ double LumaSpread(const Image& img) {
 }  // namespace
 
 TEST_CASE("live osc: oscsend /sdfvj/param/twist moves the running scene (window under Xvfb)") {
-    // Two runs side by side: one gets the OSC message about 1 s in, the other nothing.
+    // Two runs side by side: one gets the OSC message half a second after its first frame, the other nothing.
     // The overlay is hidden (--hide-overlay) so the screenshots show only the scene.
     // The scene's spin is stopped (spin=0), so twist is the only thing that differs between them.
     LiveRun with("osc-twist", {"--param", "spin=0"}, false), without("no-osc", {"--param", "spin=0"}, false);
     INFO(ReadText(with.log));
     REQUIRE(with.WaitForLog("OSC: listening on UDP port " + std::to_string(with.oscPort), 20));
-    std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+    REQUIRE(with.WaitForFirstFrame(20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
     with.Osc("/sdfvj/param/twist", "f", "1.0");
     const int rcWith = with.Wait(), rcWithout = without.Wait();
     INFO("with OSC:\n" << ReadText(with.log) << "without:\n" << ReadText(without.log));
@@ -225,6 +235,7 @@ TEST_CASE("live post: --post mirror filters the window's frame, and its input an
     INFO(ReadText(run.log));
     REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
     REQUIRE(run.WaitForLog("post: mirror", 20));
+    REQUIRE(run.WaitForFirstFrame(20));
     std::this_thread::sleep_for(std::chrono::milliseconds(800));
     run.Osc("/sdfvj/param/mode", "f", "1.0");   // 0..1 over the input's range [0, 3]: 3, top onto bottom
     REQUIRE(run.Wait() == 0);
@@ -291,6 +302,7 @@ void main() { gl_FragColor = vec4(vec3(level), 1.0); }
     INFO(ReadText(run.log));
     REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
     REQUIRE(run.WaitForLog("post: " + fs, 20));
+    REQUIRE(run.WaitForFirstFrame(20));
     std::this_thread::sleep_for(std::chrono::milliseconds(800));
     run.Osc("/sdfvj/param/level", "f", "0.75");
     REQUIRE(run.Wait() == 0);
@@ -313,6 +325,7 @@ TEST_CASE("live envelope: oscsend /sdfvj/env/drop i 1 fires the scripted preset'
     LiveRun run("osc-env", {"--scene", "mandelbulb", "--preset", "bulb_breath", "--seconds", "6", "--size", "96x54"}, false);
     INFO(ReadText(run.log));
     REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
+    REQUIRE(run.WaitForFirstFrame(20));
     std::this_thread::sleep_for(std::chrono::milliseconds(800));
     run.Osc("/sdfvj/env/drop", "i", "1");
     std::this_thread::sleep_for(std::chrono::milliseconds(2000));
