@@ -18,7 +18,8 @@
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
 #                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13, s22 (normals),
 #                                 s15b, s15c, define (DEFINE="NAME VALUE": every scene against a copy
-#                                 with it, frames and compiles); pending = adopt + field + cone.
+#                                 with it, frames and compiles), copies (VARIANTS="SCENE/SUFFIX/
+#                                 NAME=VALUE,..." copies, one interleaved run); pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -324,6 +325,21 @@ case "${1:-}" in
     cat "$out/define_frames.md" 2>/dev/null; grep -h drift "$out/define_frames.txt" || true
     [ "${DEFINE_RELOAD:-1}" = 0 ] || for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
       --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; grep -h '^median' "$out/define_reload_$s.txt" | cut -c1-200; done
+    rm -rf "$root"
+    fi
+    if [ "$part" = copies ]; then
+    # Several render levers in one interleaved run: VARIANTS="SCENE/SUFFIX/NAME=VALUE,NAME=VALUE ..."
+    # (each a copy of SCENE, SCENE_SUFFIX, with those #defines), every SCENE named there as it ships
+    # too; VARIANT_SIZES (1920x1080 3840x2160), VARIANT_TESTS (full).
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc=""
+    for v in ${VARIANTS:?VARIANTS=SCENE/SUFFIX/NAME=VALUE,...}; do
+      s="${v%%/*}"; rest="${v#*/}"; suf="${rest%%/*}"; defs="${rest#*/}"
+      case " $sc " in *" $s "*) ;; *) sc="$sc $s" ;; esac
+      IFS=, read -r -a dl <<< "${defs//=/ }"; variant "$root" "$s" "$suf" "${dl[@]}"; sc="$sc ${s}_$suf"
+    done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout ${VARIANT_TIMEOUT:-300} bash "$0" remote bench --scenes $sc --sizes ${VARIANT_SIZES:-1920x1080 3840x2160} \
+      --tests ${VARIANT_TESTS:-full} --paths compute --frames 20 --warmup 5 --markdown "$out/copies.md" --csv "$out/copies.csv" > "$out/copies.txt" 2>&1 || true
+    cat "$out/copies.md" 2>/dev/null; grep -h drift "$out/copies.txt" || tail -5 "$out/copies.txt"
     rm -rf "$root"
     fi
     if [ "$part" = s22 ]; then

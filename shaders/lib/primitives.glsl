@@ -53,6 +53,15 @@ float fCapsule(vec3 p, vec3 a, vec3 b, float r) {
     float h = clamp(dot(pa, ba) / max(dot(ba, ba), 1e-12f), 0.0f, 1.0f);
     return length(pa - ba * h) - r;
 }
+// The same with invLen2 = 1 / max(|b - a|^2, 1e-12) given (capsuleInvLen2: a scene computes it once
+// per frame for a capsule whose ends are the frame's): no division per call.
+float capsuleInvLen2(vec3 a, vec3 b) { vec3 ba = b - a; return 1.0f / max(dot(ba, ba), 1e-12f); }
+float fCapsuleInv(vec3 p, vec3 a, vec3 b, float r, float invLen2) {
+    vec3 pa = p - a;
+    vec3 ba = b - a;
+    float h = clamp(dot(pa, ba) * invLen2, 0.0f, 1.0f);
+    return length(pa - ba * h) - r;
+}
 
 // Torus in the XZ plane: tube radius smallRadius, ring radius largeRadius. Exact.
 float fTorus(vec3 p, float smallRadius, float largeRadius) {

@@ -36,6 +36,30 @@ const int CONE_TILE = 8;
 #define SCENE_SETUP_LANES 0
 #endif
 
+// Which pixel each invocation of a group draws. By default the group's invocations run row by
+// row, so a 32-lane warp of a 16-wide group covers 16x2 pixels. WARP_BLOCKS 1 (on for groups
+// 16 or more wide whose sides are multiples of 8 and 4) gives each run of 32 invocations an 8x4
+// block instead: the same pixels, each drawn the same way, by lanes whose rays are nearer each
+// other (a warp runs as long as its slowest lane) and share one cone tile. 2: 4x8 blocks.
+#ifndef WARP_BLOCKS
+#if WORKGROUP_X >= 16 && WORKGROUP_X % 8 == 0 && WORKGROUP_Y % 8 == 0
+#define WARP_BLOCKS 1
+#else
+#define WARP_BLOCKS 0
+#endif
+#endif
+ivec2 invocationPixel() {
+#if WARP_BLOCKS
+    const uint bw = WARP_BLOCKS == 2 ? 4u : 8u;   // the block's width; 32 / bw rows
+    uint i = gl_LocalInvocationIndex, block = i >> 5u, lane = i & 31u;
+    uint across = uint(WORKGROUP_X) / bw;
+    uvec2 local = uvec2((block % across) * bw + lane % bw, (block / across) * (32u / bw) + lane / bw);
+    return ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy + local);
+#else
+    return ivec2(gl_GlobalInvocationID.xy);
+#endif
+}
+
 void main() {
 #if SCENE_TABLES && SCENE_SETUP_LANES
     // The scene's tables (lib/common.glsl SCENE_TABLES): filled by the whole group, in shared memory.
@@ -43,7 +67,7 @@ void main() {
     memoryBarrierShared();
     barrier();
 #endif
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = invocationPixel();
 #if SCENE_STATE_FRAME
     // The scene's state for the frame (lib/common.glsl SCENE_SETUP_FRAME): the cone pre-pass computes
     // it in every invocation and its first leaves it in the buffer; u_conePass 3, a dispatch of one

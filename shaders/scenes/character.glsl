@@ -68,6 +68,12 @@ SCENE_STATE float g_armRadiusL;
 SCENE_STATE float g_armRadiusR;
 SCENE_STATE float g_legRadiusL;
 SCENE_STATE float g_legRadiusR;
+// Each capsule's 1 / |b - a|^2 (fCapsuleInv): CHARACTER_CAPSULE_INV.
+#ifndef CHARACTER_CAPSULE_INV
+#define CHARACTER_CAPSULE_INV 1
+#endif
+SCENE_STATE float g_ilTorso, g_ilUpperArmL, g_ilForearmL, g_ilUpperArmR, g_ilForearmR;
+SCENE_STATE float g_ilThighL, g_ilShinL, g_ilFootL, g_ilThighR, g_ilShinR, g_ilFootR;
 SCENE_STATE vec3 g_boxLo;   // the box around this frame's parts, margins included (sceneBoxMin/Max)
 SCENE_STATE vec3 g_boxHi;
 // The skeleton for this frame (u_time, u_speed, u_wave): once per invocation (render.glsl's
@@ -130,6 +136,17 @@ void sceneSetup() {
     hi = max(hi, max(g_ankleL, g_ankleR) + vec3(0.07f));
     lo = min(lo, min(g_ankleL, g_ankleR) + toe - vec3(0.06f));
     hi = max(hi, max(g_ankleL, g_ankleR) + toe + vec3(0.06f));
+    g_ilTorso = capsuleInvLen2(g_pelvis + vec3(0.0f, 0.1f, 0.0f), g_chest);
+    g_ilUpperArmL = capsuleInvLen2(g_shoulderL, g_elbowL);
+    g_ilForearmL = capsuleInvLen2(g_elbowL, g_handL);
+    g_ilUpperArmR = capsuleInvLen2(g_shoulderR, g_elbowR);
+    g_ilForearmR = capsuleInvLen2(g_elbowR, g_handR);
+    g_ilThighL = capsuleInvLen2(g_hipL, g_kneeL);
+    g_ilShinL = capsuleInvLen2(g_kneeL, g_ankleL);
+    g_ilFootL = capsuleInvLen2(g_ankleL, g_ankleL + toe);
+    g_ilThighR = capsuleInvLen2(g_hipR, g_kneeR);
+    g_ilShinR = capsuleInvLen2(g_kneeR, g_ankleR);
+    g_ilFootR = capsuleInvLen2(g_ankleR, g_ankleR + toe);
     float margin = max(u_blend, 0.0f) + max(u_floorBlend, 0.0f) + 0.02f;
     g_boxLo = lo - vec3(margin);
     g_boxHi = hi + vec3(margin);
@@ -152,6 +169,11 @@ bool farPart(vec3 p, vec3 centre, float radius, float body, float k) {
 #endif
 }
 
+#if CHARACTER_CAPSULE_INV
+#define CAPSULE(p, a, b, r, il) fCapsuleInv(p, a, b, r, il)
+#else
+#define CAPSULE(p, a, b, r, il) fCapsule(p, a, b, r)
+#endif
 vec4 map(vec3 p) {
     const vec3 skin = vec3(0.80f, 0.52f, 0.38f);
     const vec3 shirt = vec3(0.75f, 0.12f, 0.10f);
@@ -160,27 +182,27 @@ vec4 map(vec3 p) {
     float k = u_blend;
 
     vec4 body = vec4(skin, fSphere(p - g_head, 0.14f));
-    body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_pelvis + vec3(0.0f, 0.1f, 0.0f), g_chest, 0.19f)), k);
+    body = fOpUnionSmoothColor(body, vec4(shirt, CAPSULE(p, g_pelvis + vec3(0.0f, 0.1f, 0.0f), g_chest, 0.19f, g_ilTorso)), k);
     body = fOpUnionSmoothColor(body, vec4(jeans, fSphere(p - g_pelvis, 0.17f)), k);
     if (!farPart(p, g_elbowL, g_armRadiusL, body.w, k)) {
-        body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_shoulderL, g_elbowL, 0.065f)), k);
-        body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, g_elbowL, g_handL, 0.05f)), k);
+        body = fOpUnionSmoothColor(body, vec4(shirt, CAPSULE(p, g_shoulderL, g_elbowL, 0.065f, g_ilUpperArmL)), k);
+        body = fOpUnionSmoothColor(body, vec4(skin, CAPSULE(p, g_elbowL, g_handL, 0.05f, g_ilForearmL)), k);
         body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - g_handL, 0.06f)), k);
     }
     if (!farPart(p, g_elbowR, g_armRadiusR, body.w, k)) {
-        body = fOpUnionSmoothColor(body, vec4(shirt, fCapsule(p, g_shoulderR, g_elbowR, 0.065f)), k);
-        body = fOpUnionSmoothColor(body, vec4(skin, fCapsule(p, g_elbowR, g_handR, 0.05f)), k);
+        body = fOpUnionSmoothColor(body, vec4(shirt, CAPSULE(p, g_shoulderR, g_elbowR, 0.065f, g_ilUpperArmR)), k);
+        body = fOpUnionSmoothColor(body, vec4(skin, CAPSULE(p, g_elbowR, g_handR, 0.05f, g_ilForearmR)), k);
         body = fOpUnionSmoothColor(body, vec4(skin, fSphere(p - g_handR, 0.06f)), k);
     }
     if (!farPart(p, g_kneeL, g_legRadiusL, body.w, k)) {
-        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_hipL, g_kneeL, 0.085f)), k);
-        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_kneeL, g_ankleL, 0.07f)), k);
-        body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, g_ankleL, g_ankleL + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
+        body = fOpUnionSmoothColor(body, vec4(jeans, CAPSULE(p, g_hipL, g_kneeL, 0.085f, g_ilThighL)), k);
+        body = fOpUnionSmoothColor(body, vec4(jeans, CAPSULE(p, g_kneeL, g_ankleL, 0.07f, g_ilShinL)), k);
+        body = fOpUnionSmoothColor(body, vec4(shoes, CAPSULE(p, g_ankleL, g_ankleL + vec3(0.0f, -0.02f, -0.14f), 0.06f, g_ilFootL)), k);
     }
     if (!farPart(p, g_kneeR, g_legRadiusR, body.w, k)) {
-        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_hipR, g_kneeR, 0.085f)), k);
-        body = fOpUnionSmoothColor(body, vec4(jeans, fCapsule(p, g_kneeR, g_ankleR, 0.07f)), k);
-        body = fOpUnionSmoothColor(body, vec4(shoes, fCapsule(p, g_ankleR, g_ankleR + vec3(0.0f, -0.02f, -0.14f), 0.06f)), k);
+        body = fOpUnionSmoothColor(body, vec4(jeans, CAPSULE(p, g_hipR, g_kneeR, 0.085f, g_ilThighR)), k);
+        body = fOpUnionSmoothColor(body, vec4(jeans, CAPSULE(p, g_kneeR, g_ankleR, 0.07f, g_ilShinR)), k);
+        body = fOpUnionSmoothColor(body, vec4(shoes, CAPSULE(p, g_ankleR, g_ankleR + vec3(0.0f, -0.02f, -0.14f), 0.06f, g_ilFootR)), k);
     }
 
     return fOpUnionSmoothColor(mapGround(p), body, u_floorBlend);
