@@ -324,7 +324,7 @@ case "${1:-}" in
       --paths compute --frames 20 --warmup 5 --markdown "$out/define_frames.md" --csv "$out/define_frames.csv" > "$out/define_frames.txt" 2>&1 || true
     cat "$out/define_frames.md" 2>/dev/null; grep -h drift "$out/define_frames.txt" || true
     [ "${DEFINE_RELOAD:-1}" = 0 ] || for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
-      --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; grep -h '^median' "$out/define_reload_$s.txt" | cut -c1-200; done
+      --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; { grep -h "^median" "$out/define_reload_$s.txt" || true; } | cut -c1-200; done
     rm -rf "$root"
     fi
     if [ "$part" = copies ]; then
