@@ -45,10 +45,13 @@ void sceneSetupLanes(uint lane, uint lanes) {
 }
 #endif
 
-vec4 map(vec3 p) {
-    vec4 shapes = fieldMap(p, FIELD_NX, FIELD_NZ, u_size, u_blend, u_wave, fieldPhase(), fieldSpin());
-    return fOpUnionSmoothColor(mapGround(p), shapes, u_floorBlend);
-}
+// The shapes without the floor, and the floor's blend (render.glsl SCENE_OBJECTS: soft shadows step
+// past the floor by the shapes' distance).
+#define SCENE_OBJECTS 1
+vec4 mapObjects(vec3 p) { return fieldMap(p, FIELD_NX, FIELD_NZ, u_size, u_blend, u_wave, fieldPhase(), fieldSpin()); }
+float sceneGroundBlend() { return u_floorBlend; }
+
+vec4 map(vec3 p) { return fOpUnionSmoothColor(mapGround(p), mapObjects(p), sceneGroundBlend()); }
 
 // A sphere and a box around every shape; past them plus the floor blend the smooth union
 // leaves the floor exact (the renderer's contract for SCENE_GROUND). The blend lowers the

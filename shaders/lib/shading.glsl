@@ -18,6 +18,15 @@
 #define PROBE_MAP map
 #endif
 
+// What a shadow ray from ro along rd reads at t (k: its penumbra hardness; a hard shadow passes 1e4,
+// its hit test h < 1e-4 t being k h / t < 1): x, the field there (its penumbra term); y >= x, a
+// distance the soft shadows' safe step may take as the field's (shadowStep). By default both are
+// the probed field; a renderer that knows more sets y (render.glsl shadowProbe: past the floor's
+// blend, the distance to the objects).
+#ifndef SHADOW_PROBE
+#define SHADOW_PROBE(ro, rd, t, k) vec2(PROBE_MAP((ro) + (rd) * (t)).w)
+#endif
+
 // 1 / (the step correction the scene asks for)
 float sceneStepScale() { return 1.0f / max(1.0f, sceneLipschitz()); }
 
@@ -68,24 +77,27 @@ vec3 calcNormalTetra(vec3 p, float eps) {
 // and the penumbra so far is res: iq's clamp(h, 0.005, 0.5), or further where no point can darken
 // the penumbra. Within s of t the field is at least h - s, so every point there has
 // k * (h - s) / (t + s) >= res while s <= (k h - res t) / (k + res): no sample skipped could have
-// lowered res. SHADOW_SAFE_STEP 0: the clamp alone.
+// lowered res. hSafe (SHADOW_PROBE's y, >= h): a 1-Lipschitz lower bound, by the same argument, of
+// what can still darken the ray; the safe step takes it where it is larger. SHADOW_SAFE_STEP 0:
+// the clamp alone.
 #ifndef SHADOW_SAFE_STEP
 #define SHADOW_SAFE_STEP 1
 #endif
-float shadowStep(float h, float t, float res, float k) {
+float shadowStep(float h, float t, float res, float k, float hSafe) {
     float s = clamp(h, 0.005f, 0.5f);
 #if SHADOW_SAFE_STEP
-    s = max(s, (k * h - res * t) / (k + res));
+    s = max(s, (k * max(h, hSafe) - res * t) / (k + res));
 #endif
     return s;
 }
+float shadowStep(float h, float t, float res, float k) { return shadowStep(h, t, res, k, h); }
 
 // Hard: 0 if anything is hit before tmax, else 1.
 float shadowHard(vec3 ro, vec3 rd, float tmin, float tmax, int steps) {
     float stepScale = sceneStepScale();
     float t = tmin;
     for (int i = 0; i < steps; i++) {
-        float h = PROBE_MAP(ro + rd * t).w * stepScale;
+        float h = SHADOW_PROBE(ro, rd, t, 1e4f).x * stepScale;
         if (h < 1e-4f * t) return 0.0f;
         t += h;
         if (t > tmax) break;
@@ -99,10 +111,11 @@ float shadowSoft(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
     float res = 1.0f;
     float t = tmin;
     for (int i = 0; i < steps; i++) {
-        float h = PROBE_MAP(ro + rd * t).w * stepScale;
+        vec2 hp = SHADOW_PROBE(ro, rd, t, k) * stepScale;
+        float h = hp.x;
         res = min(res, k * h / t);
         if (res < 1e-3f) return 0.0f;
-        t += shadowStep(h, t, res, k);
+        t += shadowStep(h, t, res, k, hp.y);
         if (t > tmax) break;
     }
     return saturate(res);
@@ -116,13 +129,14 @@ float shadowSoftImproved(vec3 ro, vec3 rd, float tmin, float tmax, int steps, fl
     float t = tmin;
     float ph = 1e10f;
     for (int i = 0; i < steps; i++) {
-        float h = PROBE_MAP(ro + rd * t).w * stepScale;
+        vec2 hp = SHADOW_PROBE(ro, rd, t, k) * stepScale;
+        float h = hp.x;
         float y = h * h / (2.0f * ph);
         float d = sqrt(max(h * h - y * y, 0.0f));
         res = min(res, k * d / max(t - y, 1e-4f));
-        ph = max(h, 1e-6f);
+        ph = max(hp.y, 1e-6f);   // the sphere the step is taken in (hp.y >= h: SHADOW_PROBE)
         if (res < 1e-3f) return 0.0f;
-        t += shadowStep(h, t, res, k);
+        t += shadowStep(h, t, res, k, hp.y);
         if (t > tmax) break;
     }
     return saturate(res);

@@ -157,6 +157,40 @@ vec4 mapNear(vec3 p) {
     return map(p);
 }
 #define PROBE_MAP mapNear
+
+// A scene whose map() is its objects smooth-unioned into the floor may say so (SCENE_OBJECTS 1): it
+// declares `vec4 mapObjects(vec3 p)` and `float sceneGroundBlend()`, and map(p) equals
+// fOpUnionSmoothColor(mapGround(p), mapObjects(p), sceneGroundBlend()).
+#ifndef SCENE_OBJECTS
+#define SCENE_OBJECTS 0
+#endif
+// SHADOW_OBJECT_STEP (on where a scene declares its objects): the soft shadows' safe step past the
+// floor (shadowStep's hSafe). A shadow ray from above the ground with k s rd.y >= 1 (k its hardness,
+// s the step scale) is at least t rd.y above the floor at t, so where the floor alone makes the
+// field (the objects a blend radius kf or more above it) the penumbra term is >= 1. Elsewhere
+// the blend lowers the field by at most kf / 4 below min(floor, objects), and the floor is within
+// kf of the objects there: the field is >= objects - 1.25 kf, which is 1-Lipschitz. So the ray
+// may step by that where it is larger than the field: from the floor between the fields' shapes
+// it no longer creeps up a step the size of its height at a time. Every sample still reads the
+// field; only where the samples fall moves. 0: the field's own step.
+#ifndef SHADOW_OBJECT_STEP
+#define SHADOW_OBJECT_STEP 1
+#endif
+vec2 shadowProbe(vec3 ro, vec3 rd, float t, float k) {
+    vec3 p = ro + rd * t;
+#if USE_GROUND && SCENE_OBJECTS && SHADOW_OBJECT_STEP
+    float g = mapGround(p).w;
+    if (g < boundDistance(p)) return vec2(g);   // as mapNear: the floor alone
+    float kf = sceneGroundBlend();
+    float o = mapObjects(p).w;
+    float f = sminPoly(g, o, kf);               // map(p).w
+    if (ro.y >= 0.0f && k * rd.y >= max(1.0f, sceneLipschitz())) return vec2(f, max(f, o - 1.25f * max(kf, 0.0f)));
+    return vec2(f);
+#else
+    return vec2(mapNear(p).w);
+#endif
+}
+#define SHADOW_PROBE(ro, rd, t, k) shadowProbe(ro, rd, t, k)
 #include "lib/shading.glsl"
 
 // Where a ray is inside a sphere (centre xyz, radius w): (t_enter, t_exit), empty (x > y)

@@ -174,7 +174,11 @@ bool farPart(vec3 p, vec3 centre, float radius, float body, float k) {
 #else
 #define CAPSULE(p, a, b, r, il) fCapsule(p, a, b, r)
 #endif
-vec4 map(vec3 p) {
+// The figure without the floor, and the floor's blend (render.glsl SCENE_OBJECTS: soft shadows step
+// past the floor by the figure's distance); map() is their smooth union.
+#define SCENE_OBJECTS 1
+float sceneGroundBlend() { return u_floorBlend; }
+vec4 mapObjects(vec3 p) {
     const vec3 skin = vec3(0.80f, 0.52f, 0.38f);
     const vec3 shirt = vec3(0.75f, 0.12f, 0.10f);
     const vec3 jeans = vec3(0.10f, 0.16f, 0.42f);
@@ -205,8 +209,10 @@ vec4 map(vec3 p) {
         body = fOpUnionSmoothColor(body, vec4(shoes, CAPSULE(p, g_ankleR, g_ankleR + vec3(0.0f, -0.02f, -0.14f), 0.06f, g_ilFootR)), k);
     }
 
-    return fOpUnionSmoothColor(mapGround(p), body, u_floorBlend);
+    return body;
 }
+
+vec4 map(vec3 p) { return fOpUnionSmoothColor(mapGround(p), mapObjects(p), sceneGroundBlend()); }
 
 // A sphere around the figure for every knob position and time: every part lies within 1.3 of
 // (0, 0.95, 0) (the raised waving hand and the swung foot are the farthest); the joint blends

@@ -36,6 +36,7 @@ struct CpuScene {
     std::function<CpuRay<S>(V3, V3, S)> marchWhole; // the same, ignoring the scene's bounding volume
     std::function<S(V3, V3)> softShadow;            // ro, light dir: shadowSoft over render.glsl's shadowRange
     std::function<S(V3, V3)> softShadowWhole;       // shadowSoft over all of [0.01, u_maxDist]
+    std::function<V2(V3, V3)> shadowRange;          // ro, light dir: the stretch softShadow marches (empty: x > y)
     bool hasBound = false;                          // the scene declares a bounding sphere (SCENE_BOUND)
     std::function<V4()> sceneBound;                 // centre xyz, radius w (or 0 without one)
     bool hasBox = false;                            // ... and a box (SCENE_BOX)

@@ -229,8 +229,10 @@ bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const Vari
     s.text += LineDirective(1, 0) + "uniform float u_morph;\n";
     // The scene's own names, renamed while its text is read; its bound and ground macros saved.
     // A scene's box (SCENE_BOX) is dropped: it holds that scene's shapes, not the mix; the sphere
-    // around both spheres below bounds the morph.
-    static const char* kRenamed[] = {"map", "sceneLipschitz", "sceneBound", "mapGround", "sceneSetup", "sceneBoxMin", "sceneBoxMax"};
+    // around both spheres below bounds the morph. Its objects (SCENE_OBJECTS) are dropped too: the
+    // morph's map() is no union of one floor and one set of objects.
+    static const char* kRenamed[] = {"map",         "sceneLipschitz", "sceneBound", "mapGround",       "sceneSetup",
+                                     "sceneBoxMin", "sceneBoxMax",    "mapObjects", "sceneGroundBlend"};
     auto include = [&](const SceneInfo& scene, const std::string& prefix) {
         s.text += LineDirective(1, 0);
         for (const ParamDecl& p : scene.params) s.text += "uniform float u_" + prefix + "_" + p.name + ";\n";
@@ -240,7 +242,7 @@ bool AssembleMorphProgram(const SceneInfo& from, const SceneInfo& to, const Vari
         s.text += LineDirective(1, 0);
         for (const char* name : kRenamed) s.text += "#undef " + std::string(name) + "\n";
         for (const ParamDecl& p : scene.params) s.text += "#undef u_" + p.name + "\n";
-        for (const char* macro : {"BOUND", "GROUND", "SETUP", "BOX"}) {
+        for (const char* macro : {"BOUND", "GROUND", "SETUP", "BOX", "OBJECTS"}) {
             const std::string m = std::string("SCENE_") + macro, saved = "MORPH_" + prefix + "_" + macro;
             s.text += "#if defined(" + m + ") && " + m + "\n#define " + saved + " 1\n#else\n#define " + saved +
                       " 0\n#endif\n#undef " + m + "\n";

@@ -248,7 +248,7 @@ TEST_CASE("compile process: a broken shader's log comes back with file:line", "[
     fs::remove_all(root);
 }
 
-TEST_CASE("compile process: LiveProgram reloads through it and no frame waits for the compile", "[compile_process]") {
+TEST_CASE("compile process: LiveProgram reloads through it and no frame waits for the compile", "[compile_process][timed]") {
     CompileProcess proc;
     if (!StartServer(&proc)) return;   // no binaries: nothing to hand over, the fallback is tested above
     ScratchScene scratch("live");
@@ -295,7 +295,7 @@ TEST_CASE("compile process: LiveProgram reloads through it and no frame waits fo
     CHECK(ratios[1] < 0.25);   // the median: a frame never waits for the compile
 }
 
-TEST_CASE("compile process: with a loader each binary is used once off the render thread and frames never wait for it", "[compile_process][loader]") {
+TEST_CASE("compile process: with a loader each binary is used once off the render thread and frames never wait for it", "[compile_process][loader][timed]") {
     CompileProcess proc;
     if (!StartServer(&proc)) return;   // no binaries: nothing to load
     LoaderOn loaderOn;
