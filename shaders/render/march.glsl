@@ -18,6 +18,31 @@ bool sceneIsEstimate() { return sceneLipschitz() > 1.0f; }
 #define ALBEDO_AT_HIT 1
 #endif
 
+// MARCH_OBJECT_STEP (on where the scene declares SCENE_OBJECTS): the primary ray steps past the floor
+// by the objects' distance. Every surface point is on the plane y = 0 (where the objects are the
+// floor's blend kf or more above it, the field is the floor's height) or has objects <= 1.25 kf
+// (elsewhere the field is >= objects - 1.25 kf, shadowProbe in render.glsl). From a point whose
+// objects read o, no surface of the second kind lies within o - 1.25 kf, and the ray meets the
+// plane only at tGround: a step of min(o - 1.25 kf, tGround - t) crosses no surface, in any
+// direction for the first and along the ray for the second (all the over-relaxed gap test needs).
+// The ray steps by that where it is larger than the field: over the floor between the fields'
+// shapes it no longer creeps down a step the size of its height at a time. The hit test still
+// reads the field. 0: the field's own step.
+#ifndef MARCH_OBJECT_STEP
+#define MARCH_OBJECT_STEP 1
+#endif
+#define USE_MARCH_OBJECT_STEP (USE_GROUND && SCENE_OBJECTS && MARCH_OBJECT_STEP && !MARCH_FIXED)
+#if USE_MARCH_OBJECT_STEP
+// (the field at p, a step the ray may take from it), groundLeft: how far along the ray the plane is.
+vec2 marchProbe(vec3 p, float groundLeft) {
+    float g = mapGround(p).w;
+    float kf = sceneGroundBlend();
+    float o = mapObjects(p).w;
+    float f = sminPoly(g, o, kf);   // map(p).w
+    return vec2(f, max(f, min(o - 1.25f * max(kf, 0.0f), groundLeft)));
+}
+#endif
+
 // Marches the whole field from tmin in at most maxSteps steps; past tmax the ray has missed.
 Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
     float t = tmin;
@@ -48,11 +73,21 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
 #if OVERRELAX
     float omega = sceneIsEstimate() ? 1.0f : OVERRELAX_OMEGA, prevR = 0.0f, stepLen = 0.0f;
 #endif
+#if USE_MARCH_OBJECT_STEP
+    // where the ray meets the plane y = 0: never going up; from under it, no shortcut (0)
+    float tGround = ro.y < 0.0f ? 0.0f : rd.y < 0.0f ? -ro.y / rd.y : 1e30f;
+#endif
     for (int i = 0; i < maxSteps; i++) {
         steps += 1.0f;
-        float d = map(ro + rd * t).w;
+#if USE_MARCH_OBJECT_STEP
+        float groundLeft = max(tGround - t, 0.0f);
+        vec2 probe = marchProbe(ro + rd * t, groundLeft);
+        float d = probe.x, ds = probe.y;
+#else
+        float d = map(ro + rd * t).w, ds = d;
+#endif
 #if OVERRELAX
-        float r = d * stepScale;
+        float r = ds * stepScale;
         bool gap = omega > 1.0f && abs(r) + prevR < stepLen;
         if (gap) {
             stepLen -= omega * stepLen;
@@ -60,12 +95,15 @@ Hit marchRange(vec3 ro, vec3 rd, float tmin, float tmax, int maxSteps) {
         } else {
             if (d < hitEpsilon(t)) { stopped = true; break; }
             stepLen = r * omega;
+#if USE_MARCH_OBJECT_STEP
+            stepLen = min(stepLen, max(r, groundLeft));   // not over-relaxed past the plane
+#endif
             prevR = abs(r);
         }
         t += stepLen;
 #else
         if (d < hitEpsilon(t)) { stopped = true; break; }
-        t += d * stepScale;
+        t += ds * stepScale;
 #endif
         if (t > tmax) return Hit(u_maxDist, steps, false, vec3(0.0f), 0.0f);
     }
