@@ -103,9 +103,19 @@ bool LiveSession::Frame() {
     const double wall = Now(), dt = wall - last_;
     last_ = wall;
     if (frame_ >= 2) fps_ = fps_ == 0 ? 1.0 / std::max(dt, 1e-6) : 0.95 * fps_ + 0.05 / std::max(dt, 1e-6);
-    if ((o_.seconds > 0 && wall >= o_.seconds) || glfwWindowShouldClose(window_) ||
-        glfwGetKey(window_, GLFW_KEY_ESCAPE) == GLFW_PRESS)
-        return false;
+    bool timeUp = o_.seconds > 0 && wall >= o_.seconds;
+    // --screenshot promises the last frame: a show whose first program is still compiling when
+    // --seconds ends (software GL on a loaded machine) runs on until it has drawn one, at most
+    // kScreenshotGraceS more, and says so.
+    constexpr double kScreenshotGraceS = 30.0;
+    if (timeUp && !o_.screenshot.empty() && frame_ == 0 && wall < o_.seconds + kScreenshotGraceS) {
+        if (!shotWaitSaid_)
+            std::fprintf(stderr, "sdfvj live: no frame drawn yet after --seconds %g; running on until one is, for --screenshot\n",
+                         o_.seconds);
+        shotWaitSaid_ = true;
+        timeUp = false;
+    }
+    if (timeUp || glfwWindowShouldClose(window_) || glfwGetKey(window_, GLFW_KEY_ESCAPE) == GLFW_PRESS) return false;
     ReadKeys();
     double now = wall;   // the show clock: the wall clock, or a master's timecode (--sync mtc)
     Guard("input", [&] {
@@ -375,7 +385,7 @@ void LiveSession::SaveScreenshot(unsigned buffer) {
 }
 
 void LiveSession::Present() {
-    if (!o_.screenshot.empty() && o_.seconds > 0 && Now() + 0.05 >= o_.seconds) SaveScreenshot(GL_BACK);
+    if (!o_.screenshot.empty() && o_.seconds > 0 && frame_ > 0 && Now() + 0.05 >= o_.seconds) SaveScreenshot(GL_BACK);
     glfwSwapBuffers(window_);
 }
 
@@ -383,6 +393,9 @@ void LiveSession::Finish() {
     // Slow frames (software GL) or a closed window can end the show before Present() took the
     // screenshot: then the front buffer holds the last frame shown.
     if (!o_.screenshot.empty() && !shotWritten_ && frame_ > 0) SaveScreenshot(GL_FRONT);
+    if (!o_.screenshot.empty() && frame_ == 0)
+        std::fprintf(stderr, "sdfvj live: no frame of the scene was drawn, so no screenshot was written to %s\n",
+                     o_.screenshot.c_str());
     if (recorder_.IsOpen()) {
         recorder_.Close(Now());
         std::fprintf(stderr, "recorded %zu events to %s\n", recorder_.Recorded(), o_.record.c_str());

@@ -277,7 +277,7 @@ private:
     std::string shownError_;
     bool literalReady_ = false;   // the literal tier's readiness and retunes, as last reported
     int literalSwaps_ = 0;
-    bool overlay_ = true, tabWasDown_ = false, shotWritten_ = false;
+    bool overlay_ = true, tabWasDown_ = false, shotWritten_ = false, shotWaitSaid_ = false;
     // The overlay's memory (monitor, frame graph, learn) and the keys it reads.
     OverlayUi ui_;
     double lastOverlay_ = -1.0, presetsListed_ = -1e9;

@@ -195,7 +195,9 @@ int main(int argc, char** argv) {
                         "ISF post effects over the frame (as for render; else the preset's \"post\"); their inputs "
                         "are parameters for OSC, mappings and the overlay; saved .fs files reload");
     cmdLive->add_option("--seconds", live.seconds, "quit after this many seconds (0: run until closed)");
-    cmdLive->add_option("--screenshot", live.screenshot, "write the last frame to this PNG on exit");
+    cmdLive->add_option("--screenshot", live.screenshot,
+                        "write the last frame to this PNG on exit (with --seconds, a show that has drawn no frame yet "
+                        "runs on until it has, at most 30 s more)");
     cmdLive->add_option("--log-params", live.logParams,
                         "append one line per frame to this file, \"TIME name=value ...\": the values the frame "
                         "renders, after mapping and smoothing (for tests, and for debugging a mapping)");

@@ -28,7 +28,7 @@ struct LiveRun {
     std::string dir, log, shot, params;
     pid_t pid = -1;
     int oscPort = 0;
-    LiveRun(const std::string& name, std::vector<std::string> extra = {}, bool overlay = true) {
+    LiveRun(const std::string& name, std::vector<std::string> extra = {}, bool overlay = true, std::vector<EnvChange> env = {}) {
         dir = FreshDir(SDFVJ_LIVE_OUT, name);
         log = dir + "/live.log";
         shot = dir + "/shot.png";
@@ -44,7 +44,8 @@ struct LiveRun {
             }
         if (!overlay) argv.push_back("--hide-overlay");
         argv.insert(argv.end(), extra.begin(), extra.end());
-        pid = Spawn(argv, log, {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}});
+        env.insert(env.begin(), {{"DISPLAY", Display()}, {"JACK_NO_START_SERVER", "1"}});
+        pid = Spawn(argv, log, env);
     }
     // Waits until the log holds `text` (the program got that far).
     bool WaitForLog(const std::string& text, double seconds) const {
@@ -227,6 +228,22 @@ TEST_CASE("live render scale: --render-scale 0.25 fills the window with the scen
     INFO("quarter against full: mean " << d.meanAbs << ", " << d.fractionOver * 100 << "% of pixels over 24/255");
     CHECK(d.meanAbs < 12.0);                       // the same picture, softer
     CHECK(d.maxAbs > 0);                           // but not the full-size render
+}
+
+TEST_CASE("live screenshot: a show whose --seconds end before its first frame runs on until one is drawn and writes it") {
+    // 0.05 s is shorter than a first compile on llvmpipe that no cache serves: without the grace the
+    // show ended with no frame and no screenshot (a loaded machine may do the same to a 3 s show).
+    LiveRun run("shot-late", {"--seconds", "0.05", "--param", "spin=0", "--no-program-cache"}, false,
+                {{"MESA_SHADER_CACHE_DISABLE", "true"}});
+    const int rc = run.Wait();
+    const std::string log = ReadText(run.log);
+    INFO(log);
+    REQUIRE(rc == 0);
+    CHECK(log.find("running on until one is, for --screenshot") != std::string::npos);
+    Image shot;
+    REQUIRE(LoadPng(run.shot, &shot));
+    CHECK(shot.width == kW);
+    CHECK(LumaSpread(shot) > 5.0);   // the scene, not the clear colour shown while it compiled
 }
 
 TEST_CASE("live post: --post mirror filters the window's frame, and its input answers OSC like a scene's") {
