@@ -79,6 +79,19 @@ vec4 fOpUnionSmoothColor(vec4 a, vec4 b, float k) {
     float h = blendWeight(a.w, b.w, k);
     return vec4(mix(albedoOf(b), albedoOf(a), h), sminPoly(a.w, b.w, k));
 }
+// The same with 1 / k given (invK = smoothInv(k): 1 / k, or 0 where k <= 1e-6 and the operator is
+// sharp): no division and no branch in the call. For a k the frame fixes: a scene's setup computes
+// smoothInv(k) once (the fields, lib/field_scene.glsl). Equal to sminPoly / fOpUnionSmoothColor
+// but for the division's last bit.
+float smoothInv(float k) { return k > 1e-6f ? 1.0f / k : 0.0f; }
+float sminPolyInv(float a, float b, float k, float invK) {
+    float h = max(k - abs(a - b), 0.0f) * invK;
+    return min(a, b) - h * h * k * 0.25f;
+}
+vec4 fOpUnionSmoothColorInv(vec4 a, vec4 b, float k, float invK) {
+    float h = invK > 0.0f ? clamp(0.5f + 0.5f * (b.w - a.w) * invK, 0.0f, 1.0f) : (a.w < b.w ? 1.0f : 0.0f);
+    return vec4(mix(albedoOf(b), albedoOf(a), h), sminPolyInv(a.w, b.w, k, invK));
+}
 vec4 fOpIntersectionSmoothColor(vec4 a, vec4 b, float k) {
     float h = blendWeight(-a.w, -b.w, k);
     return vec4(mix(albedoOf(b), albedoOf(a), h), smaxPoly(a.w, b.w, k));

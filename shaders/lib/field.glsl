@@ -130,10 +130,16 @@ FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, f
 }
 
 // The pair's blend with its colours.
+// FIELD_BLEND_INV: an expression for smoothInv(blend) that the scene computed once (lib/field_scene.glsl's
+// frame state); then the blend takes no division and no branch per call.
 vec4 fieldBlend(FieldPair n, float blend) {
     vec3 a = fieldColor(n.near.x, n.near.y);
     vec3 b = n.next.w < 1e8f ? fieldColor(n.next.x, n.next.y) : a;
+#ifdef FIELD_BLEND_INV
+    return fOpUnionSmoothColorInv(vec4(a.x, a.y, a.z, n.near.w), vec4(b.x, b.y, b.z, n.next.w), blend, FIELD_BLEND_INV);
+#else
     return fOpUnionSmoothColor(vec4(a.x, a.y, a.z, n.near.w), vec4(b.x, b.y, b.z, n.next.w), blend);
+#endif
 }
 
 // Distance along one axis (u = cell coordinate, centre of cell k at u = k) from p to the

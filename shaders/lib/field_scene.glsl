@@ -13,6 +13,22 @@
 shared vec4 sceneCells[int(FIELD_NX * FIELD_NZ)];
 #define FIELD_CELL_PARAMS(i, j, wave, phase, spin) sceneCells[int(i) + int(j) * int(FIELD_NX)]
 #endif
+// FIELD_FRAME_INV (on): the blends' reciprocals once per frame (sceneSetup: the frame state on the
+// compute path, once per invocation elsewhere), so the shapes' blend and the floor's take no
+// division and no branch in any map() call (lib/combinators.glsl fOpUnionSmoothColorInv).
+#include "lib/combinators.glsl"
+#ifndef FIELD_FRAME_INV
+#define FIELD_FRAME_INV 1
+#endif
+SCENE_STATE float g_invBlend, g_invFloorBlend;
+void sceneSetup() {
+    g_invBlend = smoothInv(u_blend);
+    g_invFloorBlend = smoothInv(u_floorBlend);
+}
+#define SCENE_SETUP 1
+#if FIELD_FRAME_INV
+#define FIELD_BLEND_INV g_invBlend
+#endif
 #include "lib/field.glsl"
 
 // Bounding volume for the renderer (render.glsl BOUNDS): the shapes and the floor apart.
@@ -51,7 +67,12 @@ void sceneSetupLanes(uint lane, uint lanes) {
 vec4 mapObjects(vec3 p) { return fieldMap(p, FIELD_NX, FIELD_NZ, u_size, u_blend, u_wave, fieldPhase(), fieldSpin()); }
 float sceneGroundBlend() { return u_floorBlend; }
 
+#if FIELD_FRAME_INV
+#define SCENE_GROUND_SMIN(g, o) sminPolyInv(g, o, u_floorBlend, g_invFloorBlend)
+vec4 map(vec3 p) { return fOpUnionSmoothColorInv(mapGround(p), mapObjects(p), u_floorBlend, g_invFloorBlend); }
+#else
 vec4 map(vec3 p) { return fOpUnionSmoothColor(mapGround(p), mapObjects(p), sceneGroundBlend()); }
+#endif
 
 // A sphere and a box around every shape; past them plus the floor blend the smooth union
 // leaves the floor exact (the renderer's contract for SCENE_GROUND). The blend lowers the

@@ -38,7 +38,7 @@ vec2 marchProbe(vec3 p, float groundLeft) {
     float g = mapGround(p).w;
     float kf = sceneGroundBlend();
     float o = mapObjects(p).w;
-    float f = sminPoly(g, o, kf);   // map(p).w
+    float f = SCENE_GROUND_SMIN(g, o);   // map(p).w
     return vec2(f, max(f, min(o - 1.25f * max(kf, 0.0f), groundLeft)));
 }
 #endif

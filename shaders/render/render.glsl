@@ -164,6 +164,11 @@ vec4 mapNear(vec3 p) {
 #ifndef SCENE_OBJECTS
 #define SCENE_OBJECTS 0
 #endif
+// The floor's union's distance as map() computes it (a scene with the blend's reciprocal at hand
+// defines its own: lib/field_scene.glsl).
+#ifndef SCENE_GROUND_SMIN
+#define SCENE_GROUND_SMIN(g, o) sminPoly(g, o, sceneGroundBlend())
+#endif
 // SHADOW_OBJECT_STEP (on where a scene declares its objects): the soft shadows' safe step past the
 // floor (shadowStep's hSafe). A shadow ray from above the ground with k s rd.y >= 1 (k its hardness,
 // s the step scale) is at least t rd.y above the floor at t, so where the floor alone makes the
@@ -183,7 +188,7 @@ vec2 shadowProbe(vec3 ro, vec3 rd, float t, float k) {
     if (g < boundDistance(p)) return vec2(g);   // as mapNear: the floor alone
     float kf = sceneGroundBlend();
     float o = mapObjects(p).w;
-    float f = sminPoly(g, o, kf);               // map(p).w
+    float f = SCENE_GROUND_SMIN(g, o);               // map(p).w
     if (ro.y >= 0.0f && k * rd.y >= max(1.0f, sceneLipschitz())) return vec2(f, max(f, o - 1.25f * max(kf, 0.0f)));
     return vec2(f);
 #else
