@@ -59,6 +59,9 @@ float fieldLift(float i, float j, float wave, float phase) {
 
 // Highest point of any shape: the capsule's top at lift = wave.
 float fieldTop(float size, float wave) { return 0.95f * FIELD_UNIT * max(size, 0.05f) + max(wave, 0.0f); }
+#ifndef FIELD_TOP
+#define FIELD_TOP(size, wave) fieldTop(size, wave)
+#endif
 
 // What a cell's shape depends on besides the point: (lift, cos turn, sin turn, kind). Uniforms and the
 // cell only, so a scene may compute it once per work-group (field_scene.glsl FIELD_CELL_TABLE).
@@ -69,26 +72,42 @@ vec4 fieldCellParams(float i, float j, float wave, float phase, float spin) {
     return vec4(lift, cos(turn), sin(turn), kind);
 }
 
+// A size's dimensions (size * FIELD_UNIT times each shape's proportions; radius: FIELD_RADIUS *
+// size; capsuleInv: 1 / the capsule's squared length). FIELD_DIMS(size): computed here in every
+// map() call, unless the scene keeps the frame's (lib/field_scene.glsl FIELD_FRAME_DIMS).
+struct FieldDims {
+    float s36, s30, s26, s06, s38, s11, s27, s20, s165, s525, radius, capsuleInv;
+};
+FieldDims fieldDims(float size) {
+    float s = max(size, 0.05f) * FIELD_UNIT;
+    float s165 = 0.165f * s, s525 = 0.525f * s;
+    return FieldDims(0.36f * s, 0.30f * s, 0.26f * s, 0.06f * s, 0.38f * s, 0.11f * s, 0.27f * s, 0.2f * s, s165, s525,
+                     FIELD_RADIUS * max(size, 0.05f), 1.0f / max(s165 * s165 + s525 * s525, 1e-12f));
+}
+#ifndef FIELD_DIMS
+#define FIELD_DIMS(size) fieldDims(size)
+#endif
+
 // The shape of a cell with parameters c (fieldCellParams), q relative to the cell's centre on the
 // floor: its distance, exact; every shape lies within FIELD_RADIUS * size of the cell's vertical
 // axis, at y >= lift >= 0.
 float fieldShapeOf(vec3 q, float size, vec4 c) {
-    float s = max(size, 0.05f) * FIELD_UNIT;
+    FieldDims m = FIELD_DIMS(size);
     float lift = c.x;
     float kind = c.w;
     float d;
     if (kind < 0.5f) {
-        d = fSphere(pTranslate(q, vec3(0.0f, 0.36f * s + lift, 0.0f)), 0.36f * s);   // r 0.36
+        d = fSphere(pTranslate(q, vec3(0.0f, m.s36 + lift, 0.0f)), m.s36);                  // r 0.36
     } else if (kind < 1.5f) {
-        vec3 b = pRotateYcs(pTranslate(q, vec3(0.0f, 0.30f * s + lift, 0.0f)), c.y, c.z);
-        d = fRoundBox(b, vec3(0.26f, 0.30f, 0.26f) * s, 0.06f * s);                 // corner 0.368
+        vec3 b = pRotateYcs(pTranslate(q, vec3(0.0f, m.s30 + lift, 0.0f)), c.y, c.z);
+        d = fRoundBox(b, vec3(m.s26, m.s30, m.s26), m.s06);                                  // corner 0.368
     } else if (kind < 2.5f) {
-        vec3 t = pRotateYcs(pTranslate(q, vec3(0.0f, 0.38f * s + lift, 0.0f)), c.y, c.z);
-        d = fTorus(pRotateX(t, 0.5f * PI), 0.11f * s, 0.27f * s);                   // outer 0.38
+        vec3 t = pRotateYcs(pTranslate(q, vec3(0.0f, m.s38 + lift, 0.0f)), c.y, c.z);
+        d = fTorus(pRotateX(t, 0.5f * PI), m.s11, m.s27);                                    // outer 0.38
     } else {
-        vec3 a = vec3(0.0f, 0.2f * s + lift, 0.0f);
-        vec3 tip = vec3(0.165f * c.y, 0.525f, 0.165f * c.z) * s;                    // 0.55 long, tilted
-        d = fCapsule(q, a, a + tip, 0.2f * s);                                      // 0.165 + 0.2
+        vec3 a = vec3(0.0f, m.s20 + lift, 0.0f);
+        vec3 tip = vec3(m.s165 * c.y, m.s525, m.s165 * c.z);                                 // 0.55 long, tilted
+        d = fCapsuleInv(q, a, a + tip, m.s20, m.capsuleInv);                                 // 0.165 + 0.2
     }
     return d;
 }
@@ -125,7 +144,7 @@ FieldPair fieldCell(FieldPair n, vec3 p, float i, float j, float nx, float nz, f
     if (i < -0.5f || j < -0.5f || i > nx - 0.5f || j > nz - 0.5f) return n;
     vec3 q = p - vec3(i - 0.5f * (nx - 1.0f), 0.0f, j - 0.5f * (nz - 1.0f));
     float reach = min(n.next.w, n.near.w + max(blend, 0.0f));
-    if (length(vec2(q.x, q.z)) - FIELD_RADIUS * max(size, 0.05f) >= reach) return n;
+    if (length(vec2(q.x, q.z)) - FIELD_DIMS(size).radius >= reach) return n;
     return fieldInsert(n, vec4(i, j, 0.0f, fieldShapeOf(q, size, FIELD_CELL_PARAMS(i, j, wave, phase, spin))));
 }
 
@@ -161,7 +180,7 @@ float fieldGridDistance(float u, float v, float nx, float nz) {
 // less the shapes' radius. Continuous in p.
 float fieldExcluded(float u, float v, float i0, float j0, float nx, float nz, float size) {
     float gap = min(fieldAxisGap(u, i0, nx), fieldAxisGap(v, j0, nz));
-    return max(gap, fieldGridDistance(u, v, nx, nz)) - FIELD_RADIUS * max(size, 0.05f);
+    return max(gap, fieldGridDistance(u, v, nx, nz)) - FIELD_DIMS(size).radius;
 }
 
 // The field of nx x nz shapes at p: four shapes evaluated, exact within the blend radius.
@@ -189,7 +208,7 @@ vec4 fieldMap(vec3 p, float nx, float nz, float size, float blend, float wave, f
         n = fieldCell(n, p, i0 + ((c & 1) == 0 ? di : 1.0f - di), j0 + (c < 2 ? dj : 1.0f - dj), nx, nz, size, blend, wave, phase, spin);
     vec4 m = fieldBlend(n, blend);
     float k = max(blend, 0.0f);
-    m.w = min(m.w, max(fieldExcluded(u, v, i0, j0, nx, nz, size) - 1.25f * k, p.y - fieldTop(size, wave) - 0.25f * k));
+    m.w = min(m.w, max(fieldExcluded(u, v, i0, j0, nx, nz, size) - 1.25f * k, p.y - FIELD_TOP(size, wave) - 0.25f * k));
     return m;
 }
 

@@ -20,16 +20,30 @@ shared vec4 sceneCells[int(FIELD_NX * FIELD_NZ)];
 #ifndef FIELD_FRAME_INV
 #define FIELD_FRAME_INV 1
 #endif
+// FIELD_FRAME_DIMS (on): the shapes' dimensions at this size and the shapes' top, once per frame too
+// (lib/field.glsl FIELD_DIMS, FIELD_TOP), not in every map() call.
+#ifndef FIELD_FRAME_DIMS
+#define FIELD_FRAME_DIMS 1
+#endif
 SCENE_STATE float g_invBlend, g_invFloorBlend;
-void sceneSetup() {
-    g_invBlend = smoothInv(u_blend);
-    g_invFloorBlend = smoothInv(u_floorBlend);
-}
-#define SCENE_SETUP 1
+SCENE_STATE float g_s36, g_s30, g_s26, g_s06, g_s38, g_s11, g_s27, g_s20, g_s165, g_s525, g_radius, g_capsuleInv, g_top;
 #if FIELD_FRAME_INV
 #define FIELD_BLEND_INV g_invBlend
 #endif
+#if FIELD_FRAME_DIMS
+#define FIELD_DIMS(size) FieldDims(g_s36, g_s30, g_s26, g_s06, g_s38, g_s11, g_s27, g_s20, g_s165, g_s525, g_radius, g_capsuleInv)
+#define FIELD_TOP(size, wave) g_top
+#endif
 #include "lib/field.glsl"
+void sceneSetup() {
+    g_invBlend = smoothInv(u_blend);
+    g_invFloorBlend = smoothInv(u_floorBlend);
+    FieldDims m = fieldDims(u_size);
+    g_s36 = m.s36; g_s30 = m.s30; g_s26 = m.s26; g_s06 = m.s06; g_s38 = m.s38; g_s11 = m.s11;
+    g_s27 = m.s27; g_s20 = m.s20; g_s165 = m.s165; g_s525 = m.s525; g_radius = m.radius; g_capsuleInv = m.capsuleInv;
+    g_top = fieldTop(u_size, u_wave);
+}
+#define SCENE_SETUP 1
 
 // Bounding volume for the renderer (render.glsl BOUNDS): the shapes and the floor apart.
 #define SCENE_BOUND 1
