@@ -90,7 +90,6 @@ float shadowStep(float h, float t, float res, float k, float hSafe) {
 #endif
     return s;
 }
-float shadowStep(float h, float t, float res, float k) { return shadowStep(h, t, res, k, h); }
 
 // Hard: 0 if anything is hit before tmax, else 1.
 float shadowHard(vec3 ro, vec3 rd, float tmin, float tmax, int steps) {
