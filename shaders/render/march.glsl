@@ -35,11 +35,8 @@ bool sceneIsEstimate() { return sceneLipschitz() > 1.0f; }
 #if USE_MARCH_OBJECT_STEP
 // (the field at p, a step the ray may take from it), groundLeft: how far along the ray the plane is.
 vec2 marchProbe(vec3 p, float groundLeft) {
-    float g = mapGround(p).w;
-    float kf = sceneGroundBlend();
-    float o = mapObjects(p).w;
-    float f = SCENE_GROUND_SMIN(g, o);   // map(p).w
-    return vec2(f, max(f, min(o - 1.25f * max(kf, 0.0f), groundLeft)));
+    vec2 fo = fieldAndObjectBound(p, mapGround(p).w);
+    return vec2(fo.x, max(fo.x, min(fo.y, groundLeft)));
 }
 #endif
 

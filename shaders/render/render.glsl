@@ -181,16 +181,22 @@ vec4 mapNear(vec3 p) {
 #ifndef SHADOW_OBJECT_STEP
 #define SHADOW_OBJECT_STEP 1
 #endif
+#if USE_GROUND && SCENE_OBJECTS
+// At p, where the floor's height is g: (the field, as map() computes it; objects - 1.25 kf, below
+// every surface but the plane y = 0). The shadow rays' and the primary march's object steps.
+vec2 fieldAndObjectBound(vec3 p, float g) {
+    float o = mapObjects(p).w;
+    return vec2(SCENE_GROUND_SMIN(g, o), o - 1.25f * max(sceneGroundBlend(), 0.0f));
+}
+#endif
 vec2 shadowProbe(vec3 ro, vec3 rd, float t, float k) {
     vec3 p = ro + rd * t;
 #if USE_GROUND && SCENE_OBJECTS && SHADOW_OBJECT_STEP
     float g = mapGround(p).w;
     if (g < boundDistance(p)) return vec2(g);   // as mapNear: the floor alone
-    float kf = sceneGroundBlend();
-    float o = mapObjects(p).w;
-    float f = SCENE_GROUND_SMIN(g, o);               // map(p).w
-    if (ro.y >= 0.0f && k * rd.y >= max(1.0f, sceneLipschitz())) return vec2(f, max(f, o - 1.25f * max(kf, 0.0f)));
-    return vec2(f);
+    vec2 fo = fieldAndObjectBound(p, g);
+    if (ro.y >= 0.0f && k * rd.y >= max(1.0f, sceneLipschitz())) return vec2(fo.x, max(fo.x, fo.y));
+    return vec2(fo.x);
 #else
     return vec2(mapNear(p).w);
 #endif
