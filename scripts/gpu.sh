@@ -19,7 +19,8 @@
 #                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13, s22 (normals),
 #                                 s15b, s15c, define (DEFINE="NAME VALUE": every scene against a copy
 #                                 with it, frames and compiles), copies (VARIANTS="SCENE/SUFFIX/
-#                                 NAME=VALUE,..." copies, one interleaved run); pending = adopt + field + cone.
+#                                 NAME=VALUE,..." copies, one interleaved run), scales (the budget's
+#                                 render-scale rows); pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -122,7 +123,7 @@ case "${1:-}" in
     if [ "$part" = frames ] || [ "$part" = all ]; then
     timeout 100 bash "$0" remote bench --scenes midi primitives character mandelbulb field50 field150 --sizes 3840x2160 --tests full --paths compute \
       --frames 20 --warmup 5 --markdown "$out/bench_4k.md" --csv "$out/bench_4k.csv" > "$out/bench_4k.txt" 2>&1 || true
-    timeout 150 bash "$0" remote bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 15 --warmup 5 \
+    timeout 200 bash "$0" remote bench accuracy --scene all --size 1920x1080 --ref-size 960x540 --path compute --frames 15 --warmup 5 \
       --out "$out/accuracy" --markdown "$out/accuracy.md" --csv "$out/accuracy_bench.csv" > "$out/accuracy.txt" 2>&1 || true
     timeout 60 bash "$0" remote bench effects --scene midi --size 1920x1080 --path compute --csv "$out/effects_midi.csv" > "$out/effects_midi.txt" 2>&1 || true
     # Scaling (issue 13), every cell interleaved in one run: cost against resolution for every
@@ -326,6 +327,15 @@ case "${1:-}" in
     [ "${DEFINE_RELOAD:-1}" = 0 ] || for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
       --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; { grep -h "^median" "$out/define_reload_$s.txt" || true; } | cut -c1-200; done
     rm -rf "$root"
+    fi
+    if [ "$part" = scales ]; then
+    # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1
+    # and 2x2 supersampled, resampled as `live --render-scale` shows them, against the supersampled
+    # truth (`bench accuracy --sweep scale`); its accuracy.csv rows replace docs/accuracy/accuracy.csv's
+    # scale rows (measured on llvmpipe in session 27).
+    timeout 200 bash "$0" remote bench accuracy --scene all --size 1920x1080 --ref-size 96x54 --sweep scale --path compute \
+      --frames 15 --warmup 5 --out "$out/scales" --csv "$out/scales_bench.csv" > "$out/scales.txt" 2>&1 || true
+    grep -h "scale=\|supersampled\|drift" "$out/scales.txt" || tail -5 "$out/scales.txt"
     fi
     if [ "$part" = copies ]; then
     # Several render levers in one interleaved run: VARIANTS="SCENE/SUFFIX/NAME=VALUE,NAME=VALUE ..."

@@ -150,8 +150,16 @@ struct Setting {
     bool bounds = true;      // BOUNDS: use the scene's bounding volume (render.glsl)
     std::string role;        // "default" (sdfvj's Quality{}), "plain" (seed raymarcher) or ""
     std::vector<std::string> defines;   // extra "#define NAME VALUE" lines of this row's program
+    // Render scale (knob "scale"): the frame is drawn at round(width x scale) x round(height x
+    // scale) and resampled to the sweep's size with a linear blit, as `live --render-scale` shows
+    // it (2: supersampled, each pixel the mean of 2x2). Such a row's image is compared with the
+    // supersampled truth (the 4096-step render at twice the size, averaged 2x2), not with the
+    // one-sample 4096-step render, and its geometry columns are the default row's (a scale
+    // changes which rays are cast, not how each is marched).
+    float scale = 1.0f;
 };
-// which: "full" (every knob) or "tiny" (a handful, for the test suite).
+// which: "full" (every knob), "tiny" (a handful, for the test suite) or "scale" (the default and
+// the render scales only).
 std::vector<Setting> SweepSettings(const std::string& which);
 
 struct Row {
@@ -191,7 +199,8 @@ struct SweepInfo {
 // Needs a current GL context (HeadlessContext). False with a reason on failure.
 bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, std::string* error);
 
-// Marks, per scene, the rows on the Pareto front of (gpuMs, pctOver8).
+// Marks, per scene, the rows on the Pareto front of (gpuMs, pctOver8); render-scale rows, whose
+// error is against another truth, form a front of their own.
 void MarkPareto(std::vector<Row>* rows);
 
 // ---- reports ---------------------------------------------------------------------------

@@ -58,9 +58,10 @@ std::vector<const Row*> Front(const std::vector<Row>& rows, const std::string& s
     return v;
 }
 
-// Penumbra and AO samples change the look (each is compared with its own reference): never
-// offered as the "cheapest setting" for an error budget.
-bool LookKnob(const Row& r) { return r.s.knob == "penumbra" || r.s.knob == "ao_samples"; }
+// Penumbra and AO samples change the look (each is compared with its own reference), and render
+// scales are compared with the supersampled truth: never offered as the "cheapest setting" for an
+// error budget.
+bool LookKnob(const Row& r) { return r.s.knob == "penumbra" || r.s.knob == "ao_samples" || r.s.knob == "scale"; }
 
 std::string Esc(const std::string& s) {
     std::string o;
@@ -73,7 +74,7 @@ std::string Esc(const std::string& s) {
 std::string CsvHeader() {
     return "scene,knob,setting,role,max_steps,hit_eps,eps_mode,step_factor,naive_step,normals,normal_eps,march_fixed,"
            "fixed_step,shadow_steps,shadow_k,ao_samples,gpu_ms,pct_over_8,psnr_db,t_err_p50_px,t_err_p99_px,"
-           "t_err_max_px,silhouette_pct,normal_p50_deg,normal_p99_deg,out_of_steps_pct,ref_out_of_steps_pct,pareto";
+           "t_err_max_px,silhouette_pct,normal_p50_deg,normal_p99_deg,out_of_steps_pct,ref_out_of_steps_pct,pareto,render_scale";
 }
 
 std::string CsvLine(const Row& r) {
@@ -85,7 +86,7 @@ std::string CsvLine(const Row& r) {
       << s.q.aoSamples << "," << F("%.4f", r.gpuMs) << "," << F("%.4f", r.img.pctOver8) << "," << F("%.2f", r.img.psnr)
       << "," << F("%.4g", r.g.tErrP50) << "," << F("%.4g", r.g.tErrP99) << "," << F("%.4g", r.g.tErrMax) << ","
       << F("%.4f", r.g.silhouettePct) << "," << F("%.4g", r.g.normalP50) << "," << F("%.4g", r.g.normalP99) << ","
-      << F("%.4f", r.g.outOfStepsPct) << "," << F("%.4f", r.g.refOutOfStepsPct) << "," << (r.pareto ? 1 : 0);
+      << F("%.4f", r.g.outOfStepsPct) << "," << F("%.4f", r.g.refOutOfStepsPct) << "," << (r.pareto ? 1 : 0) << "," << F("%g", s.scale);
     return o.str();
 }
 
@@ -361,6 +362,12 @@ std::string MarkdownReport(const std::vector<Row>& rows, const SweepOptions& o, 
               << F("%.3g", r.g.normalP50) << " / " << F("%.3g", r.g.normalP99) << " | " << F("%.2f", r.g.outOfStepsPct)
               << " | " << (r.pareto ? "P" : "") << " |\n";
         }
+        if (std::any_of(rows.begin(), rows.end(), [&](const Row& r) { return r.scene == sc && r.s.knob == "scale"; }))
+            m << "\nThe scale rows draw the default at that fraction of the size, resampled to it with a linear blit "
+                 "(as `live --render-scale` shows them; 2x2 supersampled above 1), and are compared with the supersampled "
+                 "truth: the 4096-step render at twice the size, averaged 2x2. Their % off is the resolution term of "
+                 "`live --frame-budget`'s error; their geometry columns are the default's (a scale changes which rays are "
+                 "cast, not how each is marched), and they form a Pareto front of their own.\n";
         if (sc == "mandelbulb")
             m << "\nOn the Mandelbulb the normal columns measure the fractal, not the renderer: its distance estimate's "
                  "gradient turns by about 40 deg (median) between offsets 1e-6 and 1e-3 and between the depth eps * t "

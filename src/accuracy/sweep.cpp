@@ -47,6 +47,19 @@ std::vector<Setting> SweepSettings(const std::string& which) {
     Setting noCone = Make("cone", "no cone pre-pass");
     noCone.q.conePrepass = false;
     out.push_back(noCone);
+    // Render scales, each at the default quality (`live --render-scale` and the frame budget's
+    // resolution term): fewer pixels upscaled, or 2x2 supersampled.
+    auto scales = [&](std::initializer_list<float> list) {
+        for (float f : list) {
+            Setting s = Make("scale", f > 1.0f ? "supersampled 2x2" : "scale=" + Fmt("%.2f", f));
+            s.scale = f;
+            out.push_back(s);
+        }
+    };
+    if (which == "scale") {
+        scales({0.25f, 0.33f, 0.5f, 0.7f, 0.85f, 1.0f, 2.0f});
+        return out;
+    }
     if (which == "tiny") {
         Setting s = Make("steps", "steps=32");
         s.q.maxSteps = 32;
@@ -129,6 +142,7 @@ std::vector<Setting> SweepSettings(const std::string& which) {
         s.q.maxSteps = std::min(4096, (int)std::ceil(s.q.maxDist / st));
         out.push_back(s);
     }
+    scales({0.25f, 0.33f, 0.5f, 0.7f, 0.85f, 1.0f, 2.0f});
     // Combinations a default could move to.
     struct Combo { int steps; int epsMode; float eps; float factor; int shadowSteps; };
     for (Combo c : {Combo{192, 0, 1e-3f, 1.0f, 64}, Combo{256, 0, 1e-3f, 1.0f, 64}, Combo{128, 2, 0.5f, 1.0f, 64},
@@ -250,9 +264,54 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             info->boundEffect[scene.name] = CompareRgba8(*with, *without);
         }
 
+        // Render scales: a target per scale, resampled to the sweep's size with a linear blit (what
+        // `live --render-scale` shows), and compared with the supersampled truth.
+        std::map<int, std::unique_ptr<FrameRenderer>> scaledTargets;   // by round(scale x 1000)
+        FrameRenderer resampled;
+        auto side = [](int n, float s) { return std::max(1, (int)std::lround(n * s)); };
+        auto scaledTarget = [&](float s, FrameRenderer** out) {
+            auto& t = scaledTargets[(int)std::lround(s * 1000.0f)];
+            if (!t) t = std::make_unique<FrameRenderer>();
+            if (!t->Resize(side(o.width, s), side(o.height, s), error)) return false;
+            *out = t.get();
+            return true;
+        };
+        auto resample = [&](const FrameRenderer& from, float s, std::vector<uint8_t>* img) {
+            if (!resampled.Resize(o.width, o.height, error)) return false;
+            const int fw = side(o.width, s), fh = side(o.height, s);
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, from.Framebuffer());
+            glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resampled.Framebuffer());
+            glBlitFramebuffer(0, 0, fw, fh, 0, 0, o.width, o.height, GL_COLOR_BUFFER_BIT,
+                              fw == o.width && fh == o.height ? GL_NEAREST : GL_LINEAR);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            *img = resampled.ReadPixels();
+            return true;
+        };
+        std::vector<uint8_t> ssTruth;   // the 4096-step render at 2x2 the size, averaged (on first use)
+        auto supersampledTruth = [&](std::vector<uint8_t>** out) {
+            if (ssTruth.empty()) {
+                FrameInputs in = base;
+                in.quality = Quality{};
+                in.quality.conePrepass = false;
+                in.quality.maxSteps = 4096;
+                in.quality.shadowSteps = 1024;
+                EffectSet e = scene.effects;
+                e.normals = 0;
+                e.marchFixed = false;
+                Program* p = nullptr;
+                FrameRenderer* big = nullptr;
+                if (!program(e, 0, &p) || !scaledTarget(2.0f, &big)) return false;
+                big->Draw(*p, scene, in, false);
+                if (!resample(*big, 2.0f, &ssTruth)) return false;
+            }
+            *out = &ssTruth;
+            return true;
+        };
+
         // Accuracy first (deterministic), one setting after another.
-        struct Timed { Program* program; FrameInputs in; size_t row; std::vector<double> ms; };
+        struct Timed { Program* program; FrameInputs in; size_t row; std::vector<double> ms; FrameRenderer* target; };
         std::vector<Timed> timed;
+        GeometryError defaultGeometry;
         for (const Setting& st : settings) {
             FrameInputs in = base;
             in.quality = st.q;
@@ -263,6 +322,22 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             const bool raw = st.naiveStep && hasRaw;
             Program* shaded = nullptr;
             if (!program(e, st.epsMode, &shaded, raw, st.bounds, st.defines)) return false;
+            if (st.knob == "scale") {
+                FrameRenderer* target = nullptr;
+                std::vector<uint8_t> img, *truth = nullptr;
+                if (!scaledTarget(st.scale, &target)) return false;
+                target->Draw(*shaded, scene, in, false);
+                if (!resample(*target, st.scale, &img) || !supersampledTruth(&truth)) return false;
+                Row r;
+                r.scene = scene.name;
+                r.s = st;
+                r.s.normals = e.normals;
+                r.img = CompareRgba8(img, *truth);
+                r.g = defaultGeometry;
+                timed.push_back({shaded, in, rows->size(), {}, target});
+                rows->push_back(r);
+                continue;
+            }
             if (!colour.Resize(o.width, o.height, error)) return false;
             colour.Draw(*shaded, scene, in, false);
             Row r;
@@ -282,7 +357,8 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             geom.Draw(*gp, scene, in, false);
             Geometry g = DecodeGeometry(geom.ReadPixelsFloat(), rw, rh);
             r.g = CompareGeometry(g, ref, PixelAngle(scene, rh));
-            timed.push_back({shaded, in, rows->size(), {}});
+            if (st.role == "default") defaultGeometry = r.g;
+            timed.push_back({shaded, in, rows->size(), {}, &colour});
             rows->push_back(r);
         }
 
@@ -295,23 +371,23 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
         {
             const auto w0 = std::chrono::steady_clock::now();
             do {
-                for (Timed& t : timed) colour.Draw(*t.program, scene, t.in, false);
+                for (Timed& t : timed) t.target->Draw(*t.program, scene, t.in, false);
                 glFinish();
             } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count() < 1.0);
         }
         auto timeFirst = [&] {
             std::vector<double> ms;
             for (int i = 0; i < std::max(o.frames, 1); ++i) {
-                colour.Draw(*timed[0].program, scene, timed[0].in, true);
-                ms.push_back(colour.LastGpuMs());
+                timed[0].target->Draw(*timed[0].program, scene, timed[0].in, true);
+                ms.push_back(timed[0].target->LastGpuMs());
             }
             return MedianMs(ms);
         };
         const double driftStart = timeFirst();
         for (int i = 0; i < o.warmup + o.frames; ++i)
             for (Timed& t : timed) {
-                colour.Draw(*t.program, scene, t.in, true);
-                if (i >= o.warmup) t.ms.push_back(colour.LastGpuMs());
+                t.target->Draw(*t.program, scene, t.in, true);
+                if (i >= o.warmup) t.ms.push_back(t.target->LastGpuMs());
             }
         info->drift[scene.name] = {driftStart, timeFirst()};
         for (Timed& t : timed) {
@@ -334,7 +410,7 @@ void MarkPareto(std::vector<Row>* rows) {
     for (Row& a : *rows) {
         a.pareto = true;
         for (const Row& b : *rows) {
-            if (&a == &b || b.scene != a.scene) continue;
+            if (&a == &b || b.scene != a.scene || (a.s.knob == "scale") != (b.s.knob == "scale")) continue;
             bool noWorse = b.gpuMs <= a.gpuMs && b.img.pctOver8 <= a.img.pctOver8;
             bool better = b.gpuMs < a.gpuMs || b.img.pctOver8 < a.img.pctOver8;
             if (noWorse && better) { a.pareto = false; break; }

@@ -43,13 +43,21 @@ bool LiveSession::Start(std::string* error) {
         std::setvbuf(paramLog_.get(), nullptr, _IOLBF, 0);
     }
     overlay_ = !o_.hideOverlay;   // --hide-overlay: start as after Tab (clean screenshots)
-    renderScale_ = (float)std::clamp(o_.renderScale, 0.25, 1.0);
+    renderScale_ = (float)std::clamp(o_.renderScale, 0.25, 2.0);
     softwareGl_ = IsSoftwareRenderer();
     in_.quality = state_.show.quality;
     std::string budgetError;
-    if (o_.frameBudgetMs > 0 && !StartLiveFrameBudget(&budget_, o_.frameBudgetMs, o_.budgetFloor, state_.show.scene.name,
-                                                      &in_.quality, &renderScale_, &budgetError))
-        state_.report.Say("sdfvj live: no frame budget: " + budgetError);
+    if (o_.frameBudgetMs > 0) {
+        if (!StartLiveFrameBudget(&budget_, o_.frameBudgetMs, o_.budgetFloor, state_.show.scene.name, &in_.quality,
+                                  &renderScale_, &budgetError))
+            state_.report.Say("sdfvj live: no frame budget: " + budgetError);
+        else {
+            char line[256];
+            std::snprintf(line, sizeof line, "frame budget %.3g ms: starts at %s, the best of %zu settings on the front above the floor",
+                          o_.frameBudgetMs, budget_.front[budget_.current].label.c_str(), budget_.front.size());
+            state_.report.Say(line);
+        }
+    }
     if (o_.show.path == "auto" && !state_.show.isfScene) {
         std::string log;
         state_.show.path = ProbeRenderPath(state_.show.scene, &log);

@@ -132,7 +132,7 @@ struct LiveOptions {
     std::string screenshot;             // write the last frame here on exit
     std::string logParams;              // append "time name=value ..." per frame to this file
     bool hideOverlay = false;           // start with the overlay hidden (as after Tab)
-    double renderScale = 1.0;           // the scene renders at this fraction of the window (0.25..1)
+    double renderScale = 1.0;           // the scene renders at this fraction of the window (0.25..1; 2: 2x2 supersampled)
     double frameBudgetMs = 0;           // > 0: keep frames under this (frame_budget.h)
     bool warmAhead = false;             // variants built ahead are also finished on the render context (live_prefetch.cpp)
     std::string budgetFloor;            // never below: "scale=0.5,steps=64,shadow_steps=16,ao=2"

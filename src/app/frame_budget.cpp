@@ -36,7 +36,8 @@ bool ParseNumber(const std::string& s, double* v) {
     return !s.empty() && end == s.c_str() + s.size() && std::isfinite(*v);
 }
 
-// The render scales a budget may use: supersampling (above 1) down to a quarter of the width.
+// The render scales a budget may use where the CSV measured none (with the stated model):
+// supersampling (above 1) down to a quarter of the width.
 const float kScales[] = {1.5f, 1.25f, 1.0f, 0.85f, 0.7f, 0.6f, 0.5f, 0.4f, 0.33f, 0.25f};
 
 }  // namespace
@@ -107,6 +108,10 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
     // Rows Quality can express at the renderer's defaults otherwise, per scene and setting.
     struct Q { Quality q; double ms = 0, pct = 0; };
     std::map<std::string, std::map<std::string, Q>> rows;   // scene -> label -> row
+    // Render-scale rows (`bench accuracy` knob "scale", column render_scale): the default drawn at
+    // a scale, its ms and its % off the supersampled truth. scene -> scale x 1000 -> (ms, pct).
+    const int scaleCol = col("render_scale");
+    std::map<std::string, std::map<int, std::pair<double, double>>> scaleRows;
     int lineNo = 1;
     while (std::getline(in, line)) {
         ++lineNo;
@@ -126,6 +131,16 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
             return false;
         }
         const std::string knob = f[c["knob"]];
+        if (knob == "scale") {
+            double s = 0;
+            if (scaleCol < 0 || !ParseNumber(f[scaleCol], &s) || s <= 0 || s > 4) {
+                *error = csvPath + ":" + std::to_string(lineNo) + ": a scale row without a render_scale in (0, 4], "
+                         "expected the column `sdfvj bench accuracy` writes";
+                return false;
+            }
+            scaleRows[f[c["scene"]]][(int)std::lround(s * 1000.0)] = {v[14], v[15]};
+            continue;
+        }
         const bool qualityKnob = knob == "default" || knob == "steps" || knob == "shadow_steps" || knob == "ao_samples" ||
                                  knob == "combo" || knob == "eps_relative" || knob == "step_factor";
         const Quality d;
@@ -162,9 +177,39 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
         *error = csvPath + ":1: no quality rows with a 'sdfvj default' row, expected a sweep of steps, shadow steps or AO samples";
         return false;
     }
+    // The resolution term: measured where the CSV has scale rows (the scene's own, else the mean
+    // over the scenes that have them): cost relative to the scale-1 row, error = that row's % off
+    // the supersampled truth, added to the quality row's. Without scale rows, the stated model
+    // (cost scale^2, ResolutionErrorPct).
+    struct S { double cost = 0, pct = 0; int n = 0; };
+    std::map<int, S> measured;
+    for (const auto& [name, byScale] : scaleRows) {
+        if (scaleRows.count(scene) && name != scene) continue;
+        auto one = byScale.find(1000);
+        if (one == byScale.end() || one->second.first <= 0) continue;
+        for (const auto& [s, r] : byScale) {
+            S& m = measured[s];
+            m.cost += r.first / one->second.first;
+            m.pct += r.second;
+            ++m.n;
+        }
+    }
+    std::vector<std::pair<float, S>> scales;
+    if (!measured.empty()) {
+        for (auto& [s, m] : measured) scales.push_back({s / 1000.0f, S{m.cost / m.n, m.pct / m.n, 1}});
+        // Fewer pixels never count as more accurate: a linear upscale of 0.85 can read closer to the
+        // supersampled truth than the aliased scale 1 (its blur smooths the stairs; character and
+        // primitives at 1080p), which would take scale 1 off the front. Each scale's term is at
+        // least the next larger one's, plus a thousandth of a point, so the larger wins a tie.
+        std::sort(scales.begin(), scales.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        for (size_t i = 1; i < scales.size(); ++i)
+            scales[i].second.pct = std::max(scales[i].second.pct, scales[i - 1].second.pct + 1e-3);
+    } else {
+        for (float s : kScales) scales.push_back({s, S{(double)s * s, ResolutionErrorPct(s), 1}});
+    }
     out->clear();
     for (auto& [label, m] : chosen)
-        for (float s : kScales) {
+        for (const auto& [s, r] : scales) {
             if (s > maxScale + 1e-6f) continue;
             BudgetSetting b;
             char at[32];
@@ -172,8 +217,8 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
             b.label = label + at;
             b.scale = s;
             b.quality = m.q;
-            b.cost = m.ms / count[label] * s * s;
-            b.error = m.pct / count[label] + ResolutionErrorPct(s);
+            b.cost = m.ms / count[label] * r.cost;
+            b.error = m.pct / count[label] + r.pct;
             out->push_back(b);
         }
     return true;
@@ -264,7 +309,7 @@ bool StartLiveFrameBudget(FrameBudget* b, double budgetMs, const std::string& fl
     d.budgetMs = budgetMs;
     std::vector<BudgetSetting> c;
     if (!ParseBudgetFloor(floorText, &d.floor, error) ||
-        !LoadBudgetCandidates(DataRoot() + "/docs/accuracy/accuracy.csv", scene, 1.0f, &c, error) ||
+        !LoadBudgetCandidates(DataRoot() + "/docs/accuracy/accuracy.csv", scene, kLiveMaxScale, &c, error) ||
         !BeginFrameBudget(b, d, c, error))
         return false;
     ApplyBudgetSetting(b->front[b->current], q, scale);
@@ -275,7 +320,7 @@ bool LiveFrameBudgetStep(FrameBudget& b, double now, double frameMs, Quality* q,
     if (!StepFrameBudget(b, now, frameMs)) return false;
     ApplyBudgetSetting(b.front[b.current], q, scale);
     char line[256];
-    std::snprintf(line, sizeof line, "frame budget %.1f ms: median %.1f ms -> %s", b.desc.budgetMs, b.lastMedianMs,
+    std::snprintf(line, sizeof line, "frame budget %.3g ms: median %.1f ms -> %s", b.desc.budgetMs, b.lastMedianMs,
                   b.front[b.current].label.c_str());
     *say = line;
     return true;

@@ -9,9 +9,13 @@
 //
 // A setting is a quality (steps, shadow steps, AO samples, hit epsilon, step factor: the sweep's
 // rows that Quality can express) at a resolution scale (< 1 renders fewer pixels and upscales,
-// > 1 supersamples). Its cost is the sweep's GPU ms times scale^2; its error is the sweep's
-// "% pixels more than 8/255 off" plus a resolution term (the sweep does not measure resolution
-// yet: ResolutionErrorPct is a stated model, not a measurement).
+// > 1 supersamples). Its cost is the sweep's ms relative to the default times the scale's cost
+// relative to scale 1; its error is the sweep's "% pixels more than 8/255 off" plus a resolution
+// term. Both scale figures are measured by the sweep's render-scale rows (knob "scale": the
+// default at that scale, resampled as live shows it, against the supersampled truth), so scale 1
+// carries its aliasing and 2x2 supersampling lowers it. The sum is the model: a quality's and a
+// scale's errors add. A CSV without scale rows falls back to cost scale^2 and ResolutionErrorPct,
+// a stated model, not a measurement.
 //
 // About once a period (1 s) the median frame time of the period is compared with the budget;
 // the time any other setting would take is predicted by scaling it with the front's cost
@@ -32,8 +36,8 @@ struct BudgetSetting {
     std::string label;         // "steps=96 @ 0.70"
     float scale = 1.0f;        // fraction of the output's width and height that is rendered
     Quality quality;           // steps, shadow steps, AO samples, epsilon, step factor
-    double cost = 1.0;         // relative (the sweep's ms at scale 1, times scale^2)
-    double error = 0.0;        // % pixels more than 8/255 off (sweep) + ResolutionErrorPct(scale)
+    double cost = 1.0;         // relative: the quality's ms over the default's, times the scale's over scale 1's
+    double error = 0.0;        // % pixels more than 8/255 off (the quality's row) + the scale's row (or model)
 };
 
 // What the performer will not go below: "scale=0.5,steps=64,shadow_steps=16,ao=2" (any subset).
@@ -47,18 +51,22 @@ struct BudgetFloor {
 bool ParseBudgetFloor(const std::string& text, BudgetFloor* out, std::string* error);
 bool AboveFloor(const BudgetSetting& s, const BudgetFloor& f);
 
-// The resolution term of the error model: % of pixels that are interpolated, not rendered
-// (0 at scale >= 1).
+// The resolution term of the fallback model (a CSV without scale rows): % of pixels that are
+// interpolated, not rendered (0 at scale >= 1).
 double ResolutionErrorPct(float scale);
 
 // Candidates from an accuracy CSV (sdfvj bench accuracy): the scene's rows that Quality can
 // express, or the mean over all scenes in the file per setting when the scene has none, crossed
-// with the render scales up to maxScale. False with "file:line: ..." on a file it cannot read.
+// with the render scales up to maxScale (the CSV's scale rows, the scene's or the mean, else
+// kScales with the model). False with "file:line: ..." on a file it cannot read.
 bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, float maxScale,
                           std::vector<BudgetSetting>* out, std::string* error);
 
 // The Pareto front of (cost, error), cheapest (and worst) first.
 std::vector<BudgetSetting> BudgetFront(std::vector<BudgetSetting> candidates);
+
+// The largest render scale `live` draws (2: each pixel the mean of 2x2 samples).
+constexpr float kLiveMaxScale = 2.0f;
 
 struct FrameBudgetDesc {
     double budgetMs = 0.0;        // <= 0: off
@@ -99,12 +107,12 @@ void ApplyBudgetSetting(const BudgetSetting& s, Quality* q, float* scale);
 
 // ---- live's glue (cmd_live.cpp calls these two) ------------------------------------------
 // Starts a budget of budgetMs for `scene` from DataRoot()/docs/accuracy/accuracy.csv with the
-// floor text of --budget-floor (scales up to 1: live does not supersample); applies the best
-// setting. False with a line to show when it cannot (the show then runs without a budget).
+// floor text of --budget-floor (scales up to kLiveMaxScale: 2, live's 2x2 supersampling);
+// applies the best setting. False with a line to show when it cannot (the show then runs without a budget).
 bool StartLiveFrameBudget(FrameBudget* b, double budgetMs, const std::string& floorText, const std::string& scene,
                           Quality* q, float* scale, std::string* error);
 // One frame's time: when the budget moved, applies the new setting and sets `say` to
-// "frame budget 8.0 ms: median 9.1 ms -> steps=96 @ 0.85".
+// "frame budget 8 ms: median 9.1 ms -> steps=96 @ 0.85".
 bool LiveFrameBudgetStep(FrameBudget& b, double now, double frameMs, Quality* q, float* scale, std::string* say);
 
 }  // namespace sdfvj

@@ -239,7 +239,7 @@ void DrawTimes(const OverlayModel& m, const OverlayUi& ui, OverlayActions& a) {
     // A slow machine keeps its frame rate by rendering fewer pixels (upscaled with filtering).
     float scale = m.renderScale;
     ImGui::SetNextItemWidth(180);
-    if (ImGui::SliderFloat("resolution", &scale, 0.25f, 1.0f, "%.2f")) a.renderScale = scale;
+    if (ImGui::SliderFloat("resolution", &scale, 0.25f, 2.0f, "%.2f")) a.renderScale = scale;
 }
 
 }  // namespace

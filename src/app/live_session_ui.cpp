@@ -139,7 +139,7 @@ OverlayModel LiveSession::OverlayModelNow() {
 // Preset loads and effect toggles go through ApplyActions, as a pad or /sdfvj/preset and
 // /sdfvj/effect/<name> would; this frame's own actions were applied already and are put back.
 void LiveSession::ApplyOverlayActions(const OverlayActions& a, double now) {
-    if (a.renderScale > 0.0f) renderScale_ = std::clamp(a.renderScale, 0.25f, 1.0f);
+    if (a.renderScale > 0.0f) renderScale_ = std::clamp(a.renderScale, 0.25f, 2.0f);
     if (a.measureCosts) StartEffectCosts(costs_, KeyOnScreen().effects, 9, softwareGl_ || servers_);   // a server times its own draws
     for (const auto& [index, value] : a.setTargets)
         if (index >= 0 && (size_t)index < state_.params.decls.size()) SetParamTarget(state_.params, index, value);

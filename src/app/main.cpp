@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
     cmdAccuracy->add_option("--size", accuracyBench.size, "frame size for timing and images")->capture_default_str();
     cmdAccuracy->add_option("--ref-size", accuracyBench.refSize, "size of the CPU double reference (geometry is compared there; default --size)");
     cmdAccuracy->add_option("--path", accuracyBench.path, "auto, compute or fragment")->capture_default_str();
-    cmdAccuracy->add_option("--sweep", accuracyBench.sweep, "full or tiny")->capture_default_str();
+    cmdAccuracy->add_option("--sweep", accuracyBench.sweep, "full (every knob, render scales too), tiny (a handful, for tests) or scale (the default at render scales 0.25..1 and 2x2 supersampled, against the supersampled truth: the frame budget's resolution term)")->capture_default_str();
     cmdAccuracy->add_option("--frames", accuracyBench.frames, "timed frames per setting (median)")->capture_default_str();
     cmdAccuracy->add_option("--warmup", accuracyBench.warmup, "untimed frames first")->capture_default_str();
     cmdAccuracy->add_option("--time", accuracyBench.time, "scene time in seconds")->capture_default_str();
@@ -227,8 +227,10 @@ int main(int argc, char** argv) {
     cmdLive->add_option("--budget-floor", live.budgetFloor, "never below, e.g. scale=0.5,steps=64,shadow_steps=16,ao=2");
     cmdLive->add_option("--render-scale", live.renderScale,
                         "render the scene at this fraction of the window, upscaled (0.25..1; the overlay's "
-                        "'resolution' slider changes it live): a slow machine keeps its frame rate")
-        ->check(CLI::Range(0.25, 1.0))
+                        "'resolution' slider changes it live): a slow machine keeps its frame rate. Above 1 it "
+                        "supersamples: 2 draws twice the width and height and shows each pixel as the mean of 2x2 "
+                        "(edges without stairs, 4x the cost)")
+        ->check(CLI::Range(0.25, 2.0))
         ->capture_default_str();
     cmdLive->footer(
         "In the window: Tab hides the overlay (for the audience), F11 toggles fullscreen, 1-9 pick presets, "

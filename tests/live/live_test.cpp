@@ -230,6 +230,72 @@ TEST_CASE("live render scale: --render-scale 0.25 fills the window with the scen
     CHECK(d.maxAbs > 0);                           // but not the full-size render
 }
 
+TEST_CASE("live render scale: --render-scale 2 supersamples and the window shows each pixel as the mean of 2x2 samples") {
+    // primitives with spin and bob at 0 is still (midi pulses with the show's beat), with a checker floor to alias
+    const std::vector<std::string> still = {"--scene", "primitives", "--param", "spin=0", "--param", "bob=0"};
+    std::vector<std::string> superArgs = still;
+    superArgs.insert(superArgs.end(), {"--render-scale", "2"});
+    LiveRun full("super-full", still, false), super("super-2", superArgs, false);
+    const int rcFull = full.Wait(), rcSuper = super.Wait();
+    INFO(ReadText(full.log) << ReadText(super.log));
+    REQUIRE(rcFull == 0);
+    REQUIRE(rcSuper == 0);
+    Image a, b;
+    REQUIRE(LoadPng(full.shot, &a));
+    REQUIRE(LoadPng(super.shot, &b));
+    REQUIRE(b.width == kW);
+    REQUIRE(b.height == kH);
+    // The truth it should show: the same frame rendered offline at twice the size, averaged 2x2
+    // (the scene is still, so the time a screenshot is taken at does not matter).
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "super-truth");
+    REQUIRE(Run({SDFVJ_BIN, "render", "--scene", "primitives", "--size", std::to_string(2 * kW) + "x" + std::to_string(2 * kH),
+                 "--path", "fragment", "--effects", "none", "--param", "spin=0", "--param", "bob=0", "--quiet", "--out", dir},
+                dir + "/render.log", 60) == 0);
+    Image big, truth;
+    REQUIRE(LoadPng(dir + "/frame_00000.png", &big));
+    REQUIRE(big.width == 2 * kW);
+    truth.width = kW;
+    truth.height = kH;
+    truth.rgba.resize((size_t)kW * kH * 4);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 4; ++c) {
+                int sum = 0;
+                for (int dy = 0; dy < 2; ++dy)
+                    for (int dx = 0; dx < 2; ++dx) sum += big.rgba[((size_t)(2 * y + dy) * big.width + 2 * x + dx) * 4 + c];
+                truth.rgba[((size_t)y * kW + x) * 4 + c] = (uint8_t)((sum + 2) / 4);
+            }
+    ImageDiff superVsTruth = CompareImages(b, truth, 8), fullVsTruth = CompareImages(a, truth, 8), superVsFull = CompareImages(a, b, 8);
+    INFO("supersampled against the truth: mean " << superVsTruth.meanAbs << ", max " << superVsTruth.maxAbs << ", "
+         << superVsTruth.fractionOver * 100 << "% over 8/255; one sample against it: mean " << fullVsTruth.meanAbs << ", "
+         << fullVsTruth.fractionOver * 100 << "%");
+    CHECK(superVsTruth.fractionOver < 0.002);                 // the mean of 2x2 (a dither level or two apart)
+    CHECK(fullVsTruth.fractionOver > 0.01);                   // one sample a pixel has stairs on every edge
+    CHECK(superVsTruth.fractionOver < 0.2 * fullVsTruth.fractionOver);
+    CHECK(superVsFull.meanAbs < 6.0);                         // the same picture
+}
+
+TEST_CASE("live frame budget: --frame-budget starts supersampled at the front's best and drops to the cheapest when nothing fits") {
+    // 0.05 ms is far below any frame llvmpipe draws (even a quarter of the width is predicted over
+    // it): after its first second the budget takes the
+    // cheapest setting above the default floor, a quarter of the width.
+    LiveRun run("budget", {"--param", "spin=0", "--frame-budget", "0.05"}, false);
+    const int rc = run.Wait();
+    const std::string log = ReadText(run.log);
+    INFO(log);
+    REQUIRE(rc == 0);
+    const size_t start = log.find("frame budget 0.05 ms: starts at ");
+    REQUIRE(start != std::string::npos);
+    CHECK(log.substr(start, log.find('\n', start) - start).find("@ 2.00") != std::string::npos);   // 2x2 supersampled
+    const size_t move = log.find("frame budget 0.05 ms: median ");
+    REQUIRE(move != std::string::npos);
+    CHECK(log.substr(move, log.find('\n', move) - move).find("@ 0.25") != std::string::npos);
+    Image shot;
+    REQUIRE(LoadPng(run.shot, &shot));
+    CHECK(shot.width == kW);
+    CHECK(LumaSpread(shot) > 5.0);   // the scene, upscaled from a quarter of the window
+}
+
 TEST_CASE("live screenshot: a show whose --seconds end before its first frame runs on until one is drawn and writes it") {
     // 0.05 s is shorter than a first compile on llvmpipe that no cache serves: without the grace the
     // show ended with no frame and no screenshot (a loaded machine may do the same to a 3 s show).

@@ -6,7 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
 
+#include "accuracy/accuracy.h"
 #include "app/frame_budget.h"
 #include "gl_fixture.h"
 #include "render/render.h"
@@ -114,11 +118,129 @@ TEST_CASE("frame budget: candidates come from the committed accuracy sweep", "[b
     CHECK(front.back().scale == 1.0f);                  // the best renders every pixel
     CHECK(front.front().cost < 0.2 * front.back().cost);  // and the cheapest is far cheaper
     for (const auto& s : c) CHECK(s.scale <= 1.0f);     // no supersampling above maxScale
+    // its render-scale rows: the scales measured, 2x2 supersampling the best the front has
+    REQUIRE(LoadBudgetCandidates(csv, "character", kLiveMaxScale, &c, &error));
+    front = BudgetFront(c);
+    CHECK(front.back().scale == 2.0f);
+    for (float s : {0.25f, 0.5f, 1.0f, 2.0f})
+        CHECK(std::any_of(c.begin(), c.end(), [&](const BudgetSetting& b) { return b.scale == s; }));
     // a scene the sweep has not seen uses the mean over the others
-    REQUIRE(LoadBudgetCandidates(csv, "field150", 1.5f, &c, &error));
+    REQUIRE(LoadBudgetCandidates(csv, "no-such-scene", kLiveMaxScale, &c, &error));
     CHECK(std::any_of(c.begin(), c.end(), [](const BudgetSetting& s) { return s.scale > 1.0f; }));
     CHECK_FALSE(LoadBudgetCandidates(csv + ".missing", "character", 1.0f, &c, &error));
     CHECK(error.find("accuracy.csv.missing:1: cannot read") != std::string::npos);
+}
+
+TEST_CASE("frame budget: the sweep's render-scale rows give the resolution term, supersampling included", "[budget]") {
+    // A sweep of one scene: the default, 32 steps, and the default drawn at scales 0.5, 1 and 2
+    // (their ms and their % off the supersampled truth, as `bench accuracy --sweep scale` writes).
+    const std::string dir = std::string(SDFVJ_TEST_TMP) + "/budget-scale";
+    std::filesystem::create_directories(dir);
+    const std::string header = "scene,knob,setting,role,max_steps,hit_eps,eps_mode,step_factor,naive_step,normals,normal_eps,"
+                               "march_fixed,fixed_step,shadow_steps,shadow_k,ao_samples,gpu_ms,pct_over_8,pareto,render_scale\n";
+    auto row = [](const char* knob, const char* label, int steps, double ms, double pct, double scale) {
+        char line[256];
+        std::snprintf(line, sizeof line, "demo,%s,\"%s\",,%d,0.001,0,1,0,2,0.001,0,0.05,48,8,5,%g,%g,0,%g\n", knob, label,
+                      steps, ms, pct, scale);
+        return std::string(line);
+    };
+    const std::string body = row("default", "sdfvj default", 128, 2.0, 0.05, 1) + row("steps", "steps=32", 32, 1.0, 3.0, 1) +
+                             row("scale", "scale=0.50", 128, 0.6, 6.0, 0.5) + row("scale", "scale=1.00", 128, 2.0, 1.5, 1) +
+                             row("scale", "supersampled 2x2", 128, 7.0, 0.04, 2);
+    { std::ofstream(dir + "/with.csv") << header << body; }
+    std::vector<BudgetSetting> c;
+    std::string error;
+    REQUIRE(LoadBudgetCandidates(dir + "/with.csv", "demo", 2.0f, &c, &error));
+    auto find = [&](const std::string& label) {
+        auto it = std::find_if(c.begin(), c.end(), [&](const BudgetSetting& s) { return s.label == label; });
+        REQUIRE(it != c.end());
+        return *it;
+    };
+    CHECK(c.size() == 6);   // two qualities at the three measured scales, not the model's ten
+    // cost: the quality's ms over the default's, times the scale's over scale 1's
+    CHECK(find("sdfvj default @ 2.00").cost == Approx(3.5));
+    CHECK(find("steps=32 @ 0.50").cost == Approx(0.5 * 0.3));
+    // error: the quality's % off plus the scale's % off the supersampled truth
+    CHECK(find("sdfvj default @ 1.00").error == Approx(0.05 + 1.5));
+    CHECK(find("sdfvj default @ 2.00").error == Approx(0.05 + 0.04));
+    CHECK(find("steps=32 @ 0.50").error == Approx(3.0 + 6.0));
+    auto front = BudgetFront(c);
+    CHECK(front.back().label == "sdfvj default @ 2.00");   // the best the front has supersamples
+    CHECK(front.back().scale == 2.0f);
+    // fewer pixels never count as more accurate: a scale 0.5 row that read closer to the truth than
+    // scale 1 (a blur's luck) is taken as scale 1's term, and a tie goes to the larger scale
+    { std::ofstream(dir + "/blur.csv") << header << body << row("scale", "scale=0.85", 128, 1.5, 1.0, 0.85); }
+    REQUIRE(LoadBudgetCandidates(dir + "/blur.csv", "demo", 1.0f, &c, &error));
+    CHECK(find("sdfvj default @ 0.85").error == Approx(0.05 + 1.5 + 1e-3));
+    CHECK(BudgetFront(c).back().label == "sdfvj default @ 1.00");
+    // live's budget without room to supersample stops at 1
+    REQUIRE(LoadBudgetCandidates(dir + "/with.csv", "demo", 1.0f, &c, &error));
+    CHECK(BudgetFront(c).back().label == "sdfvj default @ 1.00");
+    // a scale row without its render_scale column is a clear error
+    { std::ofstream(dir + "/bad.csv") << header.substr(0, header.rfind(",render_scale")) << "\n" << row("scale", "scale=0.50", 128, 0.6, 6.0, 0.5); }
+    CHECK_FALSE(LoadBudgetCandidates(dir + "/bad.csv", "demo", 2.0f, &c, &error));
+    CHECK(error.find("bad.csv:2: a scale row without a render_scale") != std::string::npos);
+    // without scale rows: the stated model (cost scale^2, ResolutionErrorPct)
+    { std::ofstream(dir + "/without.csv") << header << row("default", "sdfvj default", 128, 2.0, 0.05, 1) << row("steps", "steps=32", 32, 1.0, 3.0, 1); }
+    REQUIRE(LoadBudgetCandidates(dir + "/without.csv", "demo", 1.0f, &c, &error));
+    CHECK(find("steps=32 @ 0.50").cost == Approx(0.5 * 0.25));
+    CHECK(find("steps=32 @ 0.50").error == Approx(3.0 + ResolutionErrorPct(0.5f)));
+}
+
+TEST_CASE("frame budget: the sweep measures render scales against the supersampled truth and the budget reads them", "[budget][gpu]") {
+    test::RequireGl();
+    accuracy::SweepOptions o;
+    o.scenes = {"midi"};
+    o.width = 128;
+    o.height = 72;
+    o.sweep = "scale";
+    o.path = "fragment";
+    o.frames = 1;
+    o.warmup = 1;
+    std::vector<accuracy::Row> rows;
+    accuracy::SweepInfo info;
+    std::string error;
+    REQUIRE(accuracy::RunSweep(o, &rows, &info, &error));
+    std::map<int, const accuracy::Row*> byScale;
+    for (const auto& r : rows)
+        if (r.s.knob == "scale") byScale[(int)std::lround(r.s.scale * 100)] = &r;
+    REQUIRE(byScale.size() == 7);
+    std::string table;
+    for (const auto& [s, r] : byScale) table += r->s.label + ": " + std::to_string(r->img.pctOver8) + " % off, " + std::to_string(r->gpuMs) + " ms\n";
+    INFO(table);
+    // fewer pixels, more error; one sample a pixel has its edges' stairs; 2x2 samples hardly any
+    CHECK(byScale[25]->img.pctOver8 > byScale[50]->img.pctOver8);
+    CHECK(byScale[50]->img.pctOver8 > byScale[100]->img.pctOver8);
+    CHECK(byScale[100]->img.pctOver8 > 0.3);
+    CHECK(byScale[200]->img.pctOver8 < 0.3 * byScale[100]->img.pctOver8);
+    CHECK(byScale[200]->gpuMs > byScale[100]->gpuMs);   // four times the samples
+    // the CSV the sweep writes is what the budget reads: its scales, its errors
+    const std::string dir = std::string(SDFVJ_TEST_TMP) + "/budget-sweep";
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream f(dir + "/accuracy.csv");
+        f << accuracy::CsvHeader() << "\n";
+        for (const auto& r : rows) f << accuracy::CsvLine(r) << "\n";
+    }
+    std::vector<BudgetSetting> c;
+    REQUIRE(LoadBudgetCandidates(dir + "/accuracy.csv", "midi", kLiveMaxScale, &c, &error));
+    const accuracy::Row* def = nullptr;
+    for (const auto& r : rows)
+        if (r.s.role == "default") def = &r;
+    REQUIRE(def);
+    CHECK(c.size() == 7);
+    for (const auto& s : c) {
+        INFO(s.label);
+        const accuracy::Row* r = byScale[(int)std::lround(s.scale * 100)];
+        REQUIRE(r);
+        // the quality's % off plus the scale's, or a larger scale's where that read higher
+        double term = r->img.pctOver8;
+        for (const auto& [k, larger] : byScale)
+            if (k > (int)std::lround(s.scale * 100)) term = std::max(term, larger->img.pctOver8);
+        CHECK(s.error == Approx(def->img.pctOver8 + term).margin(0.01));
+        CHECK(s.cost == Approx(r->gpuMs / byScale[100]->gpuMs).epsilon(0.01));
+    }
+    CHECK(BudgetFront(c).back().scale == 2.0f);   // with room, the budget supersamples
 }
 
 TEST_CASE("frame budget: on llvmpipe a tight budget is met and the setting is the one the front predicts", "[budget][gpu]") {
