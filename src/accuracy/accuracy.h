@@ -168,6 +168,10 @@ struct Row {
     double gpuMs = 0;
     GeometryError g;
     ImageError img;
+    // Against the scene's own look (the 4096-step render at the default penumbra and AO samples):
+    // the same as img but on the look rows (penumbra, AO samples), where it adds what the look
+    // changed. What `live --frame-budget` counts: fewer AO samples are not free.
+    ImageError imgSceneLook;
     bool pareto = false;
 };
 

@@ -74,7 +74,7 @@ std::string Esc(const std::string& s) {
 std::string CsvHeader() {
     return "scene,knob,setting,role,max_steps,hit_eps,eps_mode,step_factor,naive_step,normals,normal_eps,march_fixed,"
            "fixed_step,shadow_steps,shadow_k,ao_samples,gpu_ms,pct_over_8,psnr_db,t_err_p50_px,t_err_p99_px,"
-           "t_err_max_px,silhouette_pct,normal_p50_deg,normal_p99_deg,out_of_steps_pct,ref_out_of_steps_pct,pareto,render_scale";
+           "t_err_max_px,silhouette_pct,normal_p50_deg,normal_p99_deg,out_of_steps_pct,ref_out_of_steps_pct,pareto,render_scale,pct_over_8_scene_look";
 }
 
 std::string CsvLine(const Row& r) {
@@ -86,7 +86,7 @@ std::string CsvLine(const Row& r) {
       << s.q.aoSamples << "," << F("%.4f", r.gpuMs) << "," << F("%.4f", r.img.pctOver8) << "," << F("%.2f", r.img.psnr)
       << "," << F("%.4g", r.g.tErrP50) << "," << F("%.4g", r.g.tErrP99) << "," << F("%.4g", r.g.tErrMax) << ","
       << F("%.4f", r.g.silhouettePct) << "," << F("%.4g", r.g.normalP50) << "," << F("%.4g", r.g.normalP99) << ","
-      << F("%.4f", r.g.outOfStepsPct) << "," << F("%.4f", r.g.refOutOfStepsPct) << "," << (r.pareto ? 1 : 0) << "," << F("%g", s.scale);
+      << F("%.4f", r.g.outOfStepsPct) << "," << F("%.4f", r.g.refOutOfStepsPct) << "," << (r.pareto ? 1 : 0) << "," << F("%g", s.scale) << "," << F("%.4f", r.imgSceneLook.pctOver8);
     return o.str();
 }
 
@@ -234,7 +234,8 @@ std::string MarkdownReport(const std::vector<Row>& rows, const SweepOptions& o, 
          "order too: see the normals section); offset trades "
          "noise against blurring of small features.\n"
          "- **shadow steps / penumbra**: shadow rays that run out of steps are counted as lit; k is a look, not a precision.\n"
-         "- **AO samples**: the occlusion kernel; a look knob, compared with its own 4096-step render.\n"
+         "- **AO samples**: the occlusion kernel; a look knob, compared with its own 4096-step render (the CSV's "
+         "`pct_over_8_scene_look` also compares every row with the scene's own look: what `live --frame-budget` counts).\n"
          "- **step factor**: < 1 under-relaxes (safer on non-Lipschitz fields, more steps), > 1 over-relaxes (faster, "
          "oversteps thin parts).\n\n";
     std::vector<std::string> scenes;

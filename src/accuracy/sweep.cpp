@@ -333,6 +333,7 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
                 r.s = st;
                 r.s.normals = e.normals;
                 r.img = CompareRgba8(img, *truth);
+                r.imgSceneLook = r.img;
                 r.g = defaultGeometry;
                 timed.push_back({shaded, in, rows->size(), {}, target});
                 rows->push_back(r);
@@ -348,6 +349,9 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
             std::vector<uint8_t>* ref8 = nullptr;
             if (!hqImage(st.q, st.bounds, &ref8)) return false;
             r.img = CompareRgba8(img, *ref8);
+            std::vector<uint8_t>* look8 = nullptr;
+            if (!hqImage(Quality{}, st.bounds, &look8)) return false;
+            r.imgSceneLook = look8 == ref8 ? r.img : CompareRgba8(img, *look8);
 
             EffectSet eg = e;
             eg.debugView = 4;

@@ -111,6 +111,9 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
     // Render-scale rows (`bench accuracy` knob "scale", column render_scale): the default drawn at
     // a scale, its ms and its % off the supersampled truth. scene -> scale x 1000 -> (ms, pct).
     const int scaleCol = col("render_scale");
+    // The error against the scene's own look (a look row's own % off leaves out what the look
+    // changed); without the column, rows with other AO samples than the default are left out.
+    const int lookCol = col("pct_over_8_scene_look");
     std::map<std::string, std::map<int, std::pair<double, double>>> scaleRows;
     int lineNo = 1;
     while (std::getline(in, line)) {
@@ -148,6 +151,12 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
         if (!qualityKnob || v[5] != 0 || v[7] != 0 || v[10] != 0 || std::fabs(v[9] - d.normalEps) > 1e-9 ||
             std::fabs(v[12] - d.shadowK) > 1e-6 || v[6] > 1.0 + 1e-6)
             continue;   // other epsilon modes, normal offsets, fixed steps, penumbrae, over-relaxation
+        double lookPct = v[15];
+        if (lookCol >= 0 && !ParseNumber(f[lookCol], &lookPct)) {
+            *error = csvPath + ":" + std::to_string(lineNo) + ": pct_over_8_scene_look is not a number, expected a percentage";
+            return false;
+        }
+        if (lookCol < 0 && (int)v[13] != d.aoSamples) continue;   // its error against the scene's look is unknown
         Q r;
         r.q.maxSteps = (int)v[3];
         r.q.hitEps = (float)v[4];
@@ -155,7 +164,7 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
         r.q.shadowSteps = (int)v[11];
         r.q.aoSamples = (int)v[13];
         r.ms = v[14];
-        r.pct = v[15];
+        r.pct = lookPct;
         rows[f[c["scene"]]][f[c["setting"]]] = r;
     }
     // Costs relative to each scene's default row; the scene's own rows, else the mean over scenes.

@@ -187,6 +187,36 @@ TEST_CASE("frame budget: the sweep's render-scale rows give the resolution term,
     CHECK(find("steps=32 @ 0.50").error == Approx(3.0 + ResolutionErrorPct(0.5f)));
 }
 
+TEST_CASE("frame budget: fewer AO samples count by their distance from the scene's look, not from their own", "[budget]") {
+    const std::string dir = std::string(SDFVJ_TEST_TMP) + "/budget-look";
+    std::filesystem::create_directories(dir);
+    const std::string header = "scene,knob,setting,role,max_steps,hit_eps,eps_mode,step_factor,naive_step,normals,normal_eps,"
+                               "march_fixed,fixed_step,shadow_steps,shadow_k,ao_samples,gpu_ms,pct_over_8,pareto";
+    // lookPct < 0: a row of a CSV from before the pct_over_8_scene_look column
+    auto row = [](const char* knob, const char* label, int ao, double ms, double pct, double lookPct) {
+        char line[256];
+        std::snprintf(line, sizeof line, "demo,%s,\"%s\",,128,0.001,0,1,0,2,0.001,0,0.05,48,8,%d,%g,%g,0,1", knob, label, ao, ms, pct);
+        return std::string(line) + (lookPct >= 0 ? "," + std::to_string(lookPct) : std::string()) + "\n";
+    };
+    // AO 1: 0.01 % off its own 4096-step render (the look it asked for), 2.5 % off the scene's
+    { std::ofstream(dir + "/look.csv") << header << ",render_scale,pct_over_8_scene_look\n"
+                                       << row("default", "sdfvj default", 5, 2.0, 0.05, 0.05)
+                                       << row("ao_samples", "ao samples=1", 1, 1.6, 0.01, 2.5); }
+    std::vector<BudgetSetting> c;
+    std::string error;
+    REQUIRE(LoadBudgetCandidates(dir + "/look.csv", "demo", 1.0f, &c, &error));
+    auto at1 = std::find_if(c.begin(), c.end(), [](const BudgetSetting& s) { return s.label == "ao samples=1 @ 1.00"; });
+    REQUIRE(at1 != c.end());
+    CHECK(at1->error == Approx(2.5 + ResolutionErrorPct(1.0f)));
+    CHECK(BudgetFront(c).back().label == "sdfvj default @ 1.00");   // the scene's look is the best, not AO 1
+    // a CSV from before the column: AO rows other than the default's are left out, not taken as free
+    { std::ofstream(dir + "/old.csv") << header << ",render_scale\n" << row("default", "sdfvj default", 5, 2.0, 0.05, -1)
+                                      << row("ao_samples", "ao samples=1", 1, 1.6, 0.01, -1); }
+    REQUIRE(LoadBudgetCandidates(dir + "/old.csv", "demo", 1.0f, &c, &error));
+    CHECK(std::none_of(c.begin(), c.end(), [](const BudgetSetting& s) { return s.quality.aoSamples == 1; }));
+    CHECK(std::any_of(c.begin(), c.end(), [](const BudgetSetting& s) { return s.quality.aoSamples == 5; }));
+}
+
 TEST_CASE("frame budget: the sweep measures render scales against the supersampled truth and the budget reads them", "[budget][gpu]") {
     test::RequireGl();
     accuracy::SweepOptions o;
