@@ -20,7 +20,8 @@
 #                                 s15b, s15c, define (DEFINE="NAME VALUE": every scene against a copy
 #                                 with it, frames and compiles), copies (VARIANTS="SCENE/SUFFIX/
 #                                 NAME=VALUE,..." copies, one interleaved run), scales (the budget's
-#                                 render-scale rows); pending = adopt + field + cone.
+#                                 render-scale rows), s27 (scales + session 27's copies, one call);
+#                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
@@ -327,6 +328,18 @@ case "${1:-}" in
     [ "${DEFINE_RELOAD:-1}" = 0 ] || for s in midi character midi_off character_off; do SDFVJ_ROOT_OVERRIDE="$root" timeout 60 bash "$0" remote bench reload --scene $s \
       --size 1920x1080 --path compute --modes driver --tiered off --rounds 3 > "$out/define_reload_$s.txt" 2>&1 || true; { grep -h "^median" "$out/define_reload_$s.txt" || true; } | cut -c1-200; done
     rm -rf "$root"
+    fi
+    if [ "$part" = s27 ]; then
+    # Session 27's pending GPU figures in one call (no GPU was lent then): the budget's render-scale
+    # rows; mandelbulb's MANDELBULB_FEW_SFU (off) against as shipped; the knobs as literals (the most
+    # folding a per-frame setup could buy) for mandelbulb and field50; full lighting at 1080p and 4K,
+    # then the 7680x4320 show.
+    v="mandelbulb/few/MANDELBULB_FEW_SFU=1 mandelbulb/lit/u_power=8.0f,u_iterations=8.0f,u_hue=0.5f,u_colorSpread=0.8f,u_spin=0.15f"
+    v="$v field50/lit/u_blend=0.3f,u_size=0.95f,u_wave=0.5f,u_speed=1.0f,u_spin=0.6f,u_floorBlend=0.1f"
+    mkdir -p "$out/scales" "$out/frames" "$out/show"
+    OUT="$out/scales" bash "$0" measure scales
+    OUT="$out/frames" VARIANTS="$v" VARIANT_TIMEOUT=200 bash "$0" measure copies
+    OUT="$out/show" VARIANTS="$v" VARIANT_SIZES=7680x4320 VARIANT_TESTS=show VARIANT_TIMEOUT=150 bash "$0" measure copies
     fi
     if [ "$part" = scales ]; then
     # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1
