@@ -50,10 +50,13 @@ std::vector<double> XTicks(const Frame& f) {
     return v;
 }
 
-std::vector<const Row*> Front(const std::vector<Row>& rows, const std::string& scene) {
+// The scene's Pareto front: of the quality rows, or (scales) of the render-scale rows, whose error
+// is against the supersampled truth and which form a front of their own (MarkPareto).
+bool ScaleRow(const Row& r) { return r.s.knob == "scale"; }
+std::vector<const Row*> Front(const std::vector<Row>& rows, const std::string& scene, bool scales) {
     std::vector<const Row*> v;
     for (const Row& r : rows)
-        if (r.scene == scene && r.pareto) v.push_back(&r);
+        if (r.scene == scene && r.pareto && ScaleRow(r) == scales) v.push_back(&r);
     std::sort(v.begin(), v.end(), [](const Row* a, const Row* b) { return a->gpuMs < b->gpuMs; });
     return v;
 }
@@ -61,7 +64,7 @@ std::vector<const Row*> Front(const std::vector<Row>& rows, const std::string& s
 // Penumbra and AO samples change the look (each is compared with its own reference), and render
 // scales are compared with the supersampled truth: never offered as the "cheapest setting" for an
 // error budget.
-bool LookKnob(const Row& r) { return r.s.knob == "penumbra" || r.s.knob == "ao_samples" || r.s.knob == "scale"; }
+bool LookKnob(const Row& r) { return r.s.knob == "penumbra" || r.s.knob == "ao_samples" || ScaleRow(r); }
 
 std::string Esc(const std::string& s) {
     std::string o;
@@ -113,13 +116,17 @@ bool WritePlotPng(const std::string& path, const std::vector<Row>& rows, const s
     line(f.left, f.top, f.left, f.h - f.bottom, 0, 0, 0);
     line(f.left, f.h - f.bottom, f.w - f.right, f.h - f.bottom, 0, 0, 0);
     line(f.left, f.Y(0.1), f.w - f.right, f.Y(0.1), 240, 160, 160);   // the 0.1 % target
-    auto front = Front(rows, scene);
-    for (size_t i = 1; i < front.size(); ++i)
-        line(f.X(front[i - 1]->gpuMs), f.Y(front[i - 1]->img.pctOver8), f.X(front[i]->gpuMs), f.Y(front[i]->img.pctOver8), 200, 30, 30);
+    for (bool scales : {false, true}) {
+        auto front = Front(rows, scene, scales);
+        for (size_t i = 1; i < front.size(); ++i)
+            line(f.X(front[i - 1]->gpuMs), f.Y(front[i - 1]->img.pctOver8), f.X(front[i]->gpuMs), f.Y(front[i]->img.pctOver8),
+                 scales ? 230 : 200, scales ? 140 : 30, scales ? 0 : 30);
+    }
     for (const Row& r : rows) {
         if (r.scene != scene) continue;
         double x = f.X(r.gpuMs), y = f.Y(r.img.pctOver8);
-        if (r.s.role == "default") dot(x, y, 6, 30, 90, 220);
+        if (ScaleRow(r)) dot(x, y, r.pareto ? 4 : 3, 230, 140, 0);
+        else if (r.s.role == "default") dot(x, y, 6, 30, 90, 220);
         else if (r.s.role == "plain") dot(x, y, 6, 30, 160, 60);
         else if (r.pareto) dot(x, y, 4, 200, 30, 30);
         else dot(x, y, 3, 120, 120, 120);
@@ -134,7 +141,7 @@ std::string PlotSvg(const std::vector<Row>& rows, const std::string& scene) {
       << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     s << "<text x=\"" << f.left << "\" y=\"18\" font-size=\"13\">" << Esc(scene)
       << ": GPU time against pixels more than 8/255 off a 4096-step render (red: Pareto front, blue: default, "
-         "green: plain raymarcher)</text>\n";
+         "green: plain raymarcher; orange: render scales against the supersampled truth)</text>\n";
     for (int d = -3; d <= 2; ++d) {
         double y = f.Y(std::pow(10.0, d));
         s << "<line x1=\"" << f.left << "\" y1=\"" << y << "\" x2=\"" << f.w - f.right << "\" y2=\"" << y
@@ -151,13 +158,15 @@ std::string PlotSvg(const std::vector<Row>& rows, const std::string& scene) {
       << "\" stroke=\"#f0a0a0\" stroke-dasharray=\"4 3\"/>\n";
     s << "<text x=\"" << (f.w + f.left) / 2 << "\" y=\"" << f.h - 12 << "\" text-anchor=\"middle\">GPU ms per frame (log scale)</text>\n";
     s << "<text transform=\"translate(14," << (f.h / 2) << ") rotate(-90)\" text-anchor=\"middle\">% pixels &gt; 8/255 off</text>\n";
-    auto front = Front(rows, scene);
-    s << "<polyline fill=\"none\" stroke=\"#c81e1e\" stroke-width=\"1.5\" points=\"";
-    for (const Row* r : front) s << f.X(r->gpuMs) << "," << f.Y(r->img.pctOver8) << " ";
-    s << "\"/>\n";
+    for (bool scales : {false, true}) {
+        s << "<polyline fill=\"none\" stroke=\"" << (scales ? "#e68c00" : "#c81e1e") << "\" stroke-width=\"1.5\" points=\"";
+        for (const Row* r : Front(rows, scene, scales)) s << f.X(r->gpuMs) << "," << f.Y(r->img.pctOver8) << " ";
+        s << "\"/>\n";
+    }
     for (const Row& r : rows) {
         if (r.scene != scene) continue;
-        const char* col = r.s.role == "default" ? "#1e5adc" : r.s.role == "plain" ? "#1ea03c" : r.pareto ? "#c81e1e" : "#888";
+        const char* col = ScaleRow(r) ? "#e68c00" : r.s.role == "default" ? "#1e5adc" : r.s.role == "plain" ? "#1ea03c"
+                        : r.pareto ? "#c81e1e" : "#888";
         int rad = r.s.role.empty() ? (r.pareto ? 4 : 3) : 6;
         s << "<circle cx=\"" << f.X(r.gpuMs) << "\" cy=\"" << f.Y(r.img.pctOver8) << "\" r=\"" << rad << "\" fill=\"" << col
           << "\"><title>" << Esc(r.s.label) << ": " << F("%.3f", r.gpuMs) << " ms, " << F("%.3f", r.img.pctOver8)
