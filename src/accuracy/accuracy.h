@@ -158,8 +158,8 @@ struct Setting {
     // changes which rays are cast, not how each is marched).
     float scale = 1.0f;
 };
-// which: "full" (every knob), "tiny" (a handful, for the test suite) or "scale" (the default and
-// the render scales only).
+// which: "full" (every knob), "tiny" (a handful, for the test suite), "scale" (the default and
+// the render scales only) or "looks" (the default and the look rows: penumbra, AO samples).
 std::vector<Setting> SweepSettings(const std::string& which);
 
 struct Row {

@@ -60,6 +60,25 @@ std::vector<Setting> SweepSettings(const std::string& which) {
         scales({0.25f, 0.33f, 0.5f, 0.7f, 0.85f, 1.0f, 2.0f});
         return out;
     }
+    auto aoSamples = [&] {
+        for (int n : {1, 2, 3, 8, 16}) {
+            Setting s = Make("ao_samples", "ao samples=" + std::to_string(n));
+            s.q.aoSamples = n;
+            out.push_back(s);
+        }
+    };
+    auto penumbrae = [&] {
+        for (double k : {4.0, 16.0, 32.0}) {
+            Setting s = Make("penumbra", "shadow k=" + Fmt("%g", k));
+            s.q.shadowK = (float)k;
+            out.push_back(s);
+        }
+    };
+    if (which == "looks") {   // the look rows (penumbra, AO samples), with their distance from the scene's look
+        penumbrae();
+        aoSamples();
+        return out;
+    }
     if (which == "tiny") {
         Setting s = Make("steps", "steps=32");
         s.q.maxSteps = 32;
@@ -120,16 +139,8 @@ std::vector<Setting> SweepSettings(const std::string& which) {
         s.q.shadowSteps = n;
         out.push_back(s);
     }
-    for (double k : {4.0, 16.0, 32.0}) {
-        Setting s = Make("penumbra", "shadow k=" + Fmt("%g", k));
-        s.q.shadowK = (float)k;
-        out.push_back(s);
-    }
-    for (int n : {1, 2, 3, 8, 16}) {
-        Setting s = Make("ao_samples", "ao samples=" + std::to_string(n));
-        s.q.aoSamples = n;
-        out.push_back(s);
-    }
+    penumbrae();
+    aoSamples();
     for (double f : {0.5, 0.6, 0.7, 0.8, 0.9, 1.1, 1.25, 1.5}) {
         Setting s = Make("step_factor", "step factor=" + Fmt("%g", f));
         s.q.stepFactor = (float)f;

@@ -35,7 +35,7 @@ int RunAccuracyBench(const AccuracyBenchOptions& o) {
         }
         so.scenes.push_back(info.name);
     }
-    if (o.sweep != "full" && o.sweep != "tiny" && o.sweep != "scale") { std::fprintf(stderr, "sdfvj bench accuracy: unknown sweep '%s', expected full, tiny or scale\n", o.sweep.c_str()); return 2; }
+    if (o.sweep != "full" && o.sweep != "tiny" && o.sweep != "scale" && o.sweep != "looks") { std::fprintf(stderr, "sdfvj bench accuracy: unknown sweep '%s', expected full, tiny, scale or looks\n", o.sweep.c_str()); return 2; }
     if (o.path != "auto" && o.path != "compute" && o.path != "fragment") { std::fprintf(stderr, "sdfvj bench accuracy: unknown path '%s', expected auto, compute or fragment\n", o.path.c_str()); return 2; }
     for (const std::string& kv : o.params) {
         auto eq = kv.find('=');

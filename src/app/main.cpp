@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
     cmdAccuracy->add_option("--size", accuracyBench.size, "frame size for timing and images")->capture_default_str();
     cmdAccuracy->add_option("--ref-size", accuracyBench.refSize, "size of the CPU double reference (geometry is compared there; default --size)");
     cmdAccuracy->add_option("--path", accuracyBench.path, "auto, compute or fragment")->capture_default_str();
-    cmdAccuracy->add_option("--sweep", accuracyBench.sweep, "full (every knob, render scales too), tiny (a handful, for tests) or scale (the default at render scales 0.25..1 and 2x2 supersampled, against the supersampled truth: the frame budget's resolution term)")->capture_default_str();
+    cmdAccuracy->add_option("--sweep", accuracyBench.sweep, "full (every knob, render scales too), tiny (a handful, for tests) scale (the default at render scales 0.25..1 and 2x2 supersampled, against the supersampled truth: the frame budget's resolution term) or looks (the default and the look rows, penumbra and AO samples, with their distance from the scene's look)")->capture_default_str();
     cmdAccuracy->add_option("--frames", accuracyBench.frames, "timed frames per setting (median)")->capture_default_str();
     cmdAccuracy->add_option("--warmup", accuracyBench.warmup, "untimed frames first")->capture_default_str();
     cmdAccuracy->add_option("--time", accuracyBench.time, "scene time in seconds")->capture_default_str();

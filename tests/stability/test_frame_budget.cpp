@@ -124,6 +124,11 @@ TEST_CASE("frame budget: candidates come from the committed accuracy sweep", "[b
     CHECK(front.back().scale == 2.0f);
     for (float s : {0.25f, 0.5f, 1.0f, 2.0f})
         CHECK(std::any_of(c.begin(), c.end(), [&](const BudgetSetting& b) { return b.scale == s; }));
+    // its look rows carry their distance from the scene's look: mandelbulb's one AO sample is far off it
+    REQUIRE(LoadBudgetCandidates(csv, "mandelbulb", 1.0f, &c, &error));
+    auto ao1 = std::find_if(c.begin(), c.end(), [](const BudgetSetting& s) { return s.label == "ao samples=1 @ 1.00"; });
+    REQUIRE(ao1 != c.end());
+    CHECK(ao1->error > 10.0);
     // a scene the sweep has not seen uses the mean over the others
     REQUIRE(LoadBudgetCandidates(csv, "no-such-scene", kLiveMaxScale, &c, &error));
     CHECK(std::any_of(c.begin(), c.end(), [](const BudgetSetting& s) { return s.scale > 1.0f; }));
