@@ -133,6 +133,13 @@ bool LoadBudgetCandidates(const std::string& csvPath, const std::string& scene, 
                      "max_steps to pct_over_8";
             return false;
         }
+        // counts become ints: keep them where the cast is defined (a huge number is not a count)
+        for (int i : {3, 11, 13})
+            if (v[i] < 0 || v[i] > 1e6) {
+                *error = csvPath + ":" + std::to_string(lineNo) + ": " + needed[i] + " " + f[c[needed[i]]] +
+                         " is out of range, expected a count from 0 to 1000000";
+                return false;
+            }
         const std::string knob = f[c["knob"]];
         if (knob == "scale") {
             double s = 0;

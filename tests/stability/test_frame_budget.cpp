@@ -181,6 +181,11 @@ TEST_CASE("frame budget: the sweep's render-scale rows give the resolution term,
     // live's budget without room to supersample stops at 1
     REQUIRE(LoadBudgetCandidates(dir + "/with.csv", "demo", 1.0f, &c, &error));
     CHECK(BudgetFront(c).back().label == "sdfvj default @ 1.00");
+    // a count far out of range is a clear error, not an undefined cast
+    { std::ofstream(dir + "/huge.csv") << header << row("default", "sdfvj default", 128, 2.0, 0.05, 1)
+                                       << "demo,steps,\"steps=huge\",,1e300,0.001,0,1,0,2,0.001,0,0.05,48,8,5,1,3,0,1\n"; }
+    CHECK_FALSE(LoadBudgetCandidates(dir + "/huge.csv", "demo", 2.0f, &c, &error));
+    CHECK(error.find("huge.csv:3: max_steps 1e300 is out of range") != std::string::npos);
     // a scale row without its render_scale column is a clear error
     { std::ofstream(dir + "/bad.csv") << header.substr(0, header.rfind(",render_scale")) << "\n" << row("scale", "scale=0.50", 128, 0.6, 6.0, 0.5); }
     CHECK_FALSE(LoadBudgetCandidates(dir + "/bad.csv", "demo", 2.0f, &c, &error));
