@@ -332,6 +332,16 @@ bool StartLiveFrameBudget(FrameBudget* b, double budgetMs, const std::string& fl
     return true;
 }
 
+std::string FrameBudgetStatus(const FrameBudget& b) {
+    if (b.desc.budgetMs <= 0 || b.front.empty() || b.current >= b.front.size()) return "";
+    char line[256];
+    char median[48] = "measuring";
+    if (b.lastMedianMs > 0) std::snprintf(median, sizeof median, "median %.1f ms", b.lastMedianMs);
+    std::snprintf(line, sizeof line, "frame budget %.3g ms: %s (%zu of %zu on the front), %s", b.desc.budgetMs,
+                  b.front[b.current].label.c_str(), b.current + 1, b.front.size(), median);
+    return line;
+}
+
 bool LiveFrameBudgetStep(FrameBudget& b, double now, double frameMs, Quality* q, float* scale, std::string* say) {
     if (!StepFrameBudget(b, now, frameMs)) return false;
     ApplyBudgetSetting(b.front[b.current], q, scale);

@@ -111,6 +111,9 @@ void ApplyBudgetSetting(const BudgetSetting& s, Quality* q, float* scale);
 // applies the best setting. False with a line to show when it cannot (the show then runs without a budget).
 bool StartLiveFrameBudget(FrameBudget* b, double budgetMs, const std::string& floorText, const std::string& scene,
                           Quality* q, float* scale, std::string* error);
+// The overlay's status line for a running budget: "frame budget 8 ms: steps=96 @ 0.85 (4 of 15
+// on the front), median 7.2 ms" ("measuring" before its first period); "" when it is off.
+std::string FrameBudgetStatus(const FrameBudget& b);
 // One frame's time: when the budget moved, applies the new setting and sets `say` to
 // "frame budget 8 ms: median 9.1 ms -> steps=96 @ 0.85".
 bool LiveFrameBudgetStep(FrameBudget& b, double now, double frameMs, Quality* q, float* scale, std::string* say);

@@ -118,6 +118,7 @@ OverlayModel LiveSession::OverlayModelNow() {
     m.statusLines = input_.StatusLines();
     // --sync mtc / a --forward leader: locked, holding, freewheeling or stopped, kept in view.
     if (const std::string sync = LiveSyncStatus(sync_, Now()); !sync.empty()) m.statusLines.push_back("sync: " + sync);
+    if (const std::string budget = FrameBudgetStatus(budget_); !budget.empty()) m.statusLines.push_back(budget);
     m.reportLines.assign(state_.report.recent.begin(), state_.report.recent.end());
     m.shaderError = shownError_;
     if (servers_ ? servers_->Servers().Building() : live_.Pending()) m.compiling = DescribeEffects(state_.wanted.effects);

@@ -79,6 +79,18 @@ TEST_CASE("frame budget: the front is cheapest first with falling error, and the
     CHECK_FALSE(BeginFrameBudget(&b, FrameBudgetDesc{1.0, 1.0, 0.8, 3.0, BudgetFloor{1.0f, 100000, 0, 0}}, c, &error));
 }
 
+TEST_CASE("frame budget: the overlay's status line says where on the front it is and the period's median", "[budget]") {
+    FrameBudgetDesc d;
+    d.budgetMs = 8.0;
+    std::string error;
+    FrameBudget b;
+    REQUIRE(BeginFrameBudget(&b, d, FourFront(), &error));
+    CHECK(FrameBudgetStatus(b) == "frame budget 8 ms: s3 (4 of 4 on the front), measuring");
+    for (int i = 0; i <= 60; ++i) StepFrameBudget(b, i / 60.0, 30.0);   // one period far over: down the front
+    CHECK(FrameBudgetStatus(b) == "frame budget 8 ms: s1 (2 of 4 on the front), median 30.0 ms");
+    CHECK(FrameBudgetStatus(FrameBudget{}).empty());   // no budget, no line
+}
+
 TEST_CASE("frame budget: hysteresis: no oscillation when a move up does not fit", "[budget]") {
     // The front predicts setting 3 at 8 ms x 0.75 = 6 ms, but it really takes 9 ms (over 8):
     // every move up to it is undone; the hold doubles, so it tries rarely.
