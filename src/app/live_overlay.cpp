@@ -236,7 +236,8 @@ void DrawTimes(const OverlayModel& m, const OverlayUi& ui, OverlayActions& a) {
     else PlotTimes("##gpu", ui.gpu, "scene ms\n(GPU timer)");
     ImGui::TextDisabled("%s path, %dx%d, scene at %dx%d", m.pathName.c_str(), m.width, m.height,
                         (int)std::lround(m.width * m.renderScale), (int)std::lround(m.height * m.renderScale));
-    // A slow machine keeps its frame rate by rendering fewer pixels (upscaled with filtering).
+    // A slow machine keeps its frame rate by rendering fewer pixels (upscaled with filtering); above 1
+    // the scene supersamples (2: each window pixel the mean of 2x2).
     float scale = m.renderScale;
     ImGui::SetNextItemWidth(180);
     if (ImGui::SliderFloat("resolution", &scale, 0.25f, 2.0f, "%.2f")) a.renderScale = scale;
