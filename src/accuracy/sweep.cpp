@@ -243,25 +243,29 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
 
         // High-quality GPU images, one per look (penumbra and AO samples change the look) and per
         // BOUNDS setting.
+        // The reference: the same renderer with 4096 steps (and 1024 shadow steps),
+        // everything else at the defaults but the look; geometric truth is the CPU reference's job.
+        auto hqProgram = [&](const Quality& look, bool bounds, FrameInputs* in, Program** p) {
+            *in = base;
+            in->quality = Quality{};
+            in->quality.conePrepass = false;   // every ray from the eye, as a plain raymarcher
+            in->quality.maxSteps = 4096;
+            in->quality.shadowSteps = 1024;
+            in->quality.shadowK = look.shadowK;
+            in->quality.aoSamples = look.aoSamples;
+            EffectSet e = scene.effects;
+            e.normals = 0;
+            e.marchFixed = false;
+            return program(e, 0, p, false, bounds);
+        };
         std::map<std::tuple<float, int, bool>, std::vector<uint8_t>> hq;
         auto hqImage = [&](const Quality& look, bool bounds, std::vector<uint8_t>** out) {
             auto key = std::make_tuple(look.shadowK, look.aoSamples, bounds);
             auto it = hq.find(key);
             if (it == hq.end()) {
-                FrameInputs in = base;
-                // The reference: the same renderer with 4096 steps (and 1024 shadow steps),
-                // everything else at the defaults; geometric truth is the CPU reference's job.
-                in.quality = Quality{};
-                in.quality.conePrepass = false;   // every ray from the eye, as a plain raymarcher
-                in.quality.maxSteps = 4096;
-                in.quality.shadowSteps = 1024;
-                in.quality.shadowK = look.shadowK;
-                in.quality.aoSamples = look.aoSamples;
-                EffectSet e = scene.effects;
-                e.normals = 0;
-                e.marchFixed = false;
+                FrameInputs in;
                 Program* p = nullptr;
-                if (!program(e, 0, &p, false, bounds)) return false;
+                if (!hqProgram(look, bounds, &in, &p)) return false;
                 if (!colour.Resize(o.width, o.height, error)) return false;
                 colour.Draw(*p, scene, in, false);
                 it = hq.emplace(key, colour.ReadPixels()).first;
@@ -301,17 +305,10 @@ bool RunSweep(const SweepOptions& o, std::vector<Row>* rows, SweepInfo* info, st
         std::vector<uint8_t> ssTruth;   // the 4096-step render at 2x2 the size, averaged (on first use)
         auto supersampledTruth = [&](std::vector<uint8_t>** out) {
             if (ssTruth.empty()) {
-                FrameInputs in = base;
-                in.quality = Quality{};
-                in.quality.conePrepass = false;
-                in.quality.maxSteps = 4096;
-                in.quality.shadowSteps = 1024;
-                EffectSet e = scene.effects;
-                e.normals = 0;
-                e.marchFixed = false;
+                FrameInputs in;
                 Program* p = nullptr;
                 FrameRenderer* big = nullptr;
-                if (!program(e, 0, &p) || !scaledTarget(2.0f, &big)) return false;
+                if (!hqProgram(Quality{}, true, &in, &p) || !scaledTarget(2.0f, &big)) return false;
                 big->Draw(*p, scene, in, false);
                 if (!resample(*big, 2.0f, &ssTruth)) return false;
             }

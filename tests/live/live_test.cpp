@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "accuracy/accuracy.h"
 #include "app/replay_driver.h"
 #include "app/show.h"
 #include "gl_fixture.h"
@@ -212,17 +213,23 @@ TEST_CASE("live without a display exits 2 with one clear line") {
     CHECK(out.find("no display") != std::string::npos);
 }
 
+// Two shows run at once, the second with another --render-scale: both end well, and their
+// screenshots (the second window-sized) go to a and b.
+void ScaledPair(LiveRun& full, LiveRun& scaled, Image* a, Image* b) {
+    const int rcFull = full.Wait(), rcScaled = scaled.Wait();
+    INFO(ReadText(full.log) << ReadText(scaled.log));
+    REQUIRE(rcFull == 0);
+    REQUIRE(rcScaled == 0);
+    REQUIRE(LoadPng(full.shot, a));
+    REQUIRE(LoadPng(scaled.shot, b));
+    REQUIRE(b->width == kW);
+    REQUIRE(b->height == kH);
+}
+
 TEST_CASE("live render scale: --render-scale 0.25 fills the window with the scene rendered at a quarter of its size") {
     LiveRun full("scale-full", {"--param", "spin=0"}, false), quarter("scale-quarter", {"--param", "spin=0", "--render-scale", "0.25"}, false);
-    const int rcFull = full.Wait(), rcQuarter = quarter.Wait();
-    INFO(ReadText(full.log) << ReadText(quarter.log));
-    REQUIRE(rcFull == 0);
-    REQUIRE(rcQuarter == 0);
     Image a, b;
-    REQUIRE(LoadPng(full.shot, &a));
-    REQUIRE(LoadPng(quarter.shot, &b));
-    REQUIRE(b.width == kW);
-    REQUIRE(b.height == kH);
+    ScaledPair(full, quarter, &a, &b);
     CHECK(LumaSpread(b) > 5.0);                    // the scene, not a blank window
     ImageDiff d = CompareImages(a, b, 24);
     INFO("quarter against full: mean " << d.meanAbs << ", " << d.fractionOver * 100 << "% of pixels over 24/255");
@@ -236,15 +243,8 @@ TEST_CASE("live render scale: --render-scale 2 supersamples and the window shows
     std::vector<std::string> superArgs = still;
     superArgs.insert(superArgs.end(), {"--render-scale", "2"});
     LiveRun full("super-full", still, false), super("super-2", superArgs, false);
-    const int rcFull = full.Wait(), rcSuper = super.Wait();
-    INFO(ReadText(full.log) << ReadText(super.log));
-    REQUIRE(rcFull == 0);
-    REQUIRE(rcSuper == 0);
     Image a, b;
-    REQUIRE(LoadPng(full.shot, &a));
-    REQUIRE(LoadPng(super.shot, &b));
-    REQUIRE(b.width == kW);
-    REQUIRE(b.height == kH);
+    ScaledPair(full, super, &a, &b);
     // The truth it should show: the same frame rendered offline at twice the size, averaged 2x2
     // (the scene is still, so the time a screenshot is taken at does not matter).
     const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "super-truth");
@@ -256,15 +256,7 @@ TEST_CASE("live render scale: --render-scale 2 supersamples and the window shows
     REQUIRE(big.width == 2 * kW);
     truth.width = kW;
     truth.height = kH;
-    truth.rgba.resize((size_t)kW * kH * 4);
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x)
-            for (int c = 0; c < 4; ++c) {
-                int sum = 0;
-                for (int dy = 0; dy < 2; ++dy)
-                    for (int dx = 0; dx < 2; ++dx) sum += big.rgba[((size_t)(2 * y + dy) * big.width + 2 * x + dx) * 4 + c];
-                truth.rgba[((size_t)y * kW + x) * 4 + c] = (uint8_t)((sum + 2) / 4);
-            }
+    truth.rgba = accuracy::DownsampleRgba8x2(big.rgba, big.width, big.height);
     ImageDiff superVsTruth = CompareImages(b, truth, 8), fullVsTruth = CompareImages(a, truth, 8), superVsFull = CompareImages(a, b, 8);
     INFO("supersampled against the truth: mean " << superVsTruth.meanAbs << ", max " << superVsTruth.maxAbs << ", "
          << superVsTruth.fractionOver * 100 << "% over 8/255; one sample against it: mean " << fullVsTruth.meanAbs << ", "

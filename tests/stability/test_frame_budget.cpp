@@ -19,6 +19,18 @@ using namespace sdfvj;
 
 namespace {
 
+// The accuracy CSV's columns through pareto; a test adds its own after them.
+const std::string kCsvHeader = "scene,knob,setting,role,max_steps,hit_eps,eps_mode,step_factor,naive_step,normals,normal_eps,"
+                               "march_fixed,fixed_step,shadow_steps,shadow_k,ao_samples,gpu_ms,pct_over_8,pareto";
+
+// A row of scene "demo" at the renderer's defaults but for these, through pareto, then `extra`
+// (",1,0.05": the columns the test's header adds) and the line's end.
+std::string DemoRow(const char* knob, const char* label, int steps, int ao, double ms, double pct, const std::string& extra) {
+    char line[256];
+    std::snprintf(line, sizeof line, "demo,%s,\"%s\",,%d,0.001,0,1,0,2,0.001,0,0.05,48,8,%d,%g,%g,0", knob, label, steps, ao, ms, pct);
+    return line + extra + "\n";
+}
+
 // costs 1, 2, 4, 8 with errors 40, 20, 10, 0
 std::vector<BudgetSetting> FourFront() {
     std::vector<BudgetSetting> f;
@@ -153,13 +165,11 @@ TEST_CASE("frame budget: the sweep's render-scale rows give the resolution term,
     // (their ms and their % off the supersampled truth, as `bench accuracy --sweep scale` writes).
     const std::string dir = std::string(SDFVJ_TEST_TMP) + "/budget-scale";
     std::filesystem::create_directories(dir);
-    const std::string header = "scene,knob,setting,role,max_steps,hit_eps,eps_mode,step_factor,naive_step,normals,normal_eps,"
-                               "march_fixed,fixed_step,shadow_steps,shadow_k,ao_samples,gpu_ms,pct_over_8,pareto,render_scale\n";
+    const std::string header = kCsvHeader + ",render_scale\n";
     auto row = [](const char* knob, const char* label, int steps, double ms, double pct, double scale) {
-        char line[256];
-        std::snprintf(line, sizeof line, "demo,%s,\"%s\",,%d,0.001,0,1,0,2,0.001,0,0.05,48,8,5,%g,%g,0,%g\n", knob, label,
-                      steps, ms, pct, scale);
-        return std::string(line);
+        char at[32];
+        std::snprintf(at, sizeof at, ",%g", scale);
+        return DemoRow(knob, label, steps, 5, ms, pct, at);
     };
     const std::string body = row("default", "sdfvj default", 128, 2.0, 0.05, 1) + row("steps", "steps=32", 32, 1.0, 3.0, 1) +
                              row("scale", "scale=0.50", 128, 0.6, 6.0, 0.5) + row("scale", "scale=1.00", 128, 2.0, 1.5, 1) +
@@ -199,7 +209,7 @@ TEST_CASE("frame budget: the sweep's render-scale rows give the resolution term,
     CHECK_FALSE(LoadBudgetCandidates(dir + "/huge.csv", "demo", 2.0f, &c, &error));
     CHECK(error.find("huge.csv:3: max_steps 1e300 is out of range") != std::string::npos);
     // a scale row without its render_scale column is a clear error
-    { std::ofstream(dir + "/bad.csv") << header.substr(0, header.rfind(",render_scale")) << "\n" << row("scale", "scale=0.50", 128, 0.6, 6.0, 0.5); }
+    { std::ofstream(dir + "/bad.csv") << kCsvHeader << "\n" << row("scale", "scale=0.50", 128, 0.6, 6.0, 0.5); }
     CHECK_FALSE(LoadBudgetCandidates(dir + "/bad.csv", "demo", 2.0f, &c, &error));
     CHECK(error.find("bad.csv:2: a scale row without a render_scale") != std::string::npos);
     // without scale rows: the stated model (cost scale^2, ResolutionErrorPct)
@@ -212,16 +222,12 @@ TEST_CASE("frame budget: the sweep's render-scale rows give the resolution term,
 TEST_CASE("frame budget: fewer AO samples count by their distance from the scene's look, not from their own", "[budget]") {
     const std::string dir = std::string(SDFVJ_TEST_TMP) + "/budget-look";
     std::filesystem::create_directories(dir);
-    const std::string header = "scene,knob,setting,role,max_steps,hit_eps,eps_mode,step_factor,naive_step,normals,normal_eps,"
-                               "march_fixed,fixed_step,shadow_steps,shadow_k,ao_samples,gpu_ms,pct_over_8,pareto";
     // lookPct < 0: a row of a CSV from before the pct_over_8_scene_look column
     auto row = [](const char* knob, const char* label, int ao, double ms, double pct, double lookPct) {
-        char line[256];
-        std::snprintf(line, sizeof line, "demo,%s,\"%s\",,128,0.001,0,1,0,2,0.001,0,0.05,48,8,%d,%g,%g,0,1", knob, label, ao, ms, pct);
-        return std::string(line) + (lookPct >= 0 ? "," + std::to_string(lookPct) : std::string()) + "\n";
+        return DemoRow(knob, label, 128, ao, ms, pct, ",1" + (lookPct >= 0 ? "," + std::to_string(lookPct) : std::string()));
     };
     // AO 1: 0.01 % off its own 4096-step render (the look it asked for), 2.5 % off the scene's
-    { std::ofstream(dir + "/look.csv") << header << ",render_scale,pct_over_8_scene_look\n"
+    { std::ofstream(dir + "/look.csv") << kCsvHeader << ",render_scale,pct_over_8_scene_look\n"
                                        << row("default", "sdfvj default", 5, 2.0, 0.05, 0.05)
                                        << row("ao_samples", "ao samples=1", 1, 1.6, 0.01, 2.5); }
     std::vector<BudgetSetting> c;
@@ -232,7 +238,7 @@ TEST_CASE("frame budget: fewer AO samples count by their distance from the scene
     CHECK(at1->error == Approx(2.5 + ResolutionErrorPct(1.0f)));
     CHECK(BudgetFront(c).back().label == "sdfvj default @ 1.00");   // the scene's look is the best, not AO 1
     // a CSV from before the column: AO rows other than the default's are left out, not taken as free
-    { std::ofstream(dir + "/old.csv") << header << ",render_scale\n" << row("default", "sdfvj default", 5, 2.0, 0.05, -1)
+    { std::ofstream(dir + "/old.csv") << kCsvHeader << ",render_scale\n" << row("default", "sdfvj default", 5, 2.0, 0.05, -1)
                                       << row("ao_samples", "ao samples=1", 1, 1.6, 0.01, -1); }
     REQUIRE(LoadBudgetCandidates(dir + "/old.csv", "demo", 1.0f, &c, &error));
     CHECK(std::none_of(c.begin(), c.end(), [](const BudgetSetting& s) { return s.quality.aoSamples == 1; }));
