@@ -10,6 +10,7 @@ this at the very end so the reason is in what is kept.
 """
 import os
 import re
+import subprocess
 import sys
 
 TAIL_LINES = 40
@@ -66,6 +67,22 @@ def warned_outputs(build):
     return out
 
 
+FRAME = re.compile(r"^\s*(\S+)\(\+(0x[0-9a-f]+)\)\[0x[0-9a-f]+\]\s*$")
+
+
+def symbolized(line):
+    """A crash_trace frame `FILE(+0xOFFSET)[ADDR]` with addr2line's function appended, if it knows."""
+    m = FRAME.match(line)
+    if not m or not os.path.exists(m.group(1)):
+        return line
+    try:
+        out = subprocess.run(["addr2line", "-f", "-C", "-e", m.group(1), m.group(2)],
+                             capture_output=True, text=True, timeout=10).stdout.splitlines()
+    except (OSError, subprocess.SubprocessError):
+        return line
+    return f"{line}  = {out[0]}" if out and out[0] != "??" else line
+
+
 def main():
     any_failed = False
     for build in sys.argv[1:]:
@@ -73,7 +90,7 @@ def main():
             any_failed = True
             print(f"ci: FAILED in {build}: {name} (last {len(tail)} lines of its output)")
             for line in tail:
-                print("    " + line[:300])
+                print("    " + symbolized(line)[:300])
         for name, lines in warned_outputs(build):
             print(f"ci: passed with a warning in {build}: {name}")
             for line in lines:

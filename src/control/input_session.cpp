@@ -42,8 +42,10 @@ thread_local std::string tlOscCreateError;                 // liblo errors while
 struct MidiPort {
     InputSession::Impl* owner = nullptr;
     std::string name;
-    std::unique_ptr<RtMidiIn> in;
     MidiDecoder decoder;   // touched only by this port's callback thread
+    // Last, so it goes first: its callback (which uses the members above) has stopped before
+    // they are destroyed.
+    std::unique_ptr<RtMidiIn> in;
 };
 
 struct InputSession::Impl {
@@ -56,7 +58,11 @@ struct InputSession::Impl {
     mutable std::mutex mutex;
     enum class Api { None, Jack, Alsa } api = Api::None;
     jack_client_t* jackControl = nullptr;          // for the port list and jack_connect
-    std::atomic<bool> jackDied{false};             // set by JACK's shutdown callback
+    // Set by JACK's shutdown callback. On the heap, apart from the session: a client abandoned
+    // after its server died (AbandonDeadJack) keeps its callback, which may still be called after
+    // the session is gone, so the flag it writes is abandoned with it.
+    std::atomic<bool>* jackDied = nullptr;
+    bool JackDied() const { return jackDied && jackDied->load(); }
     std::unique_ptr<MidiPort> virtualIn;
     std::string virtualFullName;                   // "sdfvj:sdfvj" on JACK
     std::vector<std::unique_ptr<MidiPort>> alsaPorts;
@@ -99,7 +105,7 @@ struct InputSession::Impl {
     static void OnMidi(double, std::vector<unsigned char>* msg, void* user) {
         auto* port = static_cast<MidiPort*>(user);
         Impl* s = port->owner;
-        if (!msg || msg->empty()) return;
+        if (!s || !msg || msg->empty()) return;
         MidiDecoder& d = port->decoder;
         uint64_t stray = d.stray, ignored = d.ignored;
         std::vector<ControlEvent> events;
@@ -147,8 +153,8 @@ struct InputSession::Impl {
                 jack_status_t st;
                 jackControl = jack_client_open("sdfvj-control", JackNoStartServer, &st);
                 if (!jackControl) throw std::runtime_error("cannot open a JACK client");
-                jackDied = false;
-                jack_on_shutdown(jackControl, [](void* u) { static_cast<Impl*>(u)->jackDied = true; }, this);
+                jackDied = new std::atomic<bool>(false);
+                jack_on_shutdown(jackControl, [](void* u) { static_cast<std::atomic<bool>*>(u)->store(true); }, jackDied);
                 jack_activate(jackControl);
                 std::set<std::string> before = JackInputs();
                 virtualIn = MakePort(RtMidi::UNIX_JACK, opt.virtualPortName);
@@ -175,7 +181,7 @@ struct InputSession::Impl {
         } catch (const std::exception& e) {
             api = Api::None;
             virtualIn.reset();
-            if (jackControl) { jack_client_close(jackControl); jackControl = nullptr; }
+            CloseJackControl();
             midiStatus = std::string("MIDI: unavailable (") + e.what() + ")";
             return;
         }
@@ -191,11 +197,21 @@ struct InputSession::Impl {
         }
     }
 
+    // A live client: closed, and its shutdown flag with it.
+    void CloseJackControl() {
+        if (jackControl) jack_client_close(jackControl);
+        jackControl = nullptr;
+        delete jackDied;
+        jackDied = nullptr;
+    }
+
     // After the JACK server went away, closing a port or client crashes inside libjack, so the
     // dead RtMidiIn and client are abandoned (a few KB) and MIDI waits for a server again.
     void AbandonDeadJack() {
+        if (virtualIn) virtualIn->owner = nullptr;   // its callback, if ever called again, does nothing
         (void)virtualIn.release();
         jackControl = nullptr;
+        jackDied = nullptr;                          // abandoned with the client whose callback writes it
         connected.clear();
         api = Api::None;
         midiStatus = "MIDI: the JACK server stopped; waiting for it to come back";
@@ -214,7 +230,7 @@ struct InputSession::Impl {
     }
 
     void ReconnectOrThrow() {
-        if (api == Api::Jack && jackDied) AbandonDeadJack();
+        if (api == Api::Jack && JackDied()) AbandonDeadJack();
         if (api == Api::None) {
             // A JACK server that came up after us: look once a second.
             if (opt.midi && ++pollsWithoutMidi % 4 == 0 && JackServerRunning()) StartMidi();
@@ -408,11 +424,11 @@ InputSession::~InputSession() {
     if (impl_->osc) lo_server_thread_free(impl_->osc);   // stops and joins the liblo thread
     if (impl_->feedback) lo_address_free(impl_->feedback);
     std::lock_guard<std::mutex> g(impl_->mutex);
-    if (impl_->api == Impl::Api::Jack && impl_->jackDied) impl_->AbandonDeadJack();
+    if (impl_->api == Impl::Api::Jack && impl_->JackDied()) impl_->AbandonDeadJack();
     impl_->alsaPorts.clear();
     impl_->alsaProbe.reset();
     impl_->virtualIn.reset();
-    if (impl_->jackControl) jack_client_close(impl_->jackControl);
+    impl_->CloseJackControl();
 }
 
 std::vector<std::string> InputSession::StatusLines() const {
