@@ -3,7 +3,7 @@
 #
 #   scripts/soak.sh [--quick] [--minutes N] [--bin PATH] [--driver PATH] [--keep]
 #                   [--only osc|midi|saves] [--rss-limit-mb N] [--rss-late-limit-mb N] [--gap-limit-ms N] [--seed N]
-#                   [--render-process]
+#                   [--render-process] [--live-arg ARG ...]
 #
 #   --quick        at most 45 s in all (CI, `ctest -L soak`): a 15 s storm
 #   --minutes N    length of the storm (default 10)
@@ -13,6 +13,8 @@
 #   --keep         keep the work folder (it is always kept when the soak fails)
 #   --only KIND    one source alone (osc, midi or saves), to tell which one causes a finding
 #   --render-process  the show runs `live --render-process`: every save builds in a render process
+#   --live-arg ARG one more argument for `sdfvj live` (repeatable), e.g. the frame budget moving
+#                  the render scale under the storm: --live-arg --frame-budget --live-arg 20
 #
 # It runs `sdfvj live --preset demo` at 320x180 in an Xvfb display on Mesa llvmpipe, with
 # SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
@@ -46,6 +48,7 @@ while [ $# -gt 0 ]; do
     --gap-limit-ms) gapLimit=${2:?}; shift ;;
     --seed) seed=${2:?}; shift ;;
     --render-process) liveExtra+=(--render-process) ;;
+    --live-arg) liveExtra+=("${2?--live-arg needs an argument}"); shift ;;
     -h|--help) sed -n '2,/^set -u/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "soak: unknown argument '$1' (see --help)"; exit 2 ;;
     esac
