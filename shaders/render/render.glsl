@@ -16,6 +16,8 @@
 //               4 geometry for the accuracy bench (float target): vec4(t or -1 on a miss,
 //                 octahedral normal x, y, steps + 0.5 if the ray ran out of steps)
 //               5 linear radiance before tone mapping (float target; NaN/Inf scans)
+//               6, 7 where the pixel's map() calls went (float target; `sdfvj bench work`): 6 the
+//                 primary ray's march, normal, shadow ray and AO; 7 the same for its reflection
 //   NORMALS     0 central / 1 forward / 2 tetrahedron differences
 //   MARCH_FIXED 0 sphere tracing / 1 fixed step of u_fixedStep
 //   EPS_MODE    hit threshold: 0 u_hitEps * max(1, t) / 1 fixed u_hitEps /
@@ -131,6 +133,33 @@ void callSceneSetup() {
 #define USE_BOX (BOUNDS && SCENE_BOUND && SCENE_BOX)
 
 #include "render/uniforms.glsl"
+
+// DEBUG_VIEW 6 and 7 (`sdfvj bench work`): each call of the scene's map() (or of mapObjects(), the
+// same field less the floor's plane) adds one to the phase the pixel is in. Probes that read the
+// floor's plane alone (mapNear, the object steps) call neither and are not counted; nor is the
+// compute path's cone pre-pass (one ray per 8x8 tile). Other views: WORK_PHASE is nothing.
+#define WORK_VIEW (DEBUG_VIEW == 6 || DEBUG_VIEW == 7)
+#if WORK_VIEW
+float g_work[8];   // 0-3: the primary ray's march, normal, shadow, AO; 4-7: its reflection's
+int g_workPhase = 0;
+vec4 workMap(vec3 p) {
+    g_work[g_workPhase] += 1.0f;
+    return map(p);
+}
+#define map(p) workMap(p)
+#if defined(SCENE_OBJECTS) && SCENE_OBJECTS
+vec4 workMapObjects(vec3 p) {
+    g_work[g_workPhase] += 1.0f;
+    return mapObjects(p);
+}
+#define mapObjects(p) workMapObjects(p)
+#endif
+#define WORK_PHASE(k) g_workPhase = (k)
+#define WORK_RESET() for (int k_ = 0; k_ < 8; k_++) g_work[k_] = 0.0f
+#else
+#define WORK_PHASE(k)
+#define WORK_RESET()
+#endif
 
 #if USE_BOUND
 // Distance from p to the scene's bounding volume (<= 0 inside): the sphere, and the box where
@@ -374,6 +403,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
     // Every direct term (Lambert, Blinn-Phong, Cook-Torrance) carries max(n.l, 0), so a surface
     // turned away from the light needs no shadow ray: skipping it changes no pixel.
     bool facesLight = dot(n, l) > 0.0f && (BOUNCE_LIGHT < 2 || bounce == 0);
+    WORK_PHASE(bounce == 0 ? 2 : 6);
 #if SHADOWS == 1
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, 1e6f);
     if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
@@ -385,6 +415,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
     if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
 #endif
     float occlusion = 1.0f;
+    WORK_PHASE(bounce == 0 ? 3 : 7);
 #if AO
     if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = ambientOcclusion(p, n, u_aoSamples);
 #endif
@@ -432,8 +463,10 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     for (int bounce = 0; bounce <= bounces; bounce++) {
+        WORK_PHASE(bounce == 0 ? 0 : 4);
         Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f, rayMaxSteps(bounce));
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
+        WORK_PHASE(bounce == 0 ? 1 : 5);
         if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t, h.d);
 #if DEBUG_VIEW == 1
         return vec4(heatmap(h.steps / max(float(u_maxSteps), 1.0f)), 1.0f);
@@ -458,6 +491,11 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));
         rd = reflect(rd, n);
     }
+#if DEBUG_VIEW == 6
+    return vec4(g_work[0], g_work[1], g_work[2], g_work[3]);
+#elif DEBUG_VIEW == 7
+    return vec4(g_work[4], g_work[5], g_work[6], g_work[7]);
+#endif
     return vec4(col, 1.0f);
 }
 
@@ -470,6 +508,7 @@ vec4 pixelColor(vec3 display, vec2 fragCoord) { return vec4(display + vec3(dithe
 // tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
 vec4 renderFrom(vec2 fragCoord, float tStart) {
     callSceneSetup();
+    WORK_RESET();
     Hit none = Hit(0.0f, 0.0f, false, vec3(0.0f), 0.0f);
     vec4 c = traceRay(u_camPos, cameraRay(fragCoord), tStart, none, false);
 #if DEBUG_VIEW

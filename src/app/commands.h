@@ -63,6 +63,19 @@ struct SsaaBenchOptions {
 };
 int RunSsaaBench(const SsaaBenchOptions& o);
 
+// `sdfvj bench work`: where each pixel's map() calls go (render.glsl DEBUG_VIEW 6 and 7), per scene
+// and lighting test: the mean per pixel of the primary ray's march, normal, shadow ray and AO, and
+// of its reflection's. Counts, not time: the same on every device.
+struct WorkBenchOptions {
+    std::vector<std::string> scenes;   // default: all
+    std::vector<std::string> tests = {"full", "show"};
+    std::string size = "480x270";
+    std::string path = "compute";
+    std::string markdown;
+    std::string csv;
+};
+int RunWorkBench(const WorkBenchOptions& o);
+
 // `sdfvj bench accuracy --scene S`: every quality knob swept; GPU time and error against the CPU
 // double reference (geometry) and a 4096-step GPU render (image). CSV, plots, docs/accuracy.md.
 struct AccuracyBenchOptions {

@@ -110,6 +110,15 @@ int main(int argc, char** argv) {
     cmdSsaa->add_option("--path", ssaaBench.path, "compute or fragment")->capture_default_str();
     cmdSsaa->add_option("--effects", ssaaBench.effects, "effects over each scene's own (as render --effects)")->capture_default_str();
     cmdSsaa->add_option("--markdown", ssaaBench.markdown, "also write the table to this file");
+    WorkBenchOptions workBench;
+    auto* cmdWork = cmdBench->add_subcommand("work", "where each pixel's map() calls go: the primary ray's march, normal, shadow ray and AO, and its "
+                                                     "reflection's (mean per pixel; counts, the same on every device)");
+    cmdWork->add_option("--scenes", workBench.scenes, "scenes (default: all)")->delimiter(',');
+    cmdWork->add_option("--tests", workBench.tests, "lighting tests (as bench --tests, not march or normals)")->capture_default_str()->delimiter(',');
+    cmdWork->add_option("--size", workBench.size, "frame size")->capture_default_str();
+    cmdWork->add_option("--path", workBench.path, "compute or fragment")->capture_default_str();
+    cmdWork->add_option("--markdown", workBench.markdown, "also write the table to this file");
+    cmdWork->add_option("--csv", workBench.csv, "also write the table as CSV: scene,lighting,size,path,pixels_hit,primary_march,...,total");
     AccuracyBenchOptions accuracyBench;
     auto* cmdAccuracy = cmdBench->add_subcommand("accuracy", "quality knobs: GPU time against error vs a CPU double reference");
     cmdAccuracy->add_option("--scene", accuracyBench.scenes, "scenes, comma-separated, or all")->capture_default_str()->delimiter(',');
@@ -267,6 +276,7 @@ int main(int argc, char** argv) {
     }
     if (cmdEffects->parsed()) return RunEffectsBench(effectsBench);
     if (cmdSsaa->parsed()) return RunSsaaBench(ssaaBench);
+    if (cmdWork->parsed()) return RunWorkBench(workBench);
     if (cmdSpirv->parsed()) return RunSpirvBench(spirvBench);
     if (cmdReload->parsed()) return RunReloadBench(reloadBench);
 #ifdef SDFVJ_HAS_LIVE

@@ -468,8 +468,9 @@ std::string DescribeEffects(const EffectSet& e) {
     if (e.fog) add("fog");
     if (e.marchFixed) add("fixed_step");
     if (e.supersample) add(e.supersample == 2 ? "ssaa_exact" : "ssaa");
-    static const char* kDebug[] = {"", "heatmap", "depth", "normals"};
-    if (e.debugView) add(kDebug[e.debugView]);
+    static const char* kDebug[] = {"", "heatmap", "depth", "normals", "geometry", "radiance", "work_primary", "work_reflection"};
+    if (e.debugView > 0 && e.debugView < int(sizeof kDebug / sizeof kDebug[0])) add(kDebug[e.debugView]);
+    else if (e.debugView) add("debug_view=" + std::to_string(e.debugView));
     return s.empty() ? "none" : s;
 }
 

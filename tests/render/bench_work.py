@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""`sdfvj bench work` counts every map() call where it happens (render.glsl DEBUG_VIEW 6 and 7).
+
+    bench_work.py SDFVJ OUT_DIR
+
+Checked on llvmpipe at 96x54 against what the renderer must do, not against recorded numbers:
+- mandelbulb (no floor, so every probe calls map(); AO's farthest-first early out is off there):
+  each hit pixel takes exactly 6 calls for its central-difference normal and exactly 5 for AO
+  (u_aoSamples), so normal = 6 x and AO = 5 x the share of pixels hit;
+- the primary march does not depend on the lighting: the same count under none, full and show;
+- none takes no shadow or AO call, full and none no reflection call, show's reflections march;
+- a shadow ray or AO costs something wherever the scene has them.
+"""
+import csv
+import os
+import subprocess
+import sys
+
+sdfvj, out = sys.argv[1], sys.argv[2]
+os.makedirs(out, exist_ok=True)
+path = os.path.join(out, "work.csv")
+run = subprocess.run([sdfvj, "bench", "work", "--scenes", "mandelbulb,midi,field50", "--tests", "none,full,show",
+                      "--size", "96x54", "--csv", path], capture_output=True, text=True, timeout=600)
+print(run.stdout)
+print(run.stderr, file=sys.stderr)
+if run.returncode != 0:
+    sys.exit(f"bench work exited {run.returncode}")
+
+rows = {(r["scene"], r["lighting"]): r for r in csv.DictReader(open(path))}
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def v(scene, test, col):
+    return float(rows[(scene, test)][col])
+
+
+refl = ["reflection_march", "reflection_normal", "reflection_shadow", "reflection_ao"]
+for scene in ["mandelbulb", "midi", "field50"]:
+    for test in ["none", "full", "show"]:
+        check((scene, test) in rows, f"{scene} {test}: a row")
+    hit = v(scene, "full", "pixels_hit")
+    check(0.05 < hit < 1.0, f"{scene}: some pixels hit and some miss ({hit:.3f})")
+    march = [v(scene, t, "primary_march") for t in ["none", "full", "show"]]
+    check(march[0] > 1.0 and max(march) - min(march) < 1e-3,
+          f"{scene}: the primary march is the same under every lighting ({march})")
+    check(v(scene, "none", "primary_shadow") == 0 and v(scene, "none", "primary_ao") == 0,
+          f"{scene}: none takes no shadow or AO call")
+    check(all(v(scene, t, c) == 0 for t in ["none", "full"] for c in refl), f"{scene}: no reflection call without reflections")
+    check(v(scene, "full", "primary_shadow") > 0 and v(scene, "full", "primary_ao") > 0, f"{scene}: full's shadows and AO are counted")
+    check(v(scene, "show", "reflection_march") > 0, f"{scene}: show's reflections march")
+    total = sum(v(scene, "show", c) for c in ["primary_march", "primary_normal", "primary_shadow", "primary_ao"] + refl)
+    check(abs(total - v(scene, "show", "total")) < 1e-2, f"{scene}: total is the sum of the phases")
+
+hit = v("mandelbulb", "full", "pixels_hit")
+check(abs(v("mandelbulb", "full", "primary_normal") - 6 * hit) < 1e-3,
+      f"mandelbulb: 6 calls per hit for central normals ({v('mandelbulb', 'full', 'primary_normal'):.4f} vs {6 * hit:.4f})")
+check(abs(v("mandelbulb", "full", "primary_ao") - 5 * hit) < 1e-3,
+      f"mandelbulb: 5 AO calls per hit ({v('mandelbulb', 'full', 'primary_ao'):.4f} vs {5 * hit:.4f})")
+sys.exit(1 if failures else 0)
