@@ -1,7 +1,7 @@
 // main_comp.glsl - compute-shader entry point (GLSL only): one invocation per pixel in
 // 8x8 groups (WORKGROUP_X/Y), dispatch ceil(w/8) x ceil(h/8); writes image unit 0 (rgba8). Row 0 of the
 // image is the bottom row, as with the fragment path (fragCoord has the same meaning).
-// DEBUG_VIEW 4 and 5 (accuracy bench, NaN scans) write an rgba32f image instead.
+// DEBUG_VIEW 4 to 7 (accuracy bench, NaN scans, bench work) write an rgba32f image instead.
 //
 // The cone pre-pass (render/march.glsl's coneStart; Quality::conePrepass): u_conePass 1 is a dispatch
 // of one invocation per 8x8 tile, ceil(w/64) x ceil(h/64) groups, that writes each tile's start
@@ -22,7 +22,7 @@
 #define WORKGROUP_Y 8
 #endif
 layout(local_size_x = WORKGROUP_X, local_size_y = WORKGROUP_Y) in;
-#if DEBUG_VIEW >= 4
+#if DEBUG_VIEW >= 4 && DEBUG_VIEW <= 7
 layout(rgba32f, binding = 0) uniform writeonly image2D u_output;
 #else
 layout(rgba8, binding = 0) uniform writeonly image2D u_output;

@@ -18,6 +18,7 @@
 //               5 linear radiance before tone mapping (float target; NaN/Inf scans)
 //               6, 7 where the pixel's map() calls went (float target; `sdfvj bench work`): 6 the
 //                 primary ray's march, normal, shadow ray and AO; 7 the same for its reflection
+//               8 all of them as a heatmap (effect `work`: 0 calls blue .. 127 or more red, log scale)
 //   NORMALS     0 central / 1 forward / 2 tetrahedron differences
 //   MARCH_FIXED 0 sphere tracing / 1 fixed step of u_fixedStep
 //   EPS_MODE    hit threshold: 0 u_hitEps * max(1, t) / 1 fixed u_hitEps /
@@ -138,7 +139,7 @@ void callSceneSetup() {
 // same field less the floor's plane) adds one to the phase the pixel is in. Probes that read the
 // floor's plane alone (mapNear, the object steps) call neither and are not counted; nor is the
 // compute path's cone pre-pass (one ray per 8x8 tile). Other views: WORK_PHASE is nothing.
-#define WORK_VIEW (DEBUG_VIEW == 6 || DEBUG_VIEW == 7)
+#define WORK_VIEW (DEBUG_VIEW >= 6 && DEBUG_VIEW <= 8)
 #if WORK_VIEW
 float g_work[8];   // 0-3: the primary ray's march, normal, shadow, AO; 4-7: its reflection's
 int g_workPhase = 0;
@@ -495,6 +496,10 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     return vec4(g_work[0], g_work[1], g_work[2], g_work[3]);
 #elif DEBUG_VIEW == 7
     return vec4(g_work[4], g_work[5], g_work[6], g_work[7]);
+#elif DEBUG_VIEW == 8
+    float calls = 0.0f;
+    for (int k = 0; k < 8; k++) calls += g_work[k];
+    return vec4(heatmap(log2(1.0f + calls) / 7.0f), 1.0f);   // log: 1, 3, 7, 15, 31, 63, 127 in even steps
 #endif
     return vec4(col, 1.0f);
 }

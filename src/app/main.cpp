@@ -29,7 +29,7 @@ void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
                     "specular, pbr, reflections=N, direct_reflections (a reflection lands on a surface lit without its shadow ray or AO, "
                     "in at most 48 steps: cheaper), fog, fixed_step, ssaa (4 samples a pixel, each surface shaded once), ssaa_exact "
                     "(each sample shaded), heatmap, "
-                    "depth, normals; none clears; -ao removes");
+                    "depth, normals, work (map() calls a pixel, every phase, as a heatmap: 0 blue .. 127 red, log scale); none clears; -ao removes");
     cmd->add_option("--normals", s->normals, "normal method: central, forward or tetrahedron");
     cmd->add_option("--path", s->path, "render path: auto (timed probe, cached per GPU), compute or fragment")->capture_default_str();
     cmd->add_option("--param", s->params, "set a scene parameter, NAME=VALUE (repeatable; clamped to its range)");

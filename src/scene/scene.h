@@ -36,7 +36,7 @@ struct EffectSet {
     bool pbr = false;       // Cook-Torrance instead of Lambert + Blinn-Phong
     int reflections = 0;    // bounce count
     bool fog = false;
-    int debugView = 0;      // 0 off, 1 step heatmap, 2 depth, 3 normals; 4-7 float views (render.glsl DEBUG_VIEW)
+    int debugView = 0;      // 0 off, 1 step heatmap, 2 depth, 3 normals; 4-7 float views, 8 work heatmap (render.glsl DEBUG_VIEW)
     int normals = 0;        // 0 central, 1 forward, 2 tetrahedron
     bool marchFixed = false;
     bool directReflections = false;   // `direct_reflections`: a reflection lands on a surface lit without its shadow ray or AO, in at most 48 steps (render.glsl BOUNCE_LIGHT 2, BOUNCE_STEPS 48)

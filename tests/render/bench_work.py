@@ -10,6 +10,9 @@ Checked on llvmpipe at 96x54 against what the renderer must do, not against reco
 - the primary march does not depend on the lighting: the same count under none, full and show;
 - none takes no shadow or AO call, full and none no reflection call, show's reflections march;
 - a shadow ray or AO costs something wherever the scene has them.
+And the `work` effect (DEBUG_VIEW 8, the same counts as a log-scale heatmap) draws mandelbulb's sky,
+where no ray enters the bound, at 0 calls (blue) and its surface hot (red above blue), hotter still
+with a reflection.
 """
 import csv
 import os
@@ -62,4 +65,30 @@ check(abs(v("mandelbulb", "full", "primary_normal") - 6 * hit) < 1e-3,
       f"mandelbulb: 6 calls per hit for central normals ({v('mandelbulb', 'full', 'primary_normal'):.4f} vs {6 * hit:.4f})")
 check(abs(v("mandelbulb", "full", "primary_ao") - 5 * hit) < 1e-3,
       f"mandelbulb: 5 AO calls per hit ({v('mandelbulb', 'full', 'primary_ao'):.4f} vs {5 * hit:.4f})")
+
+# The work effect: one frame at 96x54, read with png_slack.py's decoder.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+load = {}
+exec(open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "png_slack.py")).read().split("w,h,bpp,A=load")[0], load)
+
+
+def frame(effects, name):
+    folder = os.path.join(out, name)
+    r = subprocess.run([sdfvj, "render", "--scene", "mandelbulb", "--effects", effects, "--size", "96x54", "--path", "compute",
+                        "--out", folder], capture_output=True, text=True, timeout=300)
+    check(r.returncode == 0, f"render --effects {effects}: exit 0 ({r.stderr.strip()[-300:]})")
+    w, h, bpp, rows_ = load["load"](os.path.join(folder, "frame_00000.png"))
+    return lambda x, y: tuple(rows_[h - 1 - y][x * bpp + k] for k in range(3))   # y up, as fragCoord
+
+
+full = frame("work", "work_full")
+show = frame("pbr,reflections=1,work", "work_show")
+sky, centre = full(2, 2), full(48, 27)
+check(sky[2] > 100 and sky[0] == 0 and sky[1] == 0, f"the sky's pixel is the heatmap's 0 (dark blue): {sky}")
+check(centre[0] > centre[2], f"the fractal's centre pixel is hot (red above blue): {centre}")
+# In the heatmap's hot half (red above blue) green falls as the count rises (yellow, orange, red).
+ring = [(x, y) for x in range(30, 66, 3) for y in range(15, 40, 3) if full(x, y)[0] > full(x, y)[2] and show(x, y)[0] > show(x, y)[2]]
+green = lambda f: sum(f(x, y)[1] for x, y in ring) / max(len(ring), 1)
+check(len(ring) > 20 and green(show) < green(full) - 10,
+      f"with a reflection the fractal is hotter: mean green {green(show):.1f} against {green(full):.1f} over {len(ring)} pixels")
 sys.exit(1 if failures else 0)
