@@ -59,6 +59,12 @@ for scene in ["mandelbulb", "midi", "field50"]:
     check(v(scene, "show", "reflection_march") > 0, f"{scene}: show's reflections march")
     total = sum(v(scene, "show", c) for c in ["primary_march", "primary_normal", "primary_shadow", "primary_ao"] + refl)
     check(abs(total - v(scene, "show", "total")) < 1e-2, f"{scene}: total is the sum of the phases")
+    for test in ["none", "full", "show"]:
+        # a warp (8x4 pixels) pays each phase's busiest lane: at least the mean, at most the block's sum
+        t_, wt = v(scene, test, "total"), v(scene, test, "warp_total")
+        check(t_ - 1e-3 <= wt <= 32 * t_ + 1e-3, f"{scene} {test}: the warp's cost {wt:.2f} lies between the mean {t_:.2f} and 32x it")
+    check(v(scene, "none", "warp_total") < v(scene, "full", "warp_total") < v(scene, "show", "warp_total"),
+          f"{scene}: the warp's cost grows with the lighting")
 
 hit = v("mandelbulb", "full", "pixels_hit")
 check(abs(v("mandelbulb", "full", "primary_normal") - 6 * hit) < 1e-3,
