@@ -53,6 +53,9 @@ status=0
 # that label exists), the live window including live_reload (live). Then by name: the take
 # tests (take/...) and the hot-reload tests of test_render and test_watch (reload...).
 ctest --output-on-failure -j"$JOBS" --timeout 900 -L '^(control|input|mapping|scene|take|live)$' "$@" || status=1
+# The second run's records replace the first's in Testing/Temporary: keep the first's beside them,
+# as a folder scripts/ci_failures.py reads like a build (build-asan/labelled).
+rm -rf labelled && mkdir -p labelled/Testing && cp -r Testing/Temporary labelled/Testing/ 2>/dev/null || true
 ctest --output-on-failure -j"$JOBS" --timeout 900 -R '^(take/|reload)' "$@" || status=1
 echo "sanitize: tests took $(( $(date +%s) - built )) s"
 exit $status

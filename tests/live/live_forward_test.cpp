@@ -529,7 +529,7 @@ TEST_CASE("live forward: a follower follows a leader's clock across a jump, a st
     for (size_t i = 1; i < seen.size(); ++i) {
         const SeenLine& x = seen[i];
         if (!settled(x.at)) continue;
-        const double gap = x.at - seen[i - 1].at;
+        const double gap = SinceLastRead(seen, i);
         const int phase = x.at < 1.5 ? 0 : x.at < 3 ? 1 : x.at < 4.5 ? 2 : x.at < 6 ? 3 : 4;
         ++checked[phase];
         INFO("seen at " << x.at << " s: show " << x.show << ", leader " << leader(x.at) << ", frame gap " << gap);

@@ -131,7 +131,7 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
             if (!settled(s.at)) continue;
             const bool holding = s.at >= 3.5 && s.at < 4.5;
             if (holding ? std::abs(s.show - stopAt) > 1e-3
-                        : std::abs(s.show - master(s.at)) > frame + (s.at - seen[i - 1].at) + 0.005) ++n;
+                        : std::abs(s.show - master(s.at)) > frame + SinceLastRead(seen, i) + 0.005) ++n;
         }
         return n;
     };
@@ -166,7 +166,7 @@ TEST_CASE("live sync: --sync mtc follows a master's timecode within a frame, acr
     for (size_t i = 1; i < seen.size(); ++i) {
         const SeenLine& s = seen[i];
         if (!settled(s.at)) continue;
-        const double gap = s.at - seen[i - 1].at;
+        const double gap = SinceLastRead(seen, i);
         const double err = s.show - master(s.at);
         const int phase = s.at < 2 ? 0 : s.at < 3.5 ? 1 : s.at < 4.5 ? 2 : s.at < 5.5 ? 3 : 4;
         ++checked[phase];

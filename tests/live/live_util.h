@@ -69,6 +69,14 @@ inline bool PollFor(double seconds, const std::function<bool()>& until) {
 struct SeenLine {
     double at = 0.0, show = 0.0;
 };
+// How long before seen[i].at its line may have been written: since the watcher last saw an
+// earlier line. Lines read in one batch share their `at` (the watcher fell behind: ASan on a
+// loaded machine), so the line just before is no bound; the batch before it is.
+inline double SinceLastRead(const std::vector<SeenLine>& seen, size_t i) {
+    size_t j = i;
+    while (j > 0 && seen[j - 1].at >= seen[i].at) --j;
+    return j > 0 ? seen[i].at - seen[j - 1].at : 0.0;
+}
 class LogWatcher {
 public:
     LogWatcher(const std::string& path, std::chrono::steady_clock::time_point t0)
