@@ -135,32 +135,7 @@ void callSceneSetup() {
 
 #include "render/uniforms.glsl"
 
-// DEBUG_VIEW 6 and 7 (`sdfvj bench work`): each call of the scene's map() (or of mapObjects(), the
-// same field less the floor's plane) adds one to the phase the pixel is in. Probes that read the
-// floor's plane alone (mapNear, the object steps) call neither and are not counted; nor is the
-// compute path's cone pre-pass (one ray per 8x8 tile). Other views: WORK_PHASE is nothing.
-#define WORK_VIEW (DEBUG_VIEW >= 6 && DEBUG_VIEW <= 8)
-#if WORK_VIEW
-float g_work[8];   // 0-3: the primary ray's march, normal, shadow, AO; 4-7: its reflection's
-int g_workPhase = 0;
-vec4 workMap(vec3 p) {
-    g_work[g_workPhase] += 1.0f;
-    return map(p);
-}
-#define map(p) workMap(p)
-#if defined(SCENE_OBJECTS) && SCENE_OBJECTS
-vec4 workMapObjects(vec3 p) {
-    g_work[g_workPhase] += 1.0f;
-    return mapObjects(p);
-}
-#define mapObjects(p) workMapObjects(p)
-#endif
-#define WORK_PHASE(k) g_workPhase = (k)
-#define WORK_RESET() for (int k_ = 0; k_ < 8; k_++) g_work[k_] = 0.0f
-#else
-#define WORK_PHASE(k)
-#define WORK_RESET()
-#endif
+#include "render/work.glsl"
 
 #if USE_BOUND
 // Distance from p to the scene's bounding volume (<= 0 inside): the sphere, and the box where

@@ -18,14 +18,10 @@ int RunSsaaBench(const SsaaBenchOptions& o) {
         return code;
     };
     int w = 0, h = 0;
-    if (!ParseSize(o.size, &w, &h, &error)) return fail(2);
-    if (o.path != "compute" && o.path != "fragment") {
-        error = "unknown path '" + o.path + "', expected compute or fragment";
-        return fail(2);
-    }
+    RenderPath path = RenderPath::Compute;
+    if (!ParseSizeAndPath(o.size, o.path, &w, &h, &path, &error)) return fail(2);
     HeadlessContext gl;
     if (!gl.Create(&error)) return fail(2);
-    const RenderPath path = o.path == "fragment" ? RenderPath::Fragment : RenderPath::Compute;
     FrameRenderer fr;
     std::string table = "| scene | one sample vs truth | `ssaa_exact` vs truth | `ssaa` vs truth | `ssaa` vs `ssaa_exact` | "
                         "one sample vs `ssaa_exact` |\n|---|---|---|---|---|---|\n";

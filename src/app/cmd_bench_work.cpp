@@ -32,11 +32,8 @@ int RunWorkBench(const WorkBenchOptions& o) {
         return code;
     };
     int w = 0, h = 0;
-    if (!ParseSize(o.size, &w, &h, &error)) return fail(2);
-    if (o.path != "compute" && o.path != "fragment") {
-        error = "unknown path '" + o.path + "', expected compute or fragment";
-        return fail(2);
-    }
+    RenderPath path = RenderPath::Compute;
+    if (!ParseSizeAndPath(o.size, o.path, &w, &h, &path, &error)) return fail(2);
     std::vector<LightingTest> known = SeedLightingTests();
     known.push_back(ShowLightingTest());
     known.push_back(ShowDirectReflectionsLightingTest());
@@ -52,7 +49,6 @@ int RunWorkBench(const WorkBenchOptions& o) {
     }
     HeadlessContext gl;
     if (!gl.Create(&error)) return fail(2);
-    const RenderPath path = o.path == "fragment" ? RenderPath::Fragment : RenderPath::Compute;
     FrameRenderer fr;
     if (!fr.Resize(w, h, &error, true)) return fail(2);
 

@@ -11,6 +11,16 @@ namespace fs = std::filesystem;
 
 namespace sdfvj {
 
+bool ParseSizeAndPath(const std::string& size, const std::string& path, int* w, int* h, RenderPath* rp, std::string* error) {
+    if (!ParseSize(size, w, h, error)) return false;
+    if (path != "compute" && path != "fragment") {
+        *error = "unknown path '" + path + "', expected compute or fragment";
+        return false;
+    }
+    *rp = path == "fragment" ? RenderPath::Fragment : RenderPath::Compute;
+    return true;
+}
+
 bool ParseSize(const std::string& text, int* w, int* h, std::string* error) {
     int a = 0, b = 0;
     char x = 0, extra = 0;

@@ -45,6 +45,8 @@ bool BuildShow(Show* show, const std::string& pathOption, std::string* error, bo
 
 // Parses "WxH".
 bool ParseSize(const std::string& text, int* w, int* h, std::string* error);
+// A bench's frame: its size (ParseSize) and a path named "compute" or "fragment" (no auto).
+bool ParseSizeAndPath(const std::string& size, const std::string& path, int* w, int* h, RenderPath* rp, std::string* error);
 
 // A one-line progress bar on stderr: frames done, frames per second, time left.
 void PrintProgress(int done, int total, double elapsedSeconds);
