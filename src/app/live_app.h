@@ -12,8 +12,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <memory>
+#include <string>
+#include <thread>
 
 #include "app/commands.h"
 #include "app/effect_costs.h"
@@ -54,8 +57,22 @@ public:
         if (glfw_) glfwTerminate();
     }
     bool Open(int w, int h, bool fullscreen, std::string* error) {
-        if (!(glfw_ = glfwInit())) {
-            *error = "no display (GLFW could not start); use `sdfvj render` for headless output";
+        // GLFW's own words on why it could not start (a display that refused us, none named).
+        static std::string glfwError;
+        glfwSetErrorCallback([](int, const char* what) { glfwError = what ? what : ""; });
+        // A display that is named but does not answer at once (an X server still starting, or
+        // refusing a connection for a moment under load) is asked again for 3 s before giving up.
+        const char* display = std::getenv("DISPLAY");
+        const bool named = (display && *display) || std::getenv("WAYLAND_DISPLAY");
+        for (int attempt = 0; !(glfw_ = glfwInit()) && named && attempt < 6; ++attempt) {
+            if (attempt == 0)
+                std::fprintf(stderr, "sdfvj live: the display %s did not answer (%s); asking again for 3 s\n",
+                             display ? display : "", glfwError.c_str());
+            std::this_thread::sleep_for(std::chrono::milliseconds(500));
+        }
+        if (!glfw_) {
+            *error = "no display (GLFW could not start: " + (glfwError.empty() ? std::string("no reason given") : glfwError) +
+                     "); use `sdfvj render` for headless output";
             return false;
         }
         glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -211,6 +212,22 @@ TEST_CASE("live without a display exits 2 with one clear line") {
     CHECK(rc == 2);
     CHECK(std::count(out.begin(), out.end(), '\n') == 1);
     CHECK(out.find("no display") != std::string::npos);
+}
+
+TEST_CASE("live with a display that does not answer asks again for 3 s then exits 2 with GLFW's reason") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "dead-display");
+    int n = 90;   // a display number with no X server behind it
+    while (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n))) ++n;
+    const auto start = std::chrono::steady_clock::now();
+    int rc = Run({SDFVJ_BIN, "live", "--scene", "midi", "--seconds", "1"}, dir + "/live.log", 30,
+                 {{"DISPLAY", ":" + std::to_string(n)}, {"WAYLAND_DISPLAY", "", true}, {"JACK_NO_START_SERVER", "1"}});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string out = ReadText(dir + "/live.log");
+    INFO(out);
+    CHECK(rc == 2);
+    CHECK(seconds >= 2.5);
+    CHECK(out.find("did not answer") != std::string::npos);
+    CHECK(out.find("no display (GLFW could not start: X11: ") != std::string::npos);   // GLFW's own reason
 }
 
 // Two shows run at once, the second with another --render-scale: both end well, and their
