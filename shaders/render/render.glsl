@@ -438,9 +438,10 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 col = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
+    float tNext = 0.0f;   // where a reflected ray starts (march.glsl mirrorStart)
     for (int bounce = 0; bounce <= bounces; bounce++) {
         WORK_PHASE(bounce == 0 ? 0 : 4);
-        Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : 0.0f, rayMaxSteps(bounce));
+        Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : tNext, rayMaxSteps(bounce));
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
         WORK_PHASE(bounce == 0 ? 1 : 5);
         if (h.hit) n = surfaceNormal(ro + rd * h.t, h.t, h.d);
@@ -464,6 +465,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         col += throughput * shadeRay(ro, rd, h, n, bounce);
         if (!h.hit || bounce == bounces) break;
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
+        tNext = bounce == 0 ? mirrorStart(ro, rd, h, n, tStart) : 0.0f;
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));
         rd = reflect(rd, n);
     }

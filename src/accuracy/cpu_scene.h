@@ -31,6 +31,8 @@ struct CpuScene {
     std::function<V4(V2)> render;                   // render.glsl at its default switches
     std::function<V4(V2, S)> renderFrom;            // the same, the primary ray starting at t (cone pre-pass)
     std::function<S(V2, V2)> coneStart;             // the cone pre-pass: start distance of a tile (pixel centres lo, hi)
+    std::function<S(V2, V2)> coneStartUnfolded;     // ... as CONE_MIRROR runs it with reflections: through the floor (march.glsl)
+    bool hasUnfoldedCone = false;                   // the scene has that cone (objects over a floor: SCENE_OBJECTS)
     std::function<V3(V2)> cameraRay;                // unit ray through a pixel
     std::function<CpuRay<S>(V3, V3, S)> march;      // ro, rd, tmin (sphere tracing, EPS_MODE 0)
     std::function<CpuRay<S>(V3, V3, S)> marchWhole; // the same, ignoring the scene's bounding volume

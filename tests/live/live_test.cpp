@@ -288,7 +288,9 @@ TEST_CASE("live frame budget: --frame-budget starts supersampled at the front's 
     // 0.05 ms is far below any frame llvmpipe draws (even a quarter of the width is predicted over
     // it): after its first second the budget takes the
     // cheapest setting above the default floor, a quarter of the width.
-    LiveRun run("budget", {"--param", "spin=0", "--frame-budget", "0.05"}, false);
+    // 6 s, not 3: on a loaded machine the first frame came after 3 s once, and the budget had no
+    // second of frames left to move in.
+    LiveRun run("budget", {"--param", "spin=0", "--frame-budget", "0.05", "--seconds", "6"}, false);
     const int rc = run.Wait();
     const std::string log = ReadText(run.log);
     INFO(log);

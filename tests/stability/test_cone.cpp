@@ -109,6 +109,92 @@ TEST_CASE("stability: no pixel's surface lies before its tile's cone start, and 
     CHECK(scenes >= 4);
 }
 
+TEST_CASE("stability: the unfolded cone starts a ray reflected off the floor before its surface and saves its steps", "[stability][cpu][cone]") {
+    // CONE_MIRROR (march.glsl): with reflections on, a tile's cone goes on through the floor as the
+    // mirror image of its rays, and a ray reflected off the floor starts at the cone's distance
+    // less the primary ray's length. CPU, double: for the probed pixels whose surface is the floor,
+    // the reflected ray's own surface (a converged march) never lies before that start; for the
+    // others the cone stays before the primary surface; and the reflected march saves steps.
+    const int w = 640, h = 360;
+    const int tilesX = w / kTile, tilesY = h / kTile;
+    const int probe[9][2] = {{0, 0}, {7, 0}, {0, 7}, {7, 7}, {4, 4}, {2, 5}, {6, 1}, {1, 3}, {5, 6}};
+    int scenes = 0;
+    for (const std::string& name : accuracy::CpuSceneNames()) {
+        auto s = accuracy::MakeCpuScene64(name);
+        if (!s.hasUnfoldedCone) continue;
+        ++scenes;
+        SceneInfo scene;
+        std::string error;
+        REQUIRE(FindScene(name, &scene, &error));
+        long floorPixels = 0, reflectedHits = 0, before = 0, primaryBefore = 0;
+        double stepsFromFloor = 0, stepsFromCone = 0;
+        std::string first;
+        auto points = SomePoints(scene, 2, 2);
+        for (size_t i = 0; i < points.size(); ++i) {
+            FrameInputs in;
+            in.params = points[i];
+            in.time = 0.37 * i;
+            in.beat = 0.25f;
+            accuracy::ApplyFrame(s, scene, in, w, h);
+            const int steps = *s.maxSteps;
+            const double eps = *s.hitEps;
+            auto converged = [&](glm::dvec3 ro, glm::dvec3 rd) {
+                *s.maxSteps = 20000;
+                *s.hitEps = 1e-7;
+                auto r = s.march(ro, rd, 0.0);
+                *s.maxSteps = steps;
+                *s.hitEps = eps;
+                return r;
+            };
+            for (int k = (int)i; k < tilesX * tilesY; k += 9) {
+                const int tx = k % tilesX, ty = k / tilesX;
+                glm::dvec2 lo(tx * kTile + 0.5, ty * kTile + 0.5), hi(lo.x + kTile - 1, lo.y + kTile - 1);
+                const double start = s.coneStartUnfolded(lo, hi);
+                for (const auto& o : probe) {
+                    const glm::dvec3 ro = *s.camPos, rd = s.cameraRay(glm::dvec2(tx * kTile + o[0] + 0.5, ty * kTile + o[1] + 0.5));
+                    auto exact = converged(ro, rd);
+                    if (!exact.hit || exact.steps >= 20000) continue;
+                    const glm::dvec3 p = ro + rd * exact.t;
+                    const bool onFloor = rd.y < 0.0 && std::abs(p.y) <= 1e-6 * std::max(1.0, exact.t);
+                    if (!onFloor) {   // the primary ray's start, as the cone's
+                        primaryBefore += (start - exact.t) / std::max(1.0, exact.t) > 1e-9;
+                        continue;
+                    }
+                    const glm::dvec3 up(rd.x, -rd.y, rd.z);   // the reflected ray (the floor's normal is straight up)
+                    if (up.y < s.hitEpsilon(1.0)) continue;    // too flat: mirrorStart gives it no start
+                    ++floorPixels;
+                    const double mirror = std::max(start - exact.t, 0.0);
+                    // what traceRay marches: from 4 hit thresholds above the plane
+                    const glm::dvec3 from(p.x, 4.0 * s.hitEpsilon(exact.t), p.z);
+                    stepsFromFloor += s.march(from, up, 0.0).steps;
+                    stepsFromCone += s.march(from, up, mirror).steps;
+                    auto reflected = converged(glm::dvec3(p.x, 1e-6, p.z), up);
+                    if (!reflected.hit || reflected.steps >= 20000) continue;
+                    ++reflectedHits;
+                    if ((mirror - reflected.t) / std::max(1.0, reflected.t) > 1e-9) {
+                        ++before;
+                        if (first.empty())
+                            first = "knob point " + std::to_string(i) + " tile " + std::to_string(tx) + "," + std::to_string(ty) +
+                                    ": reflected surface at s=" + std::to_string(reflected.t) + ", start " + std::to_string(mirror);
+                    }
+                }
+            }
+        }
+        INFO(name << ": " << floorPixels << " probed pixels on the floor, " << reflectedHits << " of their reflections meet a surface, "
+                  << before << " of them before the start" << (first.empty() ? "" : " (" + first + ")") << "; " << primaryBefore
+                  << " primary surfaces before the start; reflected steps a floor pixel " << stepsFromFloor / std::max(1L, floorPixels)
+                  << " from the floor, " << stepsFromCone / std::max(1L, floorPixels) << " from the cone");
+        WARN(name << ": reflected steps a floor pixel " << stepsFromFloor / std::max(1L, floorPixels) << " from the floor, "
+                  << stepsFromCone / std::max(1L, floorPixels) << " from the unfolded cone");
+        CHECK(floorPixels > 0);
+        CHECK(reflectedHits > 0);
+        CHECK(before == 0);
+        CHECK(primaryBefore == 0);
+        CHECK(stepsFromCone < stepsFromFloor);
+    }
+    CHECK(scenes >= 3);   // character, field50, field150
+}
+
 TEST_CASE("stability: the cone pre-pass draws what the march from the eye draws (CPU float, 2/255 on 99 % of pixels)", "[stability][cpu][cone]") {
     // CPU float frames (the GPU's arithmetic) with and without the cone, and the double build's
     // frame from the eye: the two float frames agree within 2/255 on 99 % of pixels, and the
