@@ -21,7 +21,7 @@
 #                                 with it, frames and compiles), copies (VARIANTS="SCENE/SUFFIX/
 #                                 NAME=VALUE,..." copies, one interleaved run), scales (the budget's
 #                                 render-scale rows), s27 (scales + session 27's copies, one call),
-#                                 s29 (CONE_MIRROR's show, MANDELBULB_FEW_SFU, scales: one call);
+#                                 s29 (CONE_PAST_FLOOR, CONE_MIRROR, MANDELBULB_FEW_SFU: one call);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -343,14 +343,17 @@ case "${1:-}" in
     OUT="$out/show" VARIANTS="$v" VARIANT_SIZES=7680x4320 VARIANT_TESTS=show VARIANT_TIMEOUT=150 bash "$0" measure copies
     fi
     if [ "$part" = s29 ]; then
-    # Session 29 (issue 13) in one call: the unfolded cone (CONE_MIRROR, on) against copies without it
-    # (_nm) in the show at 3840x2160 and 7680x4320, beside mandelbulb's MANDELBULB_FEW_SFU (_few: on);
-    # then _few in full lighting at 1080p and 4K; then the budget's render-scale rows (`scales`).
-    mkdir -p "$out/show" "$out/full" "$out/scales"
-    OUT="$out/show" VARIANTS="character/nm/CONE_MIRROR=0 field50/nm/CONE_MIRROR=0 field150/nm/CONE_MIRROR=0 mandelbulb/few/MANDELBULB_FEW_SFU=1" \
-      VARIANT_SIZES="3840x2160 7680x4320" VARIANT_TESTS=show VARIANT_TIMEOUT=200 bash "$0" measure copies
-    OUT="$out/full" VARIANTS="mandelbulb/few/MANDELBULB_FEW_SFU=1" VARIANT_TIMEOUT=100 bash "$0" measure copies
-    OUT="$out/scales" bash "$0" measure scales
+    # Session 29 (issue 13) in one call: the cone past the floor and its mirror images (march.glsl
+    # CONE_PAST_FLOOR, CONE_MIRROR, both on) against copies with the mirror off (_nm) and with both
+    # off (_old, the cone as before), in the show at 3840x2160 and 7680x4320, beside mandelbulb's
+    # MANDELBULB_FEW_SFU (_few: on); then the same copies (less _nm: no reflection, no mirror) in full
+    # lighting at 1080p and 4K. (The budget's render-scale rows: `measure scales`, a call of its own.)
+    mkdir -p "$out/show" "$out/full"
+    v=""; for s in character field50 field150; do v="$v $s/old/CONE_PAST_FLOOR=0 $s/nm/CONE_MIRROR=0"; done
+    OUT="$out/show" VARIANTS="$v mandelbulb/few/MANDELBULB_FEW_SFU=1" \
+      VARIANT_SIZES="3840x2160 7680x4320" VARIANT_TESTS=show VARIANT_TIMEOUT=280 bash "$0" measure copies
+    v=""; for s in character field50 field150; do v="$v $s/old/CONE_PAST_FLOOR=0"; done
+    OUT="$out/full" VARIANTS="$v mandelbulb/few/MANDELBULB_FEW_SFU=1" VARIANT_TIMEOUT=240 bash "$0" measure copies
     fi
     if [ "$part" = scales ]; then
     # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1

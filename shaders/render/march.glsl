@@ -191,7 +191,7 @@ Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
     float a = tmin, b = u_maxDist;   // under the floor no shortcut: the whole field from tmin
     if (SCENE_GROUND == 0 || ro.y >= 0.0f) {
 #if SCENE_GROUND
-        if (rd.y < 0.0f) tGround = -ro.y / rd.y;   // (before tmin only past an unfolded cone: CONE_MIRROR)
+        if (rd.y < 0.0f) tGround = -ro.y / rd.y;   // (before tmin only where the cone went past the floor)
 #endif
         vec2 inside = sphereInterval(ro, rd, sceneBound());
         a = max(inside.x, tmin);
@@ -249,39 +249,51 @@ float coneDistance(vec3 p, float t, float alpha, float inv) {
 #endif
 }
 
-// CONE_MIRROR (on where a scene declares its objects over a floor, and a frame draws reflections):
-// the cone follows the unfolded ray. A pixel ray that meets the floor's plane y = 0 goes on as its
-// mirror image, which is the ray reflected there: one march through the objects and their mirror
-// images gives both rays a start. The cone's distance is the nearer of the two sets' bounds (the
-// bounding volume, then the objects' field less 1.25 kf, as MARCH_OBJECT_STEP reads it, at the point
-// and at its mirror image); the plane is no stop, since both marches meet it analytically. Its margin
-// is 7 hit thresholds: the reflected ray leaves from 4 thresholds above a hit that lies within one
-// of the plane. The primary ray starts at the cone's distance (its march meets the floor before it
-// at once); a reflection off the plane (normal straight up) at the cone's distance less the primary
-// ray's length (mirrorStart). On the floor between the fields' shapes the reflected march was 2.5x
-// the primary one's calls (`bench work`, session 28). 0: the cone stops at the floor.
+// CONE_PAST_FLOOR (on where a scene declares its objects over a floor, SCENE_OBJECTS): the cone does
+// not stop at the floor's plane y = 0, which the primary march meets analytically: its distance is
+// the objects' bound alone (the bounding volume, then the larger of the field and the objects'
+// field less 1.25 kf, as MARCH_OBJECT_STEP reads them: below every surface but the plane). A pixel
+// ray whose tile's cone went past its floor point skips its march (march(): nothing to march before
+// the floor) where it used to creep down to the floor from the cone's stop.
+// CONE_MIRROR (with it, in a frame that draws reflections): the cone follows the unfolded ray. A
+// pixel ray that meets the floor goes on as its mirror image, which is the ray reflected there, so
+// the cone also keeps clear of the objects' mirror images (the same bounds at the point's mirror
+// image, less 6 hit thresholds: the reflected ray leaves from 4 thresholds above a hit that lies
+// within one of the plane), and a ray reflected off the plane (normal straight up) starts at the
+// cone's distance less the primary ray's length (mirrorStart). On the floor between the fields'
+// shapes the reflected march took 2.5x the primary one's calls (`bench work`, session 28).
+#ifndef CONE_PAST_FLOOR
+#define CONE_PAST_FLOOR 1
+#endif
 #ifndef CONE_MIRROR
 #define CONE_MIRROR 1
 #endif
 #if USE_GROUND && SCENE_OBJECTS
-float coneDistanceUnfolded(vec3 p, float t, float alpha, float inv) {
+float coneDistanceUnfolded(vec3 p, float t, float alpha, float inv, bool mirror) {
     vec3 q = vec3(p.x, -p.y, p.z);
-    float real = boundDistance(p), image = boundDistance(q);
+    float real = boundDistance(p), image = mirror ? boundDistance(q) : 1e30f;
     float d = min(real, image - 6.0f * hitEpsilon(t + max(image, 0.0f)));
     if (d - hitEpsilon(t + max(d, 0.0f)) - t * alpha < hitEpsilon(t)) {
         vec2 fo = fieldAndObjectBound(p, mapGround(p).w);   // the field, and the objects less 1.25 kf
         real = max(real, max(fo.x, fo.y) * inv);
-        image = max(image, fieldAndObjectBound(q, 0.0f).y * inv);
+        if (mirror) image = max(image, fieldAndObjectBound(q, 0.0f).y * inv);
         d = min(real, image - 6.0f * hitEpsilon(t + max(image, 0.0f)));
     }
     return d;
 }
-#define USE_CONE_MIRROR (CONE_MIRROR && REFLECTIONS > 0)
+#if CONE_PAST_FLOOR && CONE_MIRROR && REFLECTIONS > 0
+#define CONE_MODE 2
+#elif CONE_PAST_FLOOR
+#define CONE_MODE 1
+#else
+#define CONE_MODE 0
+#endif
 #define HAS_CONE_UNFOLDED 1
 #else
-#define USE_CONE_MIRROR 0
+#define CONE_MODE 0
 #define HAS_CONE_UNFOLDED 0
 #endif
+#define USE_CONE_MIRROR (CONE_MODE == 2)
 
 // Where a ray reflected off the primary hit h may start (traceRay), given its tile's cone distance:
 // past the unfolded cone where h is the floor's plane (within a threshold of it, the normal straight
@@ -306,8 +318,9 @@ float mirrorStart(vec3 ro, vec3 rd, Hit h, vec3 n, float tCone) {
 #ifndef CONE_MAX_STEPS
 #define CONE_MAX_STEPS 32
 #endif
-// unfolded: the cone of CONE_MIRROR (where the scene has one; the C++ reference's tests ask for it).
-float coneStartFor(vec2 lo, vec2 hi, bool unfolded) {
+// mode: CONE_MODE (0 stops at the floor, 1 past it, 2 past it clear of the mirror images; the C++
+// reference's tests ask for each).
+float coneStartFor(vec2 lo, vec2 hi, int mode) {
     callSceneSetup();
     // A distance *estimate* (sceneLipschitz() > 1: the Mandelbulb's) is no bound to build on: a
     // later start changes which filament a ray stops on (3.5 % of its pixels moved by > 8/255,
@@ -327,7 +340,7 @@ float coneStartFor(vec2 lo, vec2 hi, bool unfolded) {
     float t = 0.0f;
     for (int i = 0; i < min(u_maxSteps, CONE_MAX_STEPS); i++) {
 #if HAS_CONE_UNFOLDED
-        float d = unfolded ? coneDistanceUnfolded(ro + rc * t, t, alpha, inv) : coneDistance(ro + rc * t, t, alpha, inv);
+        float d = mode == 0 ? coneDistance(ro + rc * t, t, alpha, inv) : coneDistanceUnfolded(ro + rc * t, t, alpha, inv, mode == 2);
 #else
         float d = coneDistance(ro + rc * t, t, alpha, inv);
 #endif
@@ -338,10 +351,6 @@ float coneStartFor(vec2 lo, vec2 hi, bool unfolded) {
     }
     return t;
 }
-#if USE_CONE_MIRROR
-float coneStart(vec2 lo, vec2 hi) { return coneStartFor(lo, hi, true); }
-#else
-float coneStart(vec2 lo, vec2 hi) { return coneStartFor(lo, hi, false); }
-#endif
+float coneStart(vec2 lo, vec2 hi) { return coneStartFor(lo, hi, CONE_MODE); }
 
 #endif
