@@ -21,7 +21,8 @@
 #                                 with it, frames and compiles), copies (VARIANTS="SCENE/SUFFIX/
 #                                 NAME=VALUE,..." copies, one interleaved run), scales (the budget's
 #                                 render-scale rows), s27 (scales + session 27's copies, one call),
-#                                 s29 (CONE_PAST_FLOOR, CONE_MIRROR, MANDELBULB_FEW_SFU: one call);
+#                                 s29 (CONE_PAST_FLOOR, CONE_MIRROR, MANDELBULB_FEW_SFU: one call),
+#                                 s29b (the defaults: frames, the 7680x4320 show, scales);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -354,6 +355,17 @@ case "${1:-}" in
       VARIANT_SIZES="3840x2160 7680x4320" VARIANT_TESTS=show VARIANT_TIMEOUT=280 bash "$0" measure copies
     v=""; for s in character field50 field150; do v="$v $s/old/CONE_PAST_FLOOR=0"; done
     OUT="$out/full" VARIANTS="$v mandelbulb/few/MANDELBULB_FEW_SFU=1" VARIANT_TIMEOUT=240 bash "$0" measure copies
+    fi
+    if [ "$part" = s29b ]; then
+    # Session 29's defaults as shipped: every scene in full lighting at 1080p and 4K, the 7680x4320 show,
+    # then the budget's render-scale rows (`scales`).
+    timeout 150 bash "$0" remote bench --scenes $all --sizes 1920x1080 3840x2160 --tests full --paths compute --frames 20 --warmup 5 \
+      --markdown "$out/frames.md" --csv "$out/frames.csv" > "$out/frames.txt" 2>&1 || true
+    cat "$out/frames.md" 2>/dev/null; grep -h drift "$out/frames.txt" || tail -5 "$out/frames.txt"
+    timeout 100 bash "$0" remote bench --scenes $all --sizes 7680x4320 --tests show --paths compute --frames 8 --warmup 2 \
+      --markdown "$out/show.md" --csv "$out/show.csv" > "$out/show.txt" 2>&1 || true
+    cat "$out/show.md" 2>/dev/null; grep -h drift "$out/show.txt" || tail -5 "$out/show.txt"
+    mkdir -p "$out/scales"; OUT="$out/scales" bash "$0" measure scales
     fi
     if [ "$part" = scales ]; then
     # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1

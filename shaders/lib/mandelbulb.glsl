@@ -23,14 +23,15 @@ vec2 mandelbulbComplexMul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a
 // (z.y + i rho)^n = r^n (cos n theta, sin n theta) and ((z.x + i z.z) / rho)^n =
 // (cos n phi, sin n phi), the same angles the general loop takes from acos and atan. On the
 // y axis (rho = 0) phi is taken as 0, as atan(0, 0) gives in the C++ reference.
-// MANDELBULB_FEW_SFU (default 0, not yet measured on a GPU): rho and 1 / rho from one
-// inversesqrt, and r^(n-1) by the same squarings (the bits of n - 1) instead of r^n / r: two
-// special-function operations an iteration (a square root and a reciprocal) fewer, the same
-// values up to rounding. On llvmpipe, where those are ordinary vector instructions, it measured
-// 2.5 % slower (320x180, full lighting); a GPU's special-function unit runs at a quarter to an
-// eighth of its FMA rate, which is why it is here (docs/performance.md, "Session 27").
+// MANDELBULB_FEW_SFU (on): rho and 1 / rho from one inversesqrt, and r^(n-1) by the same
+// squarings (the bits of n - 1) instead of r^n / r: two special-function operations an iteration
+// (a square root and a reciprocal) fewer, the same values up to rounding. On llvmpipe, where those
+// are ordinary vector instructions, it measured 2.5 % slower (320x180, full lighting); on the
+// NVIDIA H200, whose special-function unit runs at a fraction of its FMA rate, 3.7-3.8 % faster in
+// full lighting at 1080p and 4K and 6.0 % in the 7680x4320 show (11.82 -> 11.10 ms; one
+// interleaved run, docs/performance.md, "Session 29"). 0: r^n / r and a division by rho.
 #ifndef MANDELBULB_FEW_SFU
-#define MANDELBULB_FEW_SFU 0
+#define MANDELBULB_FEW_SFU 1
 #endif
 vec4 mandelbulbPowInt(vec3 z, float r, int n) {
 #if MANDELBULB_FEW_SFU

@@ -262,11 +262,15 @@ float coneDistance(vec3 p, float t, float alpha, float inv) {
 // within one of the plane), and a ray reflected off the plane (normal straight up) starts at the
 // cone's distance less the primary ray's length (mirrorStart). On the floor between the fields'
 // shapes the reflected march took 2.5x the primary one's calls (`bench work`, session 28).
+// NVIDIA H200, one interleaved run (docs/performance.md, session 29): CONE_PAST_FLOOR took 1.7-4.0 %
+// off full lighting at 1080p and 4K (field150 4K 1.419 -> 1.372 ms, character 0.478 -> 0.464);
+// CONE_MIRROR saves the reflected march 6-12 % of its calls but cost the show 1.5-1.9 % (field150
+// 7680x4320 12.18 -> 12.38 ms): its cone reads the field twice a step and runs further. Off.
 #ifndef CONE_PAST_FLOOR
 #define CONE_PAST_FLOOR 1
 #endif
 #ifndef CONE_MIRROR
-#define CONE_MIRROR 1
+#define CONE_MIRROR 0
 #endif
 #if USE_GROUND && SCENE_OBJECTS
 float coneDistanceUnfolded(vec3 p, float t, float alpha, float inv, bool mirror) {
