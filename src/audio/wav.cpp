@@ -58,6 +58,9 @@ bool ParseWav(const uint8_t* d, size_t size, const std::string& name, WavAudio* 
         const std::string tag(reinterpret_cast<const char*>(c), 4);
         const uint64_t len = U32(c + 4);
         const uint8_t* body = c + 8;
+        // After the samples, bytes no header covers yet: a recorder stopped (killed) between writing
+        // samples and the sizes that cover them (WavRecorder::WritePending). Its audio ends there.
+        if (pos + 8 + len > size && haveData) break;
         if (pos + 8 + len > size)
             return fail(pos + 4, "chunk '" + tag + "' says " + std::to_string(len) + " bytes but the file has " +
                                      std::to_string(size - pos - 8) + " left, expected a complete WAV (the file is cut)");
