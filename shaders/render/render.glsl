@@ -469,14 +469,8 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));
         rd = reflect(rd, n);
     }
-#if DEBUG_VIEW == 6
-    return vec4(g_work[0], g_work[1], g_work[2], g_work[3]);
-#elif DEBUG_VIEW == 7
-    return vec4(g_work[4], g_work[5], g_work[6], g_work[7]);
-#elif DEBUG_VIEW == 8
-    float calls = 0.0f;
-    for (int k = 0; k < 8; k++) calls += g_work[k];
-    return vec4(heatmap(log2(1.0f + calls) / 7.0f), 1.0f);   // log: 1, 3, 7, 15, 31, 63, 127 in even steps
+#if WORK_VIEW   // (8: log: 1, 3, 7, 15, 31, 63, 127 calls in even steps)
+    return DEBUG_VIEW == 8 ? vec4(heatmap(log2(1.0f + workView().x) / 7.0f), 1.0f) : workView();
 #endif
     return vec4(col, 1.0f);
 }

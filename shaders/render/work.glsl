@@ -22,6 +22,14 @@ vec4 workMapObjects(vec3 p) {
 }
 #define mapObjects(p) workMapObjects(p)
 #endif
+// The view's value: 6 the primary ray's phases, 7 its reflection's, 8 all calls (in x).
+vec4 workView() {
+    if (DEBUG_VIEW == 6) return vec4(g_work[0], g_work[1], g_work[2], g_work[3]);
+    if (DEBUG_VIEW == 7) return vec4(g_work[4], g_work[5], g_work[6], g_work[7]);
+    float calls = 0.0f;
+    for (int k = 0; k < 8; k++) calls += g_work[k];
+    return vec4(calls);
+}
 #define WORK_PHASE(k) g_workPhase = (k)
 #define WORK_RESET() for (int k_ = 0; k_ < 8; k_++) g_work[k_] = 0.0f
 #else

@@ -18,12 +18,31 @@ namespace {
 
 constexpr int kTile = 8;   // main_comp.glsl's CONE_TILE
 
+// The cone of tile (tx, ty) of a w x h frame: as the frame runs it, or `unfolded` (CONE_MIRROR's).
 template <typename S>
-S TileStart(accuracy::CpuScene<S>& s, int tx, int ty, int w, int h) {
+S TileStart(accuracy::CpuScene<S>& s, int tx, int ty, int w, int h, bool unfolded = false) {
     using V2 = typename accuracy::CpuScene<S>::V2;
     V2 lo(S(tx * kTile) + S(0.5), S(ty * kTile) + S(0.5));
     V2 hi(std::min(lo.x + S(kTile - 1), S(w) - S(0.5)), std::min(lo.y + S(kTile - 1), S(h) - S(0.5)));
-    return s.coneStart(lo, hi);
+    return unfolded ? s.coneStartUnfolded(lo, hi) : s.coneStart(lo, hi);
+}
+
+// 640x360: an 8x8 tile spans the angle it does in a real frame (at a few dozen pixels a tile would
+// be a quarter of the picture and its cone would stop at once). In each probed tile its corners,
+// centre and four more pixels, where a bundle's edge rays graze first.
+constexpr int kW = 640, kH = 360;
+constexpr int kProbe[9][2] = {{0, 0}, {7, 0}, {0, 7}, {7, 7}, {4, 4}, {2, 5}, {6, 1}, {1, 3}, {5, 6}};
+
+// The surface itself: a march of the double build converged far past the renderer's threshold.
+accuracy::CpuRay<double> Converged(accuracy::CpuScene<double>& s, glm::dvec3 ro, glm::dvec3 rd) {
+    const int steps = *s.maxSteps;
+    const double eps = *s.hitEps;
+    *s.maxSteps = 20000;
+    *s.hitEps = 1e-7;
+    auto r = s.march(ro, rd, 0.0);
+    *s.maxSteps = steps;
+    *s.hitEps = eps;
+    return r;
 }
 
 // At most the first `corners` corners of the parameter box and `random` random points.
@@ -39,12 +58,9 @@ std::vector<Params> SomePoints(const SceneInfo& scene, size_t corners, int rando
 }  // namespace
 
 TEST_CASE("stability: no pixel's surface lies before its tile's cone start, and the cone saves primary steps", "[stability][cpu][cone]") {
-    // 640x360: an 8x8 tile spans the angle it does in a real frame (at a few dozen pixels a tile
-    // would be a quarter of the picture and its cone would stop at once). Every 9th tile, and in
-    // each its corners, centre and four more pixels, where a bundle's edge rays graze first.
-    const int w = 640, h = 360;
+    // Every 9th tile of a kW x kH frame, kProbe's pixels in each.
+    const int w = kW, h = kH;
     const int tilesX = w / kTile, tilesY = h / kTile;
-    const int probe[9][2] = {{0, 0}, {7, 0}, {0, 7}, {7, 7}, {4, 4}, {2, 5}, {6, 1}, {1, 3}, {5, 6}};
     int scenes = 0;
     for (const std::string& name : accuracy::CpuSceneNames()) {
         SceneInfo scene;
@@ -65,20 +81,13 @@ TEST_CASE("stability: no pixel's surface lies before its tile's cone start, and 
             for (int k = (int)i; k < tilesX * tilesY; k += 9) {
                 const int tx = k % tilesX, ty = k / tilesX;
                 const double start = TileStart(s, tx, ty, w, h);
-                for (const auto& o : probe) {
+                for (const auto& o : kProbe) {
                     const int x = tx * kTile + o[0], y = ty * kTile + o[1];
                     ++pixels;
                     const glm::dvec3 ro = *s.camPos, rd = s.cameraRay(glm::dvec2(x + 0.5, y + 0.5));
                     stepsFromEye += s.march(ro, rd, 0.0).steps;
                     stepsFromCone += s.march(ro, rd, start).steps;
-                    // the surface itself: a converged march from the eye
-                    const int steps = *s.maxSteps;
-                    const double eps = *s.hitEps;
-                    *s.maxSteps = 20000;
-                    *s.hitEps = 1e-7;
-                    auto exact = s.march(ro, rd, 0.0);
-                    *s.maxSteps = steps;
-                    *s.hitEps = eps;
+                    auto exact = Converged(s, ro, rd);
                     if (!exact.hit || exact.steps >= 20000) continue;
                     // A scene of objects over a floor (CONE_PAST_FLOOR): its cone goes past the floor's
                     // plane, which the march meets analytically; the objects stay behind the start.
@@ -125,9 +134,8 @@ TEST_CASE("stability: the unfolded cone starts a ray reflected off the floor bef
     // less the primary ray's length. CPU, double: for the probed pixels whose surface is the floor,
     // the reflected ray's own surface (a converged march) never lies before that start; for the
     // others the cone stays before the primary surface; and the reflected march saves steps.
-    const int w = 640, h = 360;
+    const int w = kW, h = kH;
     const int tilesX = w / kTile, tilesY = h / kTile;
-    const int probe[9][2] = {{0, 0}, {7, 0}, {0, 7}, {7, 7}, {4, 4}, {2, 5}, {6, 1}, {1, 3}, {5, 6}};
     int scenes = 0;
     for (const std::string& name : accuracy::CpuSceneNames()) {
         auto s = accuracy::MakeCpuScene64(name);
@@ -146,23 +154,12 @@ TEST_CASE("stability: the unfolded cone starts a ray reflected off the floor bef
             in.time = 0.37 * i;
             in.beat = 0.25f;
             accuracy::ApplyFrame(s, scene, in, w, h);
-            const int steps = *s.maxSteps;
-            const double eps = *s.hitEps;
-            auto converged = [&](glm::dvec3 ro, glm::dvec3 rd) {
-                *s.maxSteps = 20000;
-                *s.hitEps = 1e-7;
-                auto r = s.march(ro, rd, 0.0);
-                *s.maxSteps = steps;
-                *s.hitEps = eps;
-                return r;
-            };
             for (int k = (int)i; k < tilesX * tilesY; k += 9) {
                 const int tx = k % tilesX, ty = k / tilesX;
-                glm::dvec2 lo(tx * kTile + 0.5, ty * kTile + 0.5), hi(lo.x + kTile - 1, lo.y + kTile - 1);
-                const double start = s.coneStartUnfolded(lo, hi);
-                for (const auto& o : probe) {
+                const double start = TileStart(s, tx, ty, w, h, true);
+                for (const auto& o : kProbe) {
                     const glm::dvec3 ro = *s.camPos, rd = s.cameraRay(glm::dvec2(tx * kTile + o[0] + 0.5, ty * kTile + o[1] + 0.5));
-                    auto exact = converged(ro, rd);
+                    auto exact = Converged(s, ro, rd);
                     if (!exact.hit || exact.steps >= 20000) continue;
                     const glm::dvec3 p = ro + rd * exact.t;
                     const bool onFloor = rd.y < 0.0 && std::abs(p.y) <= 1e-6 * std::max(1.0, exact.t);
@@ -178,7 +175,7 @@ TEST_CASE("stability: the unfolded cone starts a ray reflected off the floor bef
                     const glm::dvec3 from(p.x, 4.0 * s.hitEpsilon(exact.t), p.z);
                     stepsFromFloor += s.march(from, up, 0.0).steps;
                     stepsFromCone += s.march(from, up, mirror).steps;
-                    auto reflected = converged(glm::dvec3(p.x, 1e-6, p.z), up);
+                    auto reflected = Converged(s, glm::dvec3(p.x, 1e-6, p.z), up);
                     if (!reflected.hit || reflected.steps >= 20000) continue;
                     ++reflectedHits;
                     if ((mirror - reflected.t) / std::max(1.0, reflected.t) > 1e-9) {
