@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Builds every libFuzzer target with clang in build-fuzz/ (only those targets) and runs each.
 #   scripts/fuzz.sh [--smoke] [--only NAME] [seconds] [extra libFuzzer args...]
-#     seconds   per target (default 60; --smoke: 10)
+#     seconds   per target (default 60; --smoke: 7)
 #     --smoke   CI mode: short runs, exit 1 if any target crashes (build + run < 3 min on 2 cores)
-#     --only    one target: scene, preset, input or take
+#     --only    one target: scene, preset, input, take, isf or wav
 # Targets: fuzz_scene (scene headers, structure-aware), fuzz_preset (presets, structure-aware),
-# fuzz_input (MIDI bytes, OSC through a real lo_server, TOML mappings), fuzz_take (SMF reader).
+# fuzz_input (MIDI bytes, OSC through a real lo_server, TOML mappings), fuzz_take (SMF reader),
+# fuzz_isf (ISF .fs files: header, pass-size expressions, parameters, GLSL translation), fuzz_wav
+# (the WAV reader `render --replay` reads a take's audio with).
 # Needs clang with compiler-rt (Debian: apt-get install -y clang-14 libclang-rt-14-dev).
 # Crashes land in build-fuzz/crashes/NAME/; reproduce one with build-fuzz/.../fuzz_NAME FILE.
 set -euo pipefail
@@ -20,14 +22,14 @@ while [ $# -gt 0 ]; do
     *) break ;;
   esac
 done
-seconds=$([ "$smoke" = 1 ] && echo 10 || echo 60)
+seconds=$([ "$smoke" = 1 ] && echo 7 || echo 60)
 if [ $# -gt 0 ] && [[ "$1" =~ ^[0-9]+$ ]]; then seconds="$1"; shift; fi
 
-names=(scene preset input take)
+names=(scene preset input take isf wav)
 [ -n "$only" ] && names=("$only")
-declare -A target_dir=([scene]=src/scene [preset]=src/scene [input]=src/control [take]=src/take)
+declare -A target_dir=([scene]=src/scene [preset]=src/scene [input]=src/control [take]=src/take [isf]=src/isf [wav]=src/audio)
 for n in "${names[@]}"; do
-  [ -n "${target_dir[$n]:-}" ] || { echo "fuzz: unknown target '$n', expected scene, preset, input or take"; exit 2; }
+  [ -n "${target_dir[$n]:-}" ] || { echo "fuzz: unknown target '$n', expected scene, preset, input, take, isf or wav"; exit 2; }
 done
 
 cxx="$(command -v clang++ || command -v clang++-14 || true)"
@@ -71,6 +73,26 @@ seed() {  # seed NAME -> fills build-fuzz/corpus/NAME
     take)
       cp -n "$root"/tests/take/corpus/* "$c"/ 2>/dev/null || true
       cp -n "$root/presets/demo_take.mid" "$c"/ 2>/dev/null || true ;;
+    isf)
+      cp -n "$root"/shaders/isf/*.fs "$c"/ 2>/dev/null || true
+      printf 'void mainImage(out vec4 c, in vec2 p) { c = texture(iChannel1, p / iResolution.xy); }\n' >"$c/shadertoy"
+      printf '/*{ "PASSES": [ { "TARGET": "a", "WIDTH": "floor($WIDTH / (1 + $n))", "PERSISTENT": true } ], "INPUTS": [ { "NAME": "n", "TYPE": "long", "VALUES": [0, 1, 2], "LABELS": ["a", "b", "c"], "DEFAULT": 1 } ] }*/\nvoid main() { gl_FragColor = IMG_THIS_PIXEL(a); }\n' >"$c/passes" ;;
+    wav)
+      python3 - "$c" <<'PY'
+import struct, sys
+def wav(fmt, ch, rate, bits, frames, extra=b""):
+    body = bytes((i * 37) & 0xFF for i in range(frames * ch * bits // 8))
+    f = struct.pack("<4sIHHIIHH", b"fmt ", 16, fmt, ch, rate, rate * ch * bits // 8, ch * bits // 8, bits)
+    d = struct.pack("<4sI", b"data", len(body)) + body + (b"\0" if len(body) & 1 else b"")
+    rest = b"WAVE" + f + extra + d
+    return struct.pack("<4sI", b"RIFF", len(rest)) + rest
+out = sys.argv[1]
+open(out + "/pcm16_mono", "wb").write(wav(1, 1, 48000, 16, 8))
+open(out + "/pcm24_stereo", "wb").write(wav(1, 2, 44100, 24, 5))
+open(out + "/float32_sdfv", "wb").write(wav(3, 1, 48000, 32, 6, struct.pack("<4sId", b"sdfv", 8, 12.5)))
+open(out + "/float64", "wb").write(wav(3, 1, 96000, 64, 3))
+PY
+      ;;
   esac
 }
 
