@@ -155,6 +155,7 @@ bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload, dou
     so.scene.clear();
     so.params.clear();
     so.preset = file;
+    so.onStage = &state.show;
     Show next;
     std::string err;
     Automation scripts;
@@ -163,6 +164,7 @@ bool ApplyPresetFile(LiveState& state, const std::string& file, bool reload, dou
         state.report.Say(err + (reload ? " — keeping the current values" : " — keeping the current preset"));
         return false;
     }
+    for (const std::string& n : next.notices) state.report.Say(n);
     next.path = state.show.path;
     const bool sceneChange = next.scene.path != state.show.scene.path;
     state.show = std::move(next);

@@ -41,6 +41,23 @@ std::vector<ParamDecl> ShowDecls(const Show& show) {
     return decls;
 }
 
+namespace {
+
+// The file FindScene reads for a scene name or path.
+fs::path SceneFileOf(const std::string& nameOrFile) {
+    const fs::path asFile(nameOrFile);
+    if (nameOrFile.find('/') != std::string::npos || asFile.extension() == ".glsl") return asFile;
+    return fs::path(DataRoot()) / "shaders" / "scenes" / (nameOrFile + ".glsl");
+}
+
+bool SameFile(const fs::path& a, const fs::path& b) {
+    std::error_code ea, eb;
+    const fs::path ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
+    return !ea && !eb && ca == cb;
+}
+
+}  // namespace
+
 bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
     Show s;
     std::string sceneName = opts.scene;
@@ -74,7 +91,12 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
             return false;
         }
     } else if (!FindScene(sceneName, &s.scene, error)) {
-        return false;
+        const Show* stage = opts.onStage;
+        if (!stage || stage->isfScene || stage->scene.path.empty() || !SameFile(SceneFileOf(sceneName), stage->scene.path))
+            return false;
+        s.notices.push_back(*error + " — the scene on stage keeps its last good header");
+        error->clear();
+        s.scene = stage->scene;
     }
     s.effects = s.scene.effects;
     if (!s.preset.effects.empty() && !ParseEffectList(s.preset.effects, &s.effects, error)) {
@@ -93,8 +115,14 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
     s.post = !opts.post.empty() ? opts.post : s.preset.post;
     if (s.isfScene) s.post = s.scene.path + (s.post.empty() ? "" : "," + s.post);
     if (!s.post.empty() && !IsfListParams(SplitIsfList(s.post), &s.postDecls, error)) {
-        if (opts.post.empty()) *error = s.preset.path + ": post: " + *error;
-        return false;
+        if (!opts.onStage || opts.onStage->post != s.post) {
+            if (opts.post.empty()) *error = s.preset.path + ": post: " + *error;
+            return false;
+        }
+        // The chain on stage stays: its last good inputs (its program on screen is the last good too).
+        s.notices.push_back(*error + " — the post chain on stage keeps its last good inputs");
+        error->clear();
+        s.postDecls = opts.onStage->postDecls;
     }
     const std::vector<ParamDecl> decls = ShowDecls(s);
 

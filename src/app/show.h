@@ -11,6 +11,8 @@
 namespace sdfvj {
 
 // Options every rendering command takes. Zero/empty means "the scene's or preset's own".
+struct Show;
+
 struct ShowOptions {
     std::string scene;        // name or .glsl path
     std::string preset;       // presets/NAME.json or a path
@@ -20,6 +22,10 @@ struct ShowOptions {
     std::vector<std::string> params;   // --param name=value
     std::string post;         // --post: ISF post chain ("bloom,mirror" or .fs paths); else the preset's
     Quality quality;
+    // live: the show on stage. A preset for the scene on stage, or keeping the post chain on stage,
+    // reads that file's last good header from here when the file no longer parses (a save mid-edit):
+    // the preset applies, and Show::notices says what was read instead.
+    const Show* onStage = nullptr;
 };
 
 struct Show {
@@ -32,6 +38,7 @@ struct Show {
     std::vector<ParamDecl> postDecls;   // its inputs: presets, --param, OSC and mappings set them by name
     bool isfScene = false;              // the scene is an ISF or Shadertoy generator: the first stage of `post`
     Quality quality;
+    std::vector<std::string> notices;   // "file:line: ... — the show's last good header stands in" (ShowOptions::onStage)
     std::unique_ptr<Program> program;
 };
 

@@ -160,6 +160,56 @@ TEST_CASE("live_state presets: a preset for another scene waits for its program,
     CHECK(s.pendingTargets.empty());
 }
 
+TEST_CASE("live_state presets: while the scene on stage or its post chain is saved broken mid-edit, a preset for it still applies on their last good headers", "[live_state]") {
+    const fs::path dir = fs::temp_directory_path() / ("sdfvj-live-stage-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path root(DataRoot());
+    const fs::path scene = dir / "stage.glsl", post = dir / "glow.fs", other = dir / "other.glsl";
+    fs::copy_file(root / "shaders" / "scenes" / "midi.glsl", scene, fs::copy_options::overwrite_existing);
+    fs::copy_file(root / "shaders" / "scenes" / "midi.glsl", other, fs::copy_options::overwrite_existing);
+    fs::copy_file(root / "shaders" / "isf" / "bloom.fs", post, fs::copy_options::overwrite_existing);
+    auto read = [](const fs::path& p) { std::ifstream f(p); return std::string(std::istreambuf_iterator<char>(f), {}); };
+    auto breakFile = [&](const fs::path& p, const std::string& from, const std::string& to) {
+        std::string text = read(p);
+        REQUIRE(text.find(from) != std::string::npos);
+        std::ofstream(p, std::ios::trunc) << text.replace(text.find(from), from.size(), to);
+    };
+    ShowOptions so;
+    so.scene = scene.string();
+    so.post = post.string();
+    so.path = "fragment";
+    LiveState s;
+    std::string err;
+    INFO(err);
+    REQUIRE(OpenLiveState(so, "", &s, &err));
+    s.report.print = false;
+    const fs::path preset = dir / "p.json";
+    std::ofstream(preset) << "{\"scene\": \"" << scene.string() << "\", \"params\": {\"twist\": 0.25, \"threshold\": 0.5}}\n";
+
+    breakFile(scene, "/*{", "/*{{");                  // the header's JSON broken
+    breakFile(post, "\"PASSES\": [", "\"PASSES\": {\"a\": 1}, \"X\": [");   // PASSES of the wrong type
+    REQUIRE(ApplyPresetFile(s, preset.string(), false, 1.0));
+    CHECK(Said(s, "stage.glsl:1"));
+    CHECK(Said(s, "the scene on stage keeps its last good header"));
+    CHECK(Said(s, "glow.fs:12"));
+    CHECK(Said(s, "the post chain on stage keeps its last good inputs"));
+    CHECK(s.currentPreset == "p.json");
+    CHECK(s.wanted.scenePath == s.show.scene.path);   // no new program asked for
+    SceneInfo onScreen = s.show.scene;   // as live follows a scene with a post chain (SceneWithPost)
+    onScreen.params = ShowDecls(s.show);
+    FollowScene(s, onScreen);
+    CHECK(s.params.target[(size_t)FindParam(s.params, "twist")] == 0.25f);
+    REQUIRE(FindParam(s.params, "threshold") >= 0);  // the post chain's input, from its last good header
+    CHECK(s.params.target[(size_t)FindParam(s.params, "threshold")] == 0.5f);
+
+    // Another scene file that does not parse is still refused: only the stage's own files stand in.
+    std::ofstream(other, std::ios::trunc) << "/*{ \"INPUTS\": [ }*/\n";
+    std::ofstream(preset, std::ios::trunc) << "{\"scene\": \"" << other.string() << "\"}\n";
+    CHECK_FALSE(ApplyPresetFile(s, preset.string(), false, 2.0));
+    CHECK(Said(s, "keeping the current preset"));
+    fs::remove_all(dir);
+}
+
 TEST_CASE("live_state files: a broken mapping save says file:line and keeps the last good mapping", "[live_state]") {
     const fs::path dir = fs::temp_directory_path() / ("sdfvj-live-state-" + std::to_string(::getpid()));
     fs::create_directories(dir);
