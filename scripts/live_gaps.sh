@@ -2,7 +2,10 @@
 # What a save costs the frames of `sdfvj live` on this machine: in-process reloads against
 # `--render-process`, each mode in its own show, the modes interleaved save by save.
 #
-#   scripts/live_gaps.sh [--scene NAME] [--size WxH] [--saves N] [--bin PATH]
+#   scripts/live_gaps.sh [--scene NAME] [--post NAME] [--size WxH] [--saves N] [--bin PATH]
+#
+#   --post NAME   the show runs the ISF post effect shaders/isf/NAME.fs over the scene, and the saves
+#                 go to that file instead of the scene (what a post effect's reload costs the frames)
 #
 # Each show runs in an Xvfb display with SDFVJ_ROOT at a temporary copy of shaders/, the drivers'
 # shader disk caches off (every save is a compile). Every 4 s the scene gets a new constant (a
@@ -11,10 +14,11 @@
 # reports where it does (the render process's "build B ms, first use U ms").
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
-scene=midi size=320x180 saves=4 bin=$repo/build/src/app/sdfvj
+scene=midi post="" size=320x180 saves=4 bin=$repo/build/src/app/sdfvj
 while [ $# -gt 0 ]; do
     case $1 in
     --scene) scene=$2; shift ;;
+    --post) post=$2; shift ;;
     --size) size=$2; shift ;;
     --saves) saves=$2; shift ;;
     --bin) bin=$2; shift ;;
@@ -37,6 +41,7 @@ run_mode() {   # $1: in-process | render-process
     cp -r "$repo/shaders" "$root/"
     [ "$mode" = render-process ] && extra=(--render-process)
     local file=$root/shaders/scenes/$scene.glsl
+    if [ -n "$post" ]; then file=$root/shaders/isf/$post.fs; extra+=(--post "$post"); fi
     cp "$file" "$root/original.glsl"
     (DISPLAY=$display SDFVJ_ROOT=$root exec "$bin" live --scene "$scene" --size "$size" --path fragment --midi none \
         --osc-port 0 --hide-overlay --log-params "$root/params.log" --seconds $((6 + 4 * saves)) "${extra[@]}") \
@@ -45,7 +50,7 @@ run_mode() {   # $1: in-process | render-process
     sleep 5
     : >"$root/saves.log"
     for i in $(seq 1 "$saves"); do
-        # A new constant in the scene's own code: a program no cache has seen.
+        # A new constant in the scene's (or the post effect's) own code: a program no cache has seen.
         { cat "$root/original.glsl"; printf '\nfloat liveGapsSave%d() { return %d.0; }\n' "$i" "$i"; } >"$file.new"
         mv "$file.new" "$file"
         awk -v t="$(date +%s.%N)" 'BEGIN { print t }' >>"$root/saves.log"

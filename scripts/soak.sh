@@ -16,12 +16,12 @@
 #   --live-arg ARG one more argument for `sdfvj live` (repeatable), e.g. the frame budget moving
 #                  the render scale under the storm: --live-arg --frame-budget --live-arg 20
 #
-# It runs `sdfvj live --preset demo` at 320x180 in an Xvfb display on Mesa llvmpipe, with
+# It runs `sdfvj live --preset demo --post bloom,feedback_trails` at 320x180 in an Xvfb display on Mesa llvmpipe, with
 # SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
 # never touched), --log-params, --record take.mid, an OSC port liblo picks free, and a private
 # JACK dummy server (JACK_DEFAULT_SERVER=sdfvj-soak-$$). soak_driver then floods it with hostile
 # OSC, MIDI from a controller port that is unplugged and plugged back, and valid/broken saves of
-# scenes, library files, presets and mappings (see tests/soak/soak_driver.cpp).
+# scenes, library files, presets, mappings and the post chain's ISF files (see tests/soak/soak_driver.cpp).
 #
 # Passes when: sdfvj is still running at the end and then exits by itself (--seconds) with code 0;
 # no gap between logged frames is longer than --gap-limit-ms (default 250; the first second is
@@ -165,7 +165,7 @@ export ASAN_OPTIONS UBSAN_OPTIONS LSAN_OPTIONS
 export SDFVJ_ROOT=$work/root
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
 echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no)), storm ${storm} s, display $display, JACK $JACK_DEFAULT_SERVER, work $work"
-(cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --size 320x180 --path fragment --midi soak-controller \
+(cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --post bloom,feedback_trails --size 320x180 --path fragment --midi soak-controller \
     --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds" "${liveExtra[@]}") \
     >"$work/live.out" 2>"$work/live.err" </dev/null &
 LIVE_PID=$!
@@ -328,7 +328,7 @@ echo "take            ${recorded:-?} events recorded; renders again: $takeOk"
 echo "OSC sent        $(sumc '^osc_') datagrams: $(count osc_valid_param) param, $(count osc_raw) raw (NaN/inf too), $(count osc_wrong_type) wrong types, $(count osc_unknown_address) unknown addresses, $(count osc_preset) preset, $(count osc_effect_toggle) effect toggles, $(count osc_huge_string) huge strings, $(( $(count osc_garbage) + $(count osc_mangled) + $(count osc_bad_bundle) )) garbage/mangled/bundles"
 echo "MIDI sent       $(sumc '^midi_(cc|note|running|sysex|system|other|random)') messages: $(count midi_cc) CC, $(count midi_note) notes, $(count midi_sysex) sysex, $(count midi_running_status) running status, $(( $(count midi_system_or_stray) + $(count midi_random_bytes) )) stray/system/random"
 echo "MIDI replugs    $(count midi_replug) (the show said gone $gone times, listening again $reconnects times)"
-echo "saves           $(sumc '^save_(valid|broken)$'): $(count save_valid) valid, $(count save_broken) broken; $(count save_rename) rename, $(count save_in_place) in place, $(count save_two_halves) in two halves; $(count save_scene) scene, $(count save_lib) lib, $(count save_preset) preset, $(count save_mapping) mapping"
+echo "saves           $(sumc '^save_(valid|broken)$'): $(count save_valid) valid, $(count save_broken) broken; $(count save_rename) rename, $(count save_in_place) in place, $(count save_two_halves) in two halves; $(count save_scene) scene, $(count save_lib) lib, $(count save_preset) preset, $(count save_mapping) mapping, $(count save_isf) ISF"
 echo "shader errors   $(grep -a -c -E '\.glsl:[0-9]' "$work/live.err") lines; reloads $(grep -a -c '^shader reloaded' "$work/live.err")"
 if [ ${#failures[@]} = 0 ]; then
     echo "result          PASS"

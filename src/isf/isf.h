@@ -142,8 +142,11 @@ public:
     // then read black). Returns the texture holding the output, valid until the next Render.
     unsigned Render(unsigned input, int w, int h, const IsfFrameInputs& in);
     // Re-reads the .fs/.vs when their bytes changed; a failed reload keeps the running program.
-    // Returns 0 unchanged, 1 reloaded, -1 failed (error set).
+    // Returns 0 unchanged, 1 reloaded, -1 failed (error set). A save whose GLSL is the program's
+    // own (the last good file put back after a broken save) compiles nothing.
     int ReloadIfChanged(std::string* error);
+    // Programs compiled and linked so far (a reload that compiles nothing leaves it).
+    int ProgramsBuilt() const;
 private:
     struct State;
     std::unique_ptr<State> s_;

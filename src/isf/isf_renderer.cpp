@@ -108,6 +108,8 @@ struct IsfEffect::State {
     std::map<std::string, Buffer> buffers;          // by TARGET; "" is the output
     std::map<std::string, unsigned> imports;        // IMPORTED name -> texture
     uint64_t hash = 0;                              // of the bytes last loaded (or last tried)
+    uint64_t programHash = 0;                       // of the GLSL `program` was built from
+    int built = 0;                                  // programs built (ProgramsBuilt)
     std::vector<unsigned> boundUnits;
 
     int Location(const std::string& name) {
@@ -188,6 +190,7 @@ unsigned UploadAudioRow(unsigned* tex, int* size, std::span<const float> values,
 }  // namespace
 
 bool IsfEffect::IsValid() const { return s_->program != 0; }
+int IsfEffect::ProgramsBuilt() const { return s_->built; }
 const IsfFile& IsfEffect::File() const { return s_->file; }
 const std::vector<ParamDecl>& IsfEffect::Params() const { return s_->params; }
 
@@ -198,6 +201,10 @@ bool IsfEffect::Load(const std::string& path, std::string* error) {
     IsfFile file;
     IsfSources src;
     if (!LoadIsfFile(path, &file, error) || !TranslateIsf(file, &src, error)) return false;
+    // The GLSL of the program on screen (a save that puts back the last good file after a broken
+    // one, or changes only what the GLSL does not see): nothing to compile, and no frame waits.
+    const uint64_t programHash = HashBytes(src.vertex.text + '\0' + src.fragment.text);
+    const bool sameProgram = s.program && programHash == s.programHash && file.imports.empty() && s.imports.empty();
     std::map<std::string, unsigned> imports;
     auto dropImports = [&] { for (auto& [n, t] : imports) glDeleteTextures(1, &t); };
     for (const IsfImport& im : file.imports) {
@@ -216,15 +223,19 @@ bool IsfEffect::Load(const std::string& path, std::string* error) {
         glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
         imports[im.name] = t;
     }
-    const unsigned program = BuildProgram(src, path, error);
+    const unsigned program = sameProgram ? s.program : BuildProgram(src, path, error);
     if (!program) {
         dropImports();
         return false;
     }
     // Success: swap in. Buffers of targets the new file still has are kept (feedback survives a reload).
-    s.ReleaseProgram();
-    s.program = program;
-    s.imports = std::move(imports);
+    if (!sameProgram) {
+        ++s.built;
+        s.ReleaseProgram();
+        s.program = program;
+        s.programHash = programHash;
+        s.imports = std::move(imports);
+    }
     s.file = std::move(file);
     s.params = IsfParams(s.file);
     for (auto it = s.buffers.begin(); it != s.buffers.end();) {

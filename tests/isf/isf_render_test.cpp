@@ -132,6 +132,38 @@ TEST_CASE("isf render: a compile error names the .fs file and its line, the last
     CHECK((img.At(1, 1, 0) == 0 && img.At(1, 1, 1) == 255));
 }
 
+TEST_CASE("isf render: a save that puts back the program on screen compiles nothing, a header-only change keeps the program too", "[isf][gl]") {
+    RequireGl();
+    const std::string path = TempDir() + "/same.fs";
+    const std::string good = "/*{ \"INPUTS\": [{\"NAME\": \"k\", \"TYPE\": \"float\", \"DEFAULT\": 0.5}] }*/\n"
+                             "void main() { gl_FragColor = vec4(k, 0.0, 0.0, 1.0); }\n";
+    WriteText(path, good);
+    IsfEffect live;
+    LoadOrFail(live, path);
+    REQUIRE(live.ProgramsBuilt() == 1);
+    std::string error;
+    WriteText(path, good + "void broken( {\n");                     // a typo saved mid-edit
+    CHECK(live.ReloadIfChanged(&error) == -1);
+    WriteText(path, good);                                          // the fix: the file on screen again
+    CHECK(live.ReloadIfChanged(&error) == 1);
+    CHECK(live.ProgramsBuilt() == 1);                               // nothing compiled
+    Img img = ReadBack(live.Render(0, 4, 4, {}), 4, 4);
+    CHECK(Near(img.At(1, 1, 0), 128, 1));
+    // The header's LABEL is not in the GLSL: the same program, the new header.
+    std::string labelled = good;
+    labelled.replace(labelled.find("\"DEFAULT\""), 0, "\"LABEL\": \"Red\", ");
+    WriteText(path, labelled);
+    CHECK(live.ReloadIfChanged(&error) == 1);
+    CHECK(live.ProgramsBuilt() == 1);
+    CHECK(live.Params().at(0).label == "Red");
+    // A change the GLSL sees builds a new program.
+    WriteText(path, good + "// a comment the driver reads\n");
+    CHECK(live.ReloadIfChanged(&error) == 1);
+    CHECK(live.ProgramsBuilt() == 2);
+    img = ReadBack(live.Render(0, 4, 4, {}), 4, 4);
+    CHECK(Near(img.At(1, 1, 0), 128, 1));
+}
+
 TEST_CASE("isf render: PASSES targets get their WIDTH/HEIGHT expression sizes", "[isf][gl]") {
     RequireGl();
     IsfEffect e;

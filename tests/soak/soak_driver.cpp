@@ -88,7 +88,8 @@ void SleepMs(double ms) { std::this_thread::sleep_for(std::chrono::microseconds(
 
 // ---------------------------------------------------------------------------------------- OSC
 
-const char* kParams[] = {"twist", "scale", "displacement", "smoothness", "spin", "power", "nope", ""};
+const char* kParams[] = {"twist", "scale", "displacement", "smoothness", "spin", "power", "nope", "",
+                         "radius", "decay"};   // the last two: the post chain's (soak.sh: bloom, feedback_trails)
 const char* kEffects[] = {"ao", "shadows", "soft_shadows", "fog", "specular", "pbr", "reflections", "heatmap", "bogus"};
 const char* kPresets[] = {"demo", "twisted", "bulb", "walker", "demo.json", "missing", "next", "prev", "0", "1", "2", "3",
                           "99999999999999999999999", "4294967296", "18446744073709551616", "-1", "", "../../etc/passwd",
@@ -328,7 +329,7 @@ void RunMidi(MidiBlaster& m, Clock::time_point deadline) {
 struct Target {
     fs::path path;
     std::string original;
-    std::string kind;   // scene, lib, preset, mapping
+    std::string kind;   // scene, lib, preset, mapping, isf
 };
 
 std::string ReadAll(const fs::path& p) {
@@ -345,12 +346,13 @@ struct Saver {
     uint64_t n = 0;
     explicit Saver(const Options& opt) : o(opt), rng(opt.seed * 31337u + 5) {
         const std::pair<const char*, const char*> dirs[] = {
-            {"shaders/scenes", "scene"}, {"shaders/lib", "lib"}, {"presets", "preset"}, {"mappings", "mapping"}};
+            {"shaders/scenes", "scene"}, {"shaders/lib", "lib"}, {"presets", "preset"}, {"mappings", "mapping"},
+            {"shaders/isf", "isf"}};
         for (const auto& [dir, kind] : dirs) {
             std::error_code ec;
             for (const auto& e : fs::directory_iterator(fs::path(o.root) / dir, ec)) {
                 const std::string ext = e.path().extension().string();
-                if (ext != ".glsl" && ext != ".json" && ext != ".toml") continue;
+                if (ext != ".glsl" && ext != ".json" && ext != ".toml" && ext != ".fs") continue;
                 targets.push_back({e.path(), ReadAll(e.path()), kind});
             }
         }
@@ -370,6 +372,10 @@ struct Saver {
         const int v = Uniform(0, 3);
         if (t.kind == "preset") return t.original + std::string(size_t(v) + 1, '\n');   // JSON allows trailing space
         if (t.kind == "mapping") return t.original + "\n# soak save " + std::to_string(v) + "\n";
+        // A post effect's fix is the file on screen put back, which IsfEffect compiles nothing for:
+        // a new ISF program's first draw on llvmpipe holds its frame 120-460 ms (its JIT: the link
+        // takes 4-7 ms), past the soak's gap limit (docs/reliability.md).
+        if (t.kind == "isf") return t.original;
         return t.original + "\n// soak save " + std::to_string(v) + "\n";
     }
     std::string Broken(const Target& t) {
@@ -404,6 +410,20 @@ struct Saver {
             case 1: return "#include \"" + self + "\"\n" + s;                   // includes itself
             case 2: return "#include \"lib/soak_missing.glsl\"\n" + s;
             default: return s + "\n#include\n";
+            }
+        }
+        if (t.kind == "isf") {   // the post chain's files (soak.sh starts live with --post)
+            switch (Uniform(0, 9)) {
+            case 0: return Replace(s, "\"WIDTH\": \"", "\"WIDTH\": \"$WIDTH / 0 + ");      // not a finite size
+            case 1: return Replace(s, "\"WIDTH\": \"", "\"WIDTH\": \"$nope + ((");        // unknown variable, unclosed
+            case 2: return Replace(s, "\"PASSES\": [", "\"PASSES\": [{\"TARGET\": \"huge\", \"WIDTH\": \"$WIDTH * 1e6\", \"HEIGHT\": \"1e300 * 1e300\"}, ");
+            case 3: return Replace(s, "\"TYPE\": \"float\"", "\"TYPE\": \"quaternion\"");
+            case 4: return Replace(s, "\"DEFAULT\": ", "\"DEFAULT\": \"abc\", \"X\": ");
+            case 5: return Replace(s, "\"PASSES\": [", "\"PASSES\": {\"a\": 1}, \"X\": [");
+            case 6: return Replace(s, "\"MIN\": ", "\"MIN\": 1e30, \"MAX\": -1e30, \"X\": ");  // the range upside down
+            case 7: return Replace(s, "}*/", "*/");                                                // header JSON cut
+            case 8: return Replace(s, "\"TARGET\": \"", "\"TARGET\": 5, \"X\": \"");
+            default: return s + "\nvoid soakBroken( {\n";                                           // GLSL error
             }
         }
         if (t.kind == "preset") {
@@ -462,11 +482,16 @@ struct Saver {
     }
     void One() {
         if (targets.empty()) return;
-        // The scene on stage (midi) and the library get most of the saves.
+        // The scene on stage (midi) and the library get most of the saves, the post chain's files some.
         const Target* t = &targets[size_t(Uniform(0, int(targets.size()) - 1))];
         if (Uniform(0, 2) == 0)
             for (const Target& c : targets)
                 if (c.path.filename() == "midi.glsl" || (Uniform(0, 1) && c.path.filename() == "common.glsl")) t = &c;
+        if (Uniform(0, 7) == 0) {
+            const std::string chain = Uniform(0, 1) ? "bloom.fs" : "feedback_trails.fs";
+            for (const Target& c : targets)
+                if (c.path.filename() == chain) t = &c;
+        }
         const bool valid = (n++ % 2) == 0;
         Save(*t, valid ? Valid(*t) : Broken(*t), valid);
     }
