@@ -16,7 +16,7 @@
 #   --live-arg ARG one more argument for `sdfvj live` (repeatable), e.g. the frame budget moving
 #                  the render scale under the storm: --live-arg --frame-budget --live-arg 20
 #
-# It runs `sdfvj live --preset demo --post bloom,feedback_trails` at 320x180 in an Xvfb display on Mesa llvmpipe, with
+# It runs `sdfvj live --preset demo --post bloom,feedback_trails --audio system:capture_1` at 320x180 in an Xvfb display on Mesa llvmpipe, with
 # SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
 # never touched), --log-params, --record take.mid, an OSC port liblo picks free, and a private
 # JACK dummy server (JACK_DEFAULT_SERVER=sdfvj-soak-$$). soak_driver then floods it with hostile
@@ -29,7 +29,8 @@
 # grew by at most --rss-limit-mb from the baseline (taken 2 s after the first frame) and by at most
 # --rss-late-limit-mb over the second half of the storm (not with --quick: too short to be past the
 # warm-up); stderr holds
-# no sanitizer report; the recorded take renders again (`sdfvj render --replay take.mid`).
+# no sanitizer report; the recorded take renders again (`sdfvj render --replay take.mid`), reading
+# the audio the show recorded beside it (take.mid.wav, from JACK's dummy capture port).
 # Exit code 0 on pass, 1 on fail, 2 on bad usage or a missing tool.
 set -u
 
@@ -165,7 +166,7 @@ export ASAN_OPTIONS UBSAN_OPTIONS LSAN_OPTIONS
 export SDFVJ_ROOT=$work/root
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
 echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no)), storm ${storm} s, display $display, JACK $JACK_DEFAULT_SERVER, work $work"
-(cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --post bloom,feedback_trails --size 320x180 --path fragment --midi soak-controller \
+(cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --post bloom,feedback_trails --audio system:capture_1 --size 320x180 --path fragment --midi soak-controller \
     --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds" "${liveExtra[@]}") \
     >"$work/live.out" 2>"$work/live.err" </dev/null &
 LIVE_PID=$!
@@ -279,6 +280,11 @@ if [ -s "$work/take.mid" ]; then
         --out "$work/replay" --quiet) >"$work/replay.log" 2>&1 && takeOk=yes
 fi
 [ $takeOk = yes ] || fail "the recorded take does not render again: $(tail -3 "$work/replay.log" 2>/dev/null)"
+# The audio the show recorded beside the take (JACK's dummy capture port: silence) reads back in the replay.
+wavBytes=$(stat -c %s "$work/take.mid.wav" 2>/dev/null || echo 0)
+wavOk=no
+if [ "$wavBytes" -gt 44 ] && ! grep -q "rendering without the take's audio" "$work/replay.log"; then wavOk=yes; fi
+[ $wavOk = yes ] || fail "the recorded audio does not read back ($wavBytes bytes): $(grep -a "take's audio" "$work/replay.log" | tail -1)"
 
 # The show's MIDI status lines: the controller gone (unplugged), then listened to again.
 read -r gone reconnects < <(awk '/soak-controller is gone/ { if (!g) n++; g = 1 }
@@ -325,6 +331,7 @@ echo "VmRSS timeline  $(awk -v n="$storm" 'BEGIN { step = n / 8 < 1 ? 1 : int(n 
 echo "final value     /sdfvj/raw/twist $finalValue in the last frame: $finalSeen"
 echo "sanitizer       $sanReports report lines"
 echo "take            ${recorded:-?} events recorded; renders again: $takeOk"
+echo "audio           take.mid.wav $((wavBytes / 1024)) KiB recorded from system:capture_1; reads back in the replay: $wavOk"
 echo "OSC sent        $(sumc '^osc_') datagrams: $(count osc_valid_param) param, $(count osc_raw) raw (NaN/inf too), $(count osc_wrong_type) wrong types, $(count osc_unknown_address) unknown addresses, $(count osc_preset) preset, $(count osc_effect_toggle) effect toggles, $(count osc_huge_string) huge strings, $(( $(count osc_garbage) + $(count osc_mangled) + $(count osc_bad_bundle) )) garbage/mangled/bundles"
 echo "MIDI sent       $(sumc '^midi_(cc|note|running|sysex|system|other|random)') messages: $(count midi_cc) CC, $(count midi_note) notes, $(count midi_sysex) sysex, $(count midi_running_status) running status, $(( $(count midi_system_or_stray) + $(count midi_random_bytes) )) stray/system/random"
 echo "MIDI replugs    $(count midi_replug) (the show said gone $gone times, listening again $reconnects times)"
