@@ -413,17 +413,19 @@ struct Saver {
             }
         }
         if (t.kind == "isf") {   // the post chain's files (soak.sh starts live with --post)
-            switch (Uniform(0, 9)) {
-            case 0: return Replace(s, "\"WIDTH\": \"", "\"WIDTH\": \"$WIDTH / 0 + ");      // not a finite size
-            case 1: return Replace(s, "\"WIDTH\": \"", "\"WIDTH\": \"$nope + ((");        // unknown variable, unclosed
-            case 2: return Replace(s, "\"PASSES\": [", "\"PASSES\": [{\"TARGET\": \"huge\", \"WIDTH\": \"$WIDTH * 1e6\", \"HEIGHT\": \"1e300 * 1e300\"}, ");
-            case 3: return Replace(s, "\"TYPE\": \"float\"", "\"TYPE\": \"quaternion\"");
-            case 4: return Replace(s, "\"DEFAULT\": ", "\"DEFAULT\": \"abc\", \"X\": ");
-            case 5: return Replace(s, "\"PASSES\": [", "\"PASSES\": {\"a\": 1}, \"X\": [");
-            case 6: return Replace(s, "\"MIN\": ", "\"MIN\": 1e30, \"MAX\": -1e30, \"X\": ");  // the range upside down
-            case 7: return Replace(s, "}*/", "*/");                                                // header JSON cut
-            case 8: return Replace(s, "\"TARGET\": \"", "\"TARGET\": 5, \"X\": \"");
-            default: return s + "\nvoid soakBroken( {\n";                                           // GLSL error
+            const std::string glslError = "\nvoid soakBroken( {\n";   // also where a file lacks the anchor
+            switch (Uniform(0, 10)) {
+            case 0: return Replace(s, "\"WIDTH\": \"", "\"WIDTH\": \"$WIDTH / 0 + ", glslError);      // not a finite size
+            case 1: return Replace(s, "\"WIDTH\": \"", "\"WIDTH\": \"$nope + ((", glslError);        // unknown variable, unclosed
+            case 2: return Replace(s, "\"PASSES\": [", "\"PASSES\": [{\"TARGET\": \"huge\", \"WIDTH\": \"$WIDTH * 1e6\", \"HEIGHT\": \"1e300 * 1e300\"}, ", glslError);
+            case 3: return Replace(s, "\"TYPE\": \"float\"", "\"TYPE\": \"quaternion\"", glslError);
+            case 4: return Replace(s, "\"DEFAULT\": ", "\"DEFAULT\": \"abc\", \"X\": ", glslError);
+            case 5: return Replace(s, "\"PASSES\": [", "\"PASSES\": {\"a\": 1}, \"X\": [", glslError);
+            case 6: return Replace(s, "\"MAX\": ", "\"MAX\": -1e6, \"X\": ", glslError);            // MIN > MAX
+            case 7: return Replace(s, "\"MIN\": ", "\"MIN\": 1e30, \"X\": ", glslError);            // past the value limit
+            case 8: return Replace(s, "}*/", "*/", glslError);                                          // header JSON cut
+            case 9: return Replace(s, "\"TARGET\": \"", "\"TARGET\": 5, \"X\": \"", glslError);
+            default: return s + glslError;                                                             // GLSL error
             }
         }
         if (t.kind == "preset") {
