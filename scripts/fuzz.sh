@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds every libFuzzer target with clang in build-fuzz/ (only those targets) and runs each.
 #   scripts/fuzz.sh [--smoke] [--only NAME] [seconds] [extra libFuzzer args...]
-#     seconds   per target (default 60; --smoke: 7)
+#     seconds   per target (default 60; --smoke: 5)
 #     --smoke   CI mode: short runs, exit 1 if any target crashes (build + run < 3 min on 2 cores)
 #     --only    one target: scene, preset, input, take, isf or wav
 # Targets: fuzz_scene (scene headers, structure-aware), fuzz_preset (presets, structure-aware),
@@ -22,7 +22,7 @@ while [ $# -gt 0 ]; do
     *) break ;;
   esac
 done
-seconds=$([ "$smoke" = 1 ] && echo 7 || echo 60)
+seconds=$([ "$smoke" = 1 ] && echo 5 || echo 60)
 if [ $# -gt 0 ] && [[ "$1" =~ ^[0-9]+$ ]]; then seconds="$1"; shift; fi
 
 names=(scene preset input take isf wav)

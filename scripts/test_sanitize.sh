@@ -28,8 +28,10 @@ cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSDFVJ_SANITIZE=ON \
 # selection below (their names are "compile process: ..." and "render process: ...", with no
 # label), so building them under the sanitizers only cost CI time. `live --render-process` runs
 # under them through test_live.
+# Nor test_render (its reload tests are test_reload's) and test_render_process_read: none of their
+# tests is selected below.
 mapfile -t targets < <(cmake --build "$BUILD" --target help | sed -n 's/^\.\.\. \(test_[A-Za-z0-9_]*\).*/\1/p' |
-  grep -v -x -E 'test_compile_process|test_render_process')
+  grep -v -x -E 'test_compile_process|test_render_process|test_render_process_read|test_render')
 echo "sanitize: building ${targets[*]}"
 cmake --build "$BUILD" -j"$JOBS" --target "${targets[@]}"
 built=$(date +%s)
@@ -51,7 +53,7 @@ cd "$BUILD"
 status=0
 # Labelled tests: MIDI/OSC input and mapping (control), scene headers and presets (scene, when
 # that label exists), the live window including live_reload (live). Then by name: the take
-# tests (take/...) and the hot-reload tests of test_render and test_watch (reload...).
+# tests (take/...) and the hot-reload tests of test_reload and test_watch (reload...).
 ctest --output-on-failure -j"$JOBS" --timeout 900 -L '^(control|input|mapping|scene|take|live)$' "$@" || status=1
 # The second run's records replace the first's in Testing/Temporary: keep the first's beside them,
 # as a folder scripts/ci_failures.py reads like a build (build-asan/labelled).
