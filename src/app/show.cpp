@@ -43,13 +43,6 @@ std::vector<ParamDecl> ShowDecls(const Show& show) {
 
 namespace {
 
-// The file FindScene reads for a scene name or path.
-fs::path SceneFileOf(const std::string& nameOrFile) {
-    const fs::path asFile(nameOrFile);
-    if (nameOrFile.find('/') != std::string::npos || asFile.extension() == ".glsl") return asFile;
-    return fs::path(DataRoot()) / "shaders" / "scenes" / (nameOrFile + ".glsl");
-}
-
 bool SameFile(const fs::path& a, const fs::path& b) {
     std::error_code ea, eb;
     const fs::path ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
@@ -92,7 +85,7 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
         }
     } else if (!FindScene(sceneName, &s.scene, error)) {
         const Show* stage = opts.onStage;
-        if (!stage || stage->isfScene || stage->scene.path.empty() || !SameFile(SceneFileOf(sceneName), stage->scene.path))
+        if (!stage || stage->isfScene || stage->scene.path.empty() || !SameFile(SceneFile(sceneName), stage->scene.path))
             return false;
         s.notices.push_back(*error + " — the scene on stage keeps its last good header");
         error->clear();

@@ -10,9 +10,9 @@
 
 namespace sdfvj {
 
-// Options every rendering command takes. Zero/empty means "the scene's or preset's own".
 struct Show;
 
+// Options every rendering command takes. Zero/empty means "the scene's or preset's own".
 struct ShowOptions {
     std::string scene;        // name or .glsl path
     std::string preset;       // presets/NAME.json or a path

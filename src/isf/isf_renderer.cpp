@@ -108,7 +108,7 @@ struct IsfEffect::State {
     std::map<std::string, Buffer> buffers;          // by TARGET; "" is the output
     std::map<std::string, unsigned> imports;        // IMPORTED name -> texture
     uint64_t hash = 0;                              // of the bytes last loaded (or last tried)
-    uint64_t programHash = 0;                       // of the GLSL `program` was built from
+    std::pair<uint64_t, uint64_t> programHash{};    // ShaderSource::hash of the stages `program` was built from
     int built = 0;                                  // programs built (ProgramsBuilt)
     std::vector<unsigned> boundUnits;
 
@@ -203,7 +203,7 @@ bool IsfEffect::Load(const std::string& path, std::string* error) {
     if (!LoadIsfFile(path, &file, error) || !TranslateIsf(file, &src, error)) return false;
     // The GLSL of the program on screen (a save that puts back the last good file after a broken
     // one, or changes only what the GLSL does not see): nothing to compile, and no frame waits.
-    const uint64_t programHash = HashBytes(src.vertex.text + '\0' + src.fragment.text);
+    const std::pair<uint64_t, uint64_t> programHash{src.vertex.hash, src.fragment.hash};
     const bool sameProgram = s.program && programHash == s.programHash && file.imports.empty() && s.imports.empty();
     std::map<std::string, unsigned> imports;
     auto dropImports = [&] { for (auto& [n, t] : imports) glDeleteTextures(1, &t); };

@@ -378,23 +378,27 @@ std::vector<std::string> ListScenes() {
     return names;
 }
 
+std::string SceneFile(const std::string& nameOrFile) {
+    if (nameOrFile.find('/') != std::string::npos || fs::path(nameOrFile).extension() == ".glsl") return nameOrFile;
+    return (fs::path(DataRoot()) / "shaders" / "scenes" / (nameOrFile + ".glsl")).string();
+}
+
 bool FindScene(const std::string& nameOrFile, SceneInfo* out, std::string* error) {
-    fs::path asFile(nameOrFile);
-    if (nameOrFile.find('/') != std::string::npos || asFile.extension() == ".glsl") {
-        if (!fs::exists(asFile)) {
+    const std::string p = SceneFile(nameOrFile);
+    if (p == nameOrFile) {
+        if (!fs::exists(p)) {
             *error = "scene file '" + nameOrFile + "' does not exist";
             return false;
         }
         return LoadScene(nameOrFile, out, error);
     }
-    fs::path p = fs::path(DataRoot()) / "shaders" / "scenes" / (nameOrFile + ".glsl");
     if (!fs::exists(p)) {
         std::string known;
         for (const auto& n : ListScenes()) known += (known.empty() ? "" : ", ") + n;
         *error = "unknown scene '" + nameOrFile + "', expected one of: " + known;
         return false;
     }
-    return LoadScene(p.string(), out, error);
+    return LoadScene(p, out, error);
 }
 
 bool ParseNormalMethod(const std::string& name, int* method, std::string* error) {

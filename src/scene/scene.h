@@ -72,6 +72,8 @@ bool ParseSceneText(const std::string& text, const std::string& path, SceneInfo*
 
 // A scene by name ("midi") or by file path. Error lists the known scenes.
 bool FindScene(const std::string& nameOrFile, SceneInfo* out, std::string* error);
+// The file FindScene reads: a path as given (it has a '/' or ends in .glsl), else shaders/scenes/NAME.glsl.
+std::string SceneFile(const std::string& nameOrFile);
 
 // Names of the scenes in shaders/scenes, sorted.
 std::vector<std::string> ListScenes();

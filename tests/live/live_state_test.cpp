@@ -25,10 +25,7 @@ OscArg Str(const std::string& s) { OscArg a; a.type = 's'; a.s = s; return a; }
 OscArg Int(int32_t i) { OscArg a; a.type = 'i'; a.i = i; return a; }
 OscArg Float(float f) { OscArg a; a.type = 'f'; a.f = f; return a; }
 
-LiveState OpenMidi(const std::string& preset = "") {
-    ShowOptions so;
-    if (preset.empty()) so.scene = "midi";
-    so.preset = preset;
+LiveState Open(ShowOptions so) {
     so.path = "fragment";
     LiveState s;
     std::string err;
@@ -36,6 +33,13 @@ LiveState OpenMidi(const std::string& preset = "") {
     REQUIRE(OpenLiveState(so, "", &s, &err));
     s.report.print = false;
     return s;
+}
+
+LiveState OpenMidi(const std::string& preset = "") {
+    ShowOptions so;
+    if (preset.empty()) so.scene = "midi";
+    so.preset = preset;
+    return Open(so);
 }
 
 ParamDecl Decl(const std::string& name, float lo, float hi, float def) {
@@ -177,12 +181,7 @@ TEST_CASE("live_state presets: while the scene on stage or its post chain is sav
     ShowOptions so;
     so.scene = scene.string();
     so.post = post.string();
-    so.path = "fragment";
-    LiveState s;
-    std::string err;
-    INFO(err);
-    REQUIRE(OpenLiveState(so, "", &s, &err));
-    s.report.print = false;
+    LiveState s = Open(so);
     const fs::path preset = dir / "p.json";
     std::ofstream(preset) << "{\"scene\": \"" << scene.string() << "\", \"params\": {\"twist\": 0.25, \"threshold\": 0.5}}\n";
 
