@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # What a save costs the frames of `sdfvj live` on this machine: in-process reloads against
-# `--render-process`, each mode in its own show, the modes interleaved save by save.
+# `--render-process` (or, with --post, the chain in contexts of its own against the window's), each mode in
+# its own show, one after the other.
 #
 #   scripts/live_gaps.sh [--scene NAME] [--post NAME] [--size WxH] [--saves N] [--bin PATH]
 #
 #   --post NAME   the show runs the ISF post effect shaders/isf/NAME.fs over the scene, and the saves
-#                 go to that file instead of the scene (what a post effect's reload costs the frames)
+#                 go to that file instead of the scene (what a post effect's reload costs the frames).
+#                 The modes are then the chain in contexts of its own (the default) against the chain
+#                 in the window's context (SDFVJ_POST_CONTEXTS=0), both in-process.
 #
 # Each show runs in an Xvfb display with SDFVJ_ROOT at a temporary copy of shaders/, the drivers'
 # shader disk caches off (every save is a compile). Every 4 s the scene gets a new constant (a
@@ -35,15 +38,18 @@ xvfb=$!
 trap 'kill $xvfb 2>/dev/null; kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
 sleep 1
 export MESA_SHADER_CACHE_DISABLE=true __GL_SHADER_DISK_CACHE=0 JACK_NO_START_SERVER=1
-run_mode() {   # $1: in-process | render-process
-    local mode=$1 root=$work/$1 extra=()
+modes="in-process render-process"
+[ -n "$post" ] && modes="post-own-contexts post-window-context"
+run_mode() {   # $1: one of $modes
+    local mode=$1 root=$work/$1 extra=() contexts=1
     mkdir -p "$root"
     cp -r "$repo/shaders" "$root/"
     [ "$mode" = render-process ] && extra=(--render-process)
+    [ "$mode" = post-window-context ] && contexts=0
     local file=$root/shaders/scenes/$scene.glsl
     if [ -n "$post" ]; then file=$root/shaders/isf/$post.fs; extra+=(--post "$post"); fi
     cp "$file" "$root/original.glsl"
-    (DISPLAY=$display SDFVJ_ROOT=$root exec "$bin" live --scene "$scene" --size "$size" --path fragment --midi none \
+    (DISPLAY=$display SDFVJ_ROOT=$root SDFVJ_POST_CONTEXTS=$contexts exec "$bin" live --scene "$scene" --size "$size" --path fragment --midi none \
         --osc-port 0 --hide-overlay --log-params "$root/params.log" --seconds $((6 + 4 * saves)) "${extra[@]}") \
         >"$root/out.log" 2>&1 &
     local pid=$!
@@ -58,11 +64,11 @@ run_mode() {   # $1: in-process | render-process
     done
     wait $pid || true
 }
-for mode in in-process render-process; do run_mode $mode; done
-python3 - "$work" "$saves" <<'PY'
+for mode in $modes; do run_mode $mode; done
+python3 - "$work" "$saves" $modes <<'PY'
 import re, statistics, sys, os
 work, saves = sys.argv[1], int(sys.argv[2])
-for mode in ("in-process", "render-process"):
+for mode in sys.argv[3:]:
     root = os.path.join(work, mode)
     t = [float(l.split()[0]) for l in open(os.path.join(root, "params.log")) if l.strip()]
     gaps = [(t[i] - t[i - 1]) * 1000 for i in range(1, len(t))]
@@ -76,6 +82,6 @@ for mode in ("in-process", "render-process"):
         window = [(gaps[i - 1], t[i] - at) for i in range(1, len(t)) if at - 0.2 <= t[i] <= at + 3]
         rows.append(max(window) if window else (float("nan"), 0))
     comp = ", ".join(f"{int(b) + int(u)}" for b, u in builds[1:]) or "not reported"
-    print(f"{mode:15s} median frame {med:6.1f} ms; longest frame after each save (when): " +
+    print(f"{mode:20s} median frame {med:6.1f} ms; longest frame after each save (when): " +
           " / ".join(f"{r:.0f} (+{a:.2f} s)" for r, a in rows) + f" ms; compiles (build + first use): {comp} ms")
 PY

@@ -367,7 +367,7 @@ void LiveSession::DrawScene(double now) {
         FrameInputs old = in_;
         old.params = fade_.params;
         fadeRenderer_.Draw(*fade_.program, fade_.scene, old);
-        const bool post = post_ && !post_->Empty() && postInput_.Resize(rw, rh, &error);
+        const bool post = HasPost() && postInput_.Resize(rw, rh, &error);
         crossfade_.Draw(fadeRenderer_.Texture(), renderer_.Texture(), Ease(fade_.easing, t),
                         post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);
         if (post) DrawPost(postInput_.Texture(), rw, rh, now);
@@ -437,6 +437,7 @@ int RunLive(const LiveOptions& o) {
     }
     LiveSession session(o, std::move(state), window.Get());   // GL objects die before the window
     if (o.renderProcess) session.SetImporter(window.OpenImporter());
+    session.SetPostContexts(window.PostContexts());
     if (!session.Start(&error)) {
         std::fprintf(stderr, "sdfvj live: %s\n", error.c_str());
         return 2;

@@ -30,6 +30,7 @@
 #include "render/import_thread.h"
 #include "render/field_morph.h"
 #include "isf/isf.h"
+#include "isf/isf_host.h"
 #include "audio/audio.h"
 #include "render/live_program.h"
 #include "shader/watch.h"
@@ -52,6 +53,8 @@ public:
             ImGui::DestroyContext();
         }
         if (importWindow_) glfwDestroyWindow(importWindow_);
+        for (GLFWwindow* p : postWindows_)
+            if (p) glfwDestroyWindow(p);
         if (compileWindow_) glfwDestroyWindow(compileWindow_);
         if (window_) glfwDestroyWindow(window_);
         if (glfw_) glfwTerminate();
@@ -140,9 +143,32 @@ public:
         if (!importer_->Ok()) importer_.reset();
         return importer_.get();
     }
+    // The post chain's two contexts (isf/isf_host.h), each a hidden window's that shares objects
+    // with this one; opened at the first post chain. Empty where they cannot be made: the chain
+    // builds and draws in the window's context.
+    std::function<std::array<IsfHostContext, 2>()> PostContexts() {
+        return [this] {
+            std::array<IsfHostContext, 2> out;
+            glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+            for (GLFWwindow*& p : postWindows_)
+                if (!p) p = glfwCreateWindow(1, 1, "sdfvj post", nullptr, window_);
+            glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+            if (!postWindows_[0] || !postWindows_[1]) return out;
+            for (size_t i = 0; i < 2; ++i) {
+                GLFWwindow* p = postWindows_[i];
+                out[i] = {[p] {
+                              glfwMakeContextCurrent(p);
+                              return glfwGetCurrentContext() == p;
+                          },
+                          [] { glfwMakeContextCurrent(nullptr); }};
+            }
+            return out;
+        };
+    }
 private:
     bool glfw_ = false, imgui_ = false;
     GLFWwindow* window_ = nullptr;
+    std::array<GLFWwindow*, 2> postWindows_{};
     GLFWwindow* compileWindow_ = nullptr;
     GLFWwindow* importWindow_ = nullptr;
     std::unique_ptr<CompileWorker> worker_;
@@ -161,6 +187,8 @@ public:
     // --render-process: the thread that imports each new server's images (LiveWindow::OpenImporter).
     // Before Start; it outlives the session.
     void SetImporter(ImportThread* importer) { importer_ = importer; }
+    // The post chain's own contexts, opened when a chain is first asked for (LiveWindow::PostContexts).
+    void SetPostContexts(std::function<std::array<IsfHostContext, 2>()> open) { postContexts_ = std::move(open); }
     // One frame. False when the show is over (Esc, window closed, --seconds).
     bool Frame();
     void Finish();
@@ -251,9 +279,12 @@ private:
     FieldMorph fieldMorph_;
     // Audio through JACK (--audio): its features enter the queue each frame like a knob.
     std::unique_ptr<AudioInput> audio_;
-    // The ISF post chain (live_post.cpp) and its inputs, which join the scene's parameters.
-    std::unique_ptr<IsfChain> post_;
-    std::string postShown_;
+    // The ISF post chain (live_post.cpp) and its inputs, which join the scene's parameters. It is
+    // built, and drawn, in contexts of its own (isf/isf_host.h), so a save holds no frame.
+    std::unique_ptr<IsfHost> post_;
+    std::function<std::array<IsfHostContext, 2>()> postContexts_;
+    std::string postShown_, postSay_;
+    bool HasPost() const { return post_ && !post_->Chain().Empty(); }
     std::vector<ParamDecl> postDecls_;
     FrameRenderer postInput_;   // a crossfade's mix, when a post chain filters it
     double postLast_ = 0.0;

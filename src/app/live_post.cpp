@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 
@@ -14,28 +15,57 @@ namespace fs = std::filesystem;
 
 namespace sdfvj {
 
-// Loads the chain the show asks for (state_.show.post); a chain that fails to load keeps the one
-// on screen and says why.
+// The chain the show asks for (state_.show.post) is requested from the host, which builds it
+// where no frame waits; until it is built the chain on screen keeps drawing. A chain whose files
+// do not parse, or whose build fails, keeps the one on screen and says why.
 void LiveSession::UpdatePost() {
+    if (post_) {
+        IsfHost::Done done;
+        if (post_->Poll(&done)) {
+            const char* keep = done.adopted ? "" : " — keeping the post chain on screen";
+            for (const std::string& e : done.errors) state_.report.Say(e + keep);
+            postDecls_ = post_->Chain().Params();
+            if (done.adopted) {
+                for (const std::string& line : post_->Chain().Notices()) state_.report.Say(line);
+                if (!postSay_.empty()) state_.report.Say(postSay_);
+                postSay_.clear();
+            }
+        }
+    }
     if (state_.show.post == postShown_) return;
     postShown_ = state_.show.post;
-    if (postShown_.empty()) {
-        post_ = std::make_unique<IsfChain>();
-        postDecls_.clear();
-        return;
+    std::vector<IsfFile> files;
+    for (const std::string& f : postShown_.empty() ? std::vector<std::string>{} : SplitIsfList(postShown_)) {
+        IsfFile file;
+        std::string error;
+        if (!LoadIsfFile(ResolveIsfPath(f), &file, &error)) {
+            state_.report.Say(error + " — keeping the post chain on screen");
+            return;
+        }
+        Watch(fs::path(file.path).parent_path().string());
+        files.push_back(std::move(file));
     }
-    auto chain = std::make_unique<IsfChain>();
-    std::string error;
-    const std::vector<std::string> files = SplitIsfList(postShown_);
-    if (!chain->Load(files, &error)) {
-        state_.report.Say(error + " — keeping the post chain on screen");
-        return;
+    if (!post_) {
+        std::array<IsfHostContext, 2> own;
+        // SDFVJ_POST_CONTEXTS=0: in the window's context, as before session 31 (scripts/live_gaps.sh --post compares).
+        const char* env = std::getenv("SDFVJ_POST_CONTEXTS");
+        if (postContexts_ && !files.empty() && !(env && std::string(env) == "0")) own = postContexts_();
+        post_ = own[0].makeCurrent ? std::make_unique<IsfHost>(own, [w = window_] {
+            glfwMakeContextCurrent(w);
+            return glfwGetCurrentContext() == w;
+        })
+                                   : std::make_unique<IsfHost>();
+        if (!files.empty() && !post_->OwnContexts())
+            state_.report.Say("sdfvj live: no context of its own for the post chain; its builds hold a frame");
     }
-    for (const std::string& line : chain->Notices()) state_.report.Say(line);
-    post_ = std::move(chain);
-    postDecls_ = post_->Params();
-    for (const std::string& f : files) Watch(fs::path(ResolveIsfPath(f)).parent_path().string());
-    state_.report.Say("post: " + postShown_);
+    // The new chain's inputs join the show's parameters now (a preset's values for them apply).
+    postDecls_.clear();
+    for (const IsfFile& f : files)
+        for (const ParamDecl& d : IsfParams(f))
+            if (std::none_of(postDecls_.begin(), postDecls_.end(), [&](const ParamDecl& x) { return x.name == d.name; }))
+                postDecls_.push_back(d);
+    postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
+    post_->Request(std::move(files), Scaled(fbw_), Scaled(fbh_));
 }
 
 // The header the show's parameters follow: the scene's inputs, then the post chain's.
@@ -47,15 +77,14 @@ SceneInfo LiveSession::SceneWithPost() const {
     return s;
 }
 
-// A saved .fs or .vs of the chain: rebuilt; a broken save is reported with its file:line.
+// A saved .fs or .vs of the chain: rebuilt where no frame waits; a broken save is reported with
+// its file:line and the last good file of that stage stays.
 void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
-    if (!post_ || post_->Empty() || changed.empty()) return;
+    if (!post_ || post_->Wanted().empty() || changed.empty()) return;
     std::vector<std::string> errors;
-    if (post_->ReloadIfChanged(&errors)) {
-        postDecls_ = post_->Params();
-        state_.report.Say("post reloaded");
-    }
+    if (post_->Reload(&errors)) postSay_ = "post reloaded";
     for (const std::string& e : errors) state_.report.Say(e + " — the last good post effect stays");
+    if (errors.empty() && !post_->Busy()) postDecls_ = post_->Chain().Params();   // a header-only change
 }
 
 // renderer_'s rw x rh frame to the window: through the post chain when there is one, else a blit
@@ -70,7 +99,7 @@ void LiveSession::PresentRenderer(int rw, int rh, double now) {
 
 // Runs the chain over `texture` (w x h) and draws its output to the window; false without one.
 bool LiveSession::DrawPost(unsigned texture, int w, int h, double now) {
-    if (!post_ || post_->Empty()) return false;
+    if (!HasPost()) return false;
     std::string error;
     if (!crossfade_.Init(&error)) return false;
     IsfFrameInputs in;

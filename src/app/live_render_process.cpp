@@ -62,7 +62,7 @@ void LiveSession::DrawServerScene(double now, int rw, int rh) {
         old.params = fade_.params;
         if (const unsigned before = servers_->PreviousFrame(old)) {
             std::string error;
-            const bool post = post_ && !post_->Empty() && postInput_.Resize(rw, rh, &error);
+            const bool post = HasPost() && postInput_.Resize(rw, rh, &error);
             crossfade_.Draw(before, texture, Ease(fade_.easing, t), post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);
             if (post) DrawPost(postInput_.Texture(), rw, rh, now);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -135,6 +135,14 @@ public:
     // Parses, translates, compiles and imports. On failure the effect keeps what it had before
     // (keep-last-good) and error is one or more "file:line: ..." lines.
     bool Load(const std::string& path, std::string* error);
+    // The same from a file already parsed (LoadIsfFile): nothing is read from disk.
+    bool LoadParsed(IsfFile file, std::string* error);
+    // Copies `other`'s last content of each TARGET this effect also has, at the same size and
+    // format (a rebuilt effect keeps its PERSISTENT feedback). Textures are shared between
+    // contexts, so `other` may have been built in another one.
+    void CopyBuffersFrom(const IsfEffect& other);
+    // Every target back to transparent black, as a new effect's are.
+    void ClearBuffers();
     bool IsValid() const;
     const IsfFile& File() const;
     const std::vector<ParamDecl>& Params() const;
@@ -147,6 +155,8 @@ public:
     int ReloadIfChanged(std::string* error);
     // Programs compiled and linked so far (a reload that compiles nothing leaves it).
     int ProgramsBuilt() const;
+    // ShaderSource::hash of the vertex and fragment stages the program was built from.
+    std::pair<uint64_t, uint64_t> ProgramHash() const;
 private:
     struct State;
     std::unique_ptr<State> s_;
@@ -157,6 +167,10 @@ class IsfChain {
 public:
     // Loads every file; false with the first file's error (nothing replaced on failure).
     bool Load(const std::vector<std::string>& paths, std::string* error);
+    void Add(std::unique_ptr<IsfEffect> effect) { effects_.push_back(std::move(effect)); }
+    // Each stage's feedback from `other`'s stage at the same place in the chain, of the same file.
+    void CopyBuffersFrom(const IsfChain& other);
+    void ClearBuffers();
     bool Empty() const { return effects_.empty(); }
     size_t Size() const { return effects_.size(); }
     IsfEffect& Stage(size_t i) { return *effects_[i]; }
@@ -172,6 +186,9 @@ public:
 private:
     std::vector<std::unique_ptr<IsfEffect>> effects_;
 };
+
+// A hash of an ISF file's bytes and of its .vs beside it: what a save changes.
+uint64_t IsfFilesHash(const std::string& fsPath);
 
 // The parameters of several files, parsed only (no GL): for sorting --param before GL exists.
 bool IsfListParams(const std::vector<std::string>& paths, std::vector<ParamDecl>* out, std::string* error);

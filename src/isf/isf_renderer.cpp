@@ -85,7 +85,9 @@ unsigned BuildProgram(const IsfSources& src, const std::string& path, std::strin
     return 0;
 }
 
-uint64_t FilesHash(const std::string& fsPath) {
+}  // namespace
+
+uint64_t IsfFilesHash(const std::string& fsPath) {
     std::string bytes;
     for (std::string p : {fsPath, fsPath.substr(0, fsPath.size() - 3) + ".vs"}) {
         std::ifstream in(p, std::ios::binary);
@@ -95,8 +97,6 @@ uint64_t FilesHash(const std::string& fsPath) {
     }
     return HashBytes(bytes);
 }
-
-}  // namespace
 
 struct IsfEffect::State {
     std::string path;
@@ -191,16 +191,22 @@ unsigned UploadAudioRow(unsigned* tex, int* size, std::span<const float> values,
 
 bool IsfEffect::IsValid() const { return s_->program != 0; }
 int IsfEffect::ProgramsBuilt() const { return s_->built; }
+std::pair<uint64_t, uint64_t> IsfEffect::ProgramHash() const { return s_->programHash; }
 const IsfFile& IsfEffect::File() const { return s_->file; }
 const std::vector<ParamDecl>& IsfEffect::Params() const { return s_->params; }
 
 bool IsfEffect::Load(const std::string& path, std::string* error) {
-    State& s = *s_;
-    s.hash = FilesHash(path);
-    s.path = path;
+    s_->hash = IsfFilesHash(path);
+    s_->path = path;
     IsfFile file;
+    return LoadIsfFile(path, &file, error) && LoadParsed(std::move(file), error);
+}
+
+bool IsfEffect::LoadParsed(IsfFile file, std::string* error) {
+    State& s = *s_;
+    const std::string path = file.path;
     IsfSources src;
-    if (!LoadIsfFile(path, &file, error) || !TranslateIsf(file, &src, error)) return false;
+    if (!TranslateIsf(file, &src, error)) return false;
     // The GLSL of the program on screen (a save that puts back the last good file after a broken
     // one, or changes only what the GLSL does not see): nothing to compile, and no frame waits.
     const std::pair<uint64_t, uint64_t> programHash{src.vertex.hash, src.fragment.hash};
@@ -257,8 +263,25 @@ bool IsfEffect::Load(const std::string& path, std::string* error) {
     return true;
 }
 
+void IsfEffect::ClearBuffers() {
+    const float zero[4] = {0, 0, 0, 0};
+    for (auto& [target, b] : s_->buffers)
+        for (unsigned t : b.tex)
+            if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+void IsfEffect::CopyBuffersFrom(const IsfEffect& other) {
+    for (auto& [target, b] : s_->buffers) {
+        auto it = other.s_->buffers.find(target);
+        if (it == other.s_->buffers.end() || !b.tex[0]) continue;
+        const Buffer& o = it->second;
+        if (!o.tex[0] || o.w != b.w || o.h != b.h || o.isFloat != b.isFloat) continue;
+        glCopyImageSubData(o.Front(), GL_TEXTURE_2D, 0, 0, 0, 0, b.Front(), GL_TEXTURE_2D, 0, 0, 0, 0, b.w, b.h, 1);
+    }
+}
+
 int IsfEffect::ReloadIfChanged(std::string* error) {
-    if (s_->path.empty() || FilesHash(s_->path) == s_->hash) return 0;
+    if (s_->path.empty() || IsfFilesHash(s_->path) == s_->hash) return 0;
     return Load(s_->path, error) ? 1 : -1;   // Load records the new hash either way: one report per save
 }
 
@@ -390,6 +413,15 @@ bool IsfChain::Load(const std::vector<std::string>& paths, std::string* error) {
     }
     effects_ = std::move(loaded);
     return true;
+}
+
+void IsfChain::ClearBuffers() {
+    for (auto& e : effects_) e->ClearBuffers();
+}
+
+void IsfChain::CopyBuffersFrom(const IsfChain& other) {
+    for (size_t i = 0; i < effects_.size() && i < other.effects_.size(); ++i)
+        if (effects_[i]->File().path == other.effects_[i]->File().path) effects_[i]->CopyBuffersFrom(*other.effects_[i]);
 }
 
 std::vector<std::string> IsfChain::Notices() const {

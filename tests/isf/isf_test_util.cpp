@@ -14,14 +14,22 @@ namespace fs = std::filesystem;
 
 namespace sdfvj::isftest {
 
+namespace {
+std::unique_ptr<HeadlessContext> ctx;
+}  // namespace
+
 void RequireGl() {
-    static std::unique_ptr<HeadlessContext> ctx;
     static std::string error;
     if (!ctx && error.empty()) {
         auto c = std::make_unique<HeadlessContext>();
         if (c->Create(&error)) ctx = std::move(c);
     }
     if (!ctx) FAIL("no headless GL: " << error);
+}
+
+HeadlessContext& MainContext() {
+    RequireGl();
+    return *ctx;
 }
 
 unsigned MakeTexture(int w, int h, const std::function<std::array<uint8_t, 4>(int x, int y)>& f) {

@@ -8,11 +8,14 @@
 #include <vector>
 
 #include "isf/isf.h"
+#include "render/render.h"
 
 namespace sdfvj::isftest {
 
 // FAILs the test when there is no GL 4.5 through EGL.
 void RequireGl();
+// The context RequireGl made current (for contexts that share objects with it).
+HeadlessContext& MainContext();
 
 struct Img {
     int w = 0, h = 0;

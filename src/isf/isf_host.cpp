@@ -1,0 +1,284 @@
+// IsfHost (isf_host.h): post chains built and first drawn on a worker thread's context, drawn
+// on the render thread with that context current.
+#include "isf/isf_host.h"
+
+#include <epoxy/gl.h>
+
+#include <chrono>
+
+namespace sdfvj {
+
+namespace {
+
+// Orders the GL commands of the context current now before those of the next one made current
+// on this thread (the render thread switches contexts twice a frame).
+void FenceThen(const std::function<bool()>& makeNextCurrent) {
+    GLsync sync = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    glFlush();
+    makeNextCurrent();
+    if (sync) {
+        glWaitSync(sync, 0, GL_TIMEOUT_IGNORED);
+        glDeleteSync(sync);
+    }
+}
+
+}  // namespace
+
+IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()) {}
+
+IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent)
+    : contexts_(std::move(contexts)), main_(std::move(makeMainCurrent)), chain_(std::make_unique<IsfChain>()) {
+    own_ = contexts_[0].makeCurrent && contexts_[1].makeCurrent && main_;
+    if (!own_) return;
+    // Both contexts must be usable from this thread and the worker's: try each once here.
+    for (int i = 0; i < 2 && own_; ++i) own_ = contexts_[i].makeCurrent();
+    main_();
+    if (own_) thread_ = std::thread([this] { Loop(); });
+}
+
+IsfHost::~IsfHost() {
+    if (thread_.joinable()) {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        wake_.notify_all();
+        thread_.join();
+    }
+    // A finished build nobody adopted, and the chain on screen, go with the contexts they live in.
+    if (result_.chain && own_ && UseContext(current_ ^ 1)) result_.chain.reset();
+    if (own_ && UseContext(current_)) chain_.reset();
+    if (own_) UseContext(-1);
+    result_.chain.reset();
+    chain_.reset();
+}
+
+bool IsfHost::UseContext(int i) {
+    return i < 0 ? main_() : contexts_[(size_t)i].makeCurrent();
+}
+
+bool IsfHost::Busy() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return running_ || job_ || result_.done || queued_;
+}
+
+void IsfHost::Request(std::vector<IsfFile> files, int w, int h) {
+    if (w > 0 && h > 0) {
+        lastW_ = w;
+        lastH_ = h;
+    }
+    hashes_.clear();
+    for (const IsfFile& f : files) hashes_.push_back(IsfFilesHash(f.path));
+    wanted_ = files;
+    Submit(std::move(files), {});
+}
+
+bool IsfHost::Reload(std::vector<std::string>* errors) {
+    if (wanted_.empty()) return false;
+    std::vector<IsfFile> next = wanted_;
+    bool changed = false, program = false;
+    for (size_t i = 0; i < wanted_.size(); ++i) {
+        const uint64_t hash = IsfFilesHash(wanted_[i].path);
+        if (hash == hashes_[i]) continue;
+        hashes_[i] = hash;   // read once: one report per save
+        IsfFile file;
+        IsfSources src, was;
+        std::string error;
+        if (!LoadIsfFile(wanted_[i].path, &file, &error) || !TranslateIsf(file, &src, &error)) {
+            errors->push_back(error + " — still showing the previous shader");
+            continue;
+        }
+        changed = true;
+        if (!TranslateIsf(wanted_[i], &was, &error) || src.vertex.hash != was.vertex.hash ||
+            src.fragment.hash != was.fragment.hash || !file.imports.empty())
+            program = true;
+        next[i] = std::move(file);
+    }
+    if (!changed) return false;
+    const std::vector<IsfFile> fallback = wanted_;
+    wanted_ = next;
+    // The GLSL on screen already (a header-only change, or the last good file put back after a
+    // broken save): the chain on screen takes the new headers without compiling.
+    if (!program && !Busy() && chain_->Size() == next.size()) {
+        if (own_) UseContext(current_);
+        for (size_t i = 0; i < next.size(); ++i) {
+            std::string error;
+            if (!chain_->Stage(i).LoadParsed(next[i], &error)) errors->push_back(error + " — still showing the previous shader");
+        }
+        if (own_) UseContext(-1);
+        shown_ = next;
+        return false;
+    }
+    Submit(std::move(next), fallback);
+    return true;
+}
+
+void IsfHost::Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback) {
+    Job job;
+    job.files = std::move(files);
+    job.fallback = std::move(fallback);
+    job.w = lastW_ > 0 ? lastW_ : 64;
+    job.h = lastH_ > 0 ? lastH_ : 64;
+    job.inputFormat = lastFormat_;
+    job.waveSamples = lastWave_;
+    job.spectrumBins = lastSpectrum_;
+    if (!own_) {   // here and now: this frame waits for the build
+        Result r;
+        Build(job, &r);
+        std::lock_guard<std::mutex> lock(mutex_);
+        result_ = std::move(r);
+        result_.done = true;
+        return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (running_ || job_ || result_.done) {   // one build at a time: this one follows the running one
+        queued_ = true;
+        queuedFallback_ = std::move(job.fallback);
+        return;
+    }
+    job_ = std::make_unique<Job>(std::move(job));
+    wake_.notify_all();
+}
+
+void IsfHost::Build(const Job& job, Result* out) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<IsfFile> files = job.files;
+    auto chain = std::make_unique<IsfChain>();
+    if (!files.empty()) {
+        // Stage by stage, so a stage that does not compile falls back to its last good file.
+        for (size_t i = 0; i < files.size(); ++i) {
+            auto effect = std::make_unique<IsfEffect>();
+            std::string error;
+            if (!effect->LoadParsed(files[i], &error)) {
+                out->errors.push_back(error + " — still showing the previous shader");
+                const IsfFile* last = nullptr;
+                for (const IsfFile& f : job.fallback)
+                    if (f.path == files[i].path) last = &f;
+                effect = std::make_unique<IsfEffect>();
+                if (!last || !effect->LoadParsed(*last, &error)) return;   // nothing good to build: the chain on screen stays
+                files[i] = *last;
+            }
+            chain->Add(std::move(effect));
+        }
+        // The first draw, as the show's frames will draw it: the driver's compile at first use
+        // happens here. The same size, input format and audio texture formats as the last frame.
+        unsigned input = 0;
+        if (job.inputFormat) {
+            glCreateTextures(GL_TEXTURE_2D, 1, &input);
+            glTextureStorage2D(input, 1, job.inputFormat, job.w, job.h);
+        }
+        IsfFrameInputs in;
+        std::vector<float> wave((size_t)job.waveSamples, 0.0f), spectrum((size_t)job.spectrumBins, 0.0f);
+        in.audioWaveform = wave;
+        in.audioSpectrum = spectrum;
+        chain->Render(input, job.w, job.h, in);
+        chain->ClearBuffers();   // what that draw left in PERSISTENT targets is not the show's
+        glFinish();
+        if (input) glDeleteTextures(1, &input);
+    }
+    ++built_;
+    out->chain = std::move(chain);
+    out->files = std::move(files);
+    out->buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void IsfHost::Loop() {
+    int spare = 1;   // the worker's context: the one the chain on screen is not in
+    for (;;) {
+        std::unique_ptr<Job> job;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            wake_.wait(lock, [&] { return stop_ || job_; });
+            if (stop_) return;
+            job = std::move(job_);
+            running_ = true;
+            spare = current_ ^ 1;
+        }
+        Result r;
+        if (contexts_[(size_t)spare].makeCurrent()) {
+            Build(*job, &r);
+            contexts_[(size_t)spare].release();
+        } else {
+            r.errors.push_back("the post chain's build context could not be made current — keeping the chain on screen");
+        }
+        std::lock_guard<std::mutex> lock(mutex_);
+        result_ = std::move(r);
+        result_.done = true;
+        running_ = false;
+    }
+}
+
+void IsfHost::Adopt(Result& r) {
+    const int from = current_;
+    std::unique_ptr<IsfChain> old = std::move(chain_);
+    chain_ = std::move(r.chain);
+    shown_ = std::move(r.files);
+    if (own_) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        current_ ^= 1;   // the worker's next build goes to the context the old chain leaves
+    }
+    // Feedback (PERSISTENT targets) carries over; textures are shared between the contexts.
+    if (own_) UseContext(current_);
+    chain_->CopyBuffersFrom(*old);
+    if (own_) {
+        glFlush();
+        UseContext(from);   // the old chain's framebuffers and vertex arrays live in its context
+    }
+    old.reset();
+    if (own_) UseContext(-1);
+}
+
+bool IsfHost::Poll(Done* done) {
+    Result r;
+    bool next = false;
+    std::vector<IsfFile> nextFallback;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!result_.done) return false;
+        r = std::move(result_);
+        result_ = Result{};
+        next = queued_;
+        queued_ = false;
+        nextFallback = std::move(queuedFallback_);
+        queuedFallback_.clear();
+    }
+    *done = Done{};
+    done->errors = r.errors;
+    done->buildMs = r.buildMs;
+    if (r.chain) {
+        Adopt(r);
+        done->adopted = true;
+    }
+    if (next) {
+        Submit(wanted_, nextFallback);
+    } else if (wanted_.size() != shown_.size() || !done->adopted) {
+        // A request that failed: what is on screen is what the next save edits.
+        wanted_ = shown_;
+        hashes_.clear();
+        for (const IsfFile& f : wanted_) hashes_.push_back(IsfFilesHash(f.path));
+    } else {
+        wanted_ = shown_;   // a stage that fell back to its last good file is that file again
+    }
+    return true;
+}
+
+unsigned IsfHost::Render(unsigned input, int w, int h, const IsfFrameInputs& in) {
+    lastW_ = w;
+    lastH_ = h;
+    lastWave_ = (int)in.audioWaveform.size();
+    lastSpectrum_ = (int)in.audioSpectrum.size();
+    if (input != lastInput_) {   // what the next build's first draw reads: the same format
+        lastInput_ = input;
+        int format = 0;
+        if (input) glGetTextureLevelParameteriv(input, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+        lastFormat_ = (unsigned)format;
+    }
+    if (chain_->Empty()) return input;
+    if (!own_) return chain_->Render(input, w, h, in);
+    FenceThen([&] { return UseContext(current_); });
+    const unsigned out = chain_->Render(input, w, h, in);
+    FenceThen([&] { return UseContext(-1); });
+    return out;
+}
+
+}  // namespace sdfvj

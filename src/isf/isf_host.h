@@ -1,0 +1,115 @@
+// IsfHost: the post chain a show draws, built where no frame waits for it (issue 12).
+//
+// A driver may compile a program's pixel code at its first draw in each context: on llvmpipe,
+// bloom's first draw takes 120-360 ms, and a program drawn first in a second, shared context
+// still costs the render thread's context nearly all of it again (100 against 118 ms, measured).
+// So a chain is built *and drawn* in a context of its own. A worker thread builds each new chain
+// in the spare of two contexts that share objects with the render thread's, and draws it once at
+// the show's size with the show's kind of input. The render thread then draws the chain with that
+// context current, between fences, and deletes the chain it replaced.
+//
+//   IsfHost host({ctxA, ctxB}, [&] { return MakeMainCurrent(); });
+//   host.Request(files, w, h);                   // files parsed already (LoadIsfFile)
+//   each frame: host.Poll(&done); out = host.Render(sceneTexture, w, h, in);
+//   on a file change: host.Reload(&errors);      // changed stages rebuilt, broken ones keep their last good file
+//
+// Without contexts of its own (none given, or one cannot be made current) the chain is built and
+// drawn in the render thread's context, and a build holds that frame. Render thread only.
+#pragma once
+#include <array>
+#include <condition_variable>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "isf/isf.h"
+
+namespace sdfvj {
+
+struct IsfHostContext {
+    std::function<bool()> makeCurrent;   // on the calling thread; false if it could not be
+    std::function<void()> release;       // no context current on the calling thread
+};
+
+class IsfHost {
+public:
+    IsfHost();   // builds and draws in the render thread's context
+    IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent);
+    ~IsfHost();   // render thread, its own context current
+    IsfHost(const IsfHost&) = delete;
+    IsfHost& operator=(const IsfHost&) = delete;
+
+    bool OwnContexts() const { return own_; }
+    // The chain of these files (an empty list: none). With contexts of its own it returns at
+    // once and the chain on screen keeps drawing until the new one is built; Poll says when.
+    void Request(std::vector<IsfFile> files, int w, int h);
+    // A watched file changed: each stage whose file's bytes changed and still parses is rebuilt
+    // with the rest in a new chain; one that does not parse adds a "file:line: ..." line to
+    // `errors` and keeps its last good file. A change only the header sees (the GLSL is the
+    // program's) is applied to the chain on screen and compiles nothing. True when a rebuild started.
+    bool Reload(std::vector<std::string>* errors);
+
+    struct Done {
+        bool adopted = false;              // a new chain is on screen
+        std::vector<std::string> errors;   // "file:line: ..." of what did not build (the chain on screen stays)
+        double buildMs = 0.0;              // build and first draw, on the worker
+    };
+    // Each frame, before Render: true when a requested build finished (adopted or failed).
+    bool Poll(Done* done);
+    bool Busy() const;
+    // The chain on screen (may be empty) and the files the latest request or reload asked for.
+    const IsfChain& Chain() const { return *chain_; }
+    const std::vector<IsfFile>& Wanted() const { return wanted_; }
+    // Runs the chain on screen over `input` (w x h) and returns its output texture (shared with
+    // the render thread's context, valid until the next Render); `input` when the chain is empty.
+    unsigned Render(unsigned input, int w, int h, const IsfFrameInputs& in);
+    // Chains built so far (adopted or not): a save that changes only the header builds none.
+    int ChainsBuilt() const { return built_; }
+
+private:
+    struct Job {
+        std::vector<IsfFile> files, fallback;   // fallback[i]: stage i's last good file (empty path: none)
+        int w = 0, h = 0;
+        unsigned inputFormat = 0;               // 0: no input (a generator)
+        int waveSamples = 0, spectrumBins = 0;  // the audio the last frame had (0: silence)
+    };
+    struct Result {
+        std::unique_ptr<IsfChain> chain;
+        std::vector<IsfFile> files;             // what each stage was built from
+        std::vector<std::string> errors;
+        double buildMs = 0.0;
+        bool done = false;
+    };
+    void Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback);
+    void Build(const Job& job, Result* out);   // on the context current on the calling thread
+    void Loop();
+    void Adopt(Result& r);
+    bool UseContext(int i);                    // render thread: context i current (or main for -1)
+
+    bool own_ = false;
+    std::array<IsfHostContext, 2> contexts_;
+    std::function<bool()> main_;
+    int current_ = 0;                          // the context the chain on screen lives in
+    std::unique_ptr<IsfChain> chain_;
+    std::vector<IsfFile> shown_;               // the files of the chain on screen
+    std::vector<IsfFile> wanted_;              // the latest request (last good per stage)
+    std::vector<uint64_t> hashes_;             // IsfFilesHash of each wanted file when last read
+    bool queued_ = false;                      // a request came while a build ran
+    std::vector<IsfFile> queuedFallback_;
+    int built_ = 0;
+    // The last frame's input, which the next build's first draw copies.
+    unsigned lastInput_ = 0, lastFormat_ = 0;
+    int lastW_ = 0, lastH_ = 0, lastWave_ = 0, lastSpectrum_ = 0;
+
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    std::unique_ptr<Job> job_;                 // waiting for the worker
+    Result result_;
+    bool running_ = false, stop_ = false;
+    std::thread thread_;
+};
+
+}  // namespace sdfvj
