@@ -23,6 +23,7 @@
 #                                 render-scale rows), s27 (scales + session 27's copies, one call),
 #                                 s29 (CONE_PAST_FLOOR, CONE_MIRROR, MANDELBULB_FEW_SFU: one call),
 #                                 s29b (the defaults: frames, the 7680x4320 show, scales);
+#                                 post (issue 12: a post effect's save, `bench post`), s31 (post + s29b);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -366,6 +367,17 @@ case "${1:-}" in
       --markdown "$out/show.md" --csv "$out/show.csv" > "$out/show.txt" 2>&1 || true
     cat "$out/show.md" 2>/dev/null; grep -h drift "$out/show.txt" || tail -5 "$out/show.txt"
     mkdir -p "$out/scales"; OUT="$out/scales" bash "$0" measure scales
+    fi
+    if [ "$part" = post ] || [ "$part" = s31 ]; then
+    # Issue 12: a post effect's save, the chain in contexts of its own (IsfHost, as live draws it)
+    # against the window's context: save -> screen, the longest frame, the steady frame (`bench post`).
+    for size in 1920x1080 3840x2160; do
+      timeout 80 bash "$0" remote bench post --size $size --rounds 5 --csv "$out/post_$size.csv" > "$out/post_$size.txt" 2>&1 || true
+      cat "$out/post_$size.txt"
+    done
+    fi
+    if [ "$part" = s31 ]; then
+    mkdir -p "$out/s29b"; OUT="$out/s29b" bash "$0" measure s29b
     fi
     if [ "$part" = scales ]; then
     # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1

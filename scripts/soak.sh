@@ -336,7 +336,7 @@ echo "OSC sent        $(sumc '^osc_') datagrams: $(count osc_valid_param) param,
 echo "MIDI sent       $(sumc '^midi_(cc|note|running|sysex|system|other|random)') messages: $(count midi_cc) CC, $(count midi_note) notes, $(count midi_sysex) sysex, $(count midi_running_status) running status, $(( $(count midi_system_or_stray) + $(count midi_random_bytes) )) stray/system/random"
 echo "MIDI replugs    $(count midi_replug) (the show said gone $gone times, listening again $reconnects times)"
 echo "saves           $(sumc '^save_(valid|broken)$'): $(count save_valid) valid, $(count save_broken) broken; $(count save_rename) rename, $(count save_in_place) in place, $(count save_two_halves) in two halves; $(count save_scene) scene, $(count save_lib) lib, $(count save_preset) preset, $(count save_mapping) mapping, $(count save_isf) ISF"
-echo "shader errors   $(grep -a -c -E '\.glsl:[0-9]' "$work/live.err") lines; reloads $(grep -a -c '^shader reloaded' "$work/live.err")"
+echo "shader errors   $(grep -a -c -E '\.(glsl|fs):[0-9]' "$work/live.err") lines; reloads $(grep -a -c '^shader reloaded' "$work/live.err") scene, $(grep -a -c '^post reloaded' "$work/live.err") post"
 if [ ${#failures[@]} = 0 ]; then
     echo "result          PASS"
 else

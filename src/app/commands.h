@@ -104,6 +104,17 @@ struct SpirvBenchOptions {
 };
 int RunSpirvBench(const SpirvBenchOptions& o);
 
+// `sdfvj bench post`: a post effect's save, the chain in contexts of its own against the window's.
+struct PostBenchOptions {
+    std::string effects = "bloom,feedback_trails";
+    std::string size = "1920x1080";
+    int rounds = 5;
+    int frames = 200;    // steady frames per way (10 interleaved blocks)
+    double fps = 60;     // frames paced like a display during saves; 0: flat out
+    std::string csv;
+};
+int RunPostBench(const PostBenchOptions& o);
+
 // `sdfvj bench reload`: save -> first frame with the new program, and the longest frame meanwhile.
 struct ReloadBenchOptions {
     std::string scene = "midi";

@@ -140,6 +140,15 @@ int main(int argc, char** argv) {
     cmdSpirv->add_option("--scene", spirvBench.scene, "scene")->capture_default_str();
     cmdSpirv->add_option("--rounds", spirvBench.rounds, "builds of each form, interleaved (median)")->capture_default_str();
     cmdSpirv->add_option("--glslang", spirvBench.glslang, "glslangValidator (default: beside sdfvj, then /usr/bin)");
+    PostBenchOptions postBench;
+    auto* cmdPost = cmdBench->add_subcommand("post", "a post effect's save: save -> screen and the longest frame meanwhile, the chain "
+                                                     "in contexts of its own (as live draws it) against the window's context");
+    cmdPost->add_option("--effects", postBench.effects, "ISF effects, comma-separated (names in shaders/isf or .fs paths)")->capture_default_str();
+    cmdPost->add_option("--size", postBench.size, "frame size")->capture_default_str();
+    cmdPost->add_option("--rounds", postBench.rounds, "saves to time per way (interleaved)")->capture_default_str();
+    cmdPost->add_option("--frames", postBench.frames, "steady frames per way (10 interleaved blocks)")->capture_default_str();
+    cmdPost->add_option("--fps", postBench.fps, "pace frames like a display during saves (0: flat out)")->capture_default_str();
+    cmdPost->add_option("--csv", postBench.csv, "also write the rows as CSV: scene,lighting,size,path,ms,gpu + chain_in, save_to_screen_ms, longest_ms, swap_frame_ms, rounds");
     ReloadBenchOptions reloadBench;
     auto* cmdReload = cmdBench->add_subcommand("reload", "hot reload: save -> new program on screen, longest frame meanwhile");
     cmdReload->add_option("--scene", reloadBench.scene, "scene")->capture_default_str();
@@ -278,6 +287,7 @@ int main(int argc, char** argv) {
     if (cmdSsaa->parsed()) return RunSsaaBench(ssaaBench);
     if (cmdWork->parsed()) return RunWorkBench(workBench);
     if (cmdSpirv->parsed()) return RunSpirvBench(spirvBench);
+    if (cmdPost->parsed()) return RunPostBench(postBench);
     if (cmdReload->parsed()) return RunReloadBench(reloadBench);
 #ifdef SDFVJ_HAS_LIVE
     if (cmdInput->parsed()) return RunInputBench(inputSeconds);

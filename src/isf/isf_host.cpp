@@ -4,6 +4,10 @@
 
 #include <epoxy/gl.h>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <chrono>
 
 namespace sdfvj {
@@ -183,6 +187,9 @@ void IsfHost::Build(const Job& job, Result* out) {
 }
 
 void IsfHost::Loop() {
+    // Below the render thread: on a CPU renderer the build's compile takes the cores the frames
+    // are drawn on, and the show's frames come first (as the compile worker's, compile_worker.cpp).
+    setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), 10);
     int spare = 1;   // the worker's context: the one the chain on screen is not in
     for (;;) {
         std::unique_ptr<Job> job;
