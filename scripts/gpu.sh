@@ -44,10 +44,12 @@ case "${1:-}" in
       (cd /tmp && apt-get download libepoxy0 && dpkg -x libepoxy0_*.deb /tmp/epoxy-x)
       cp -a /tmp/epoxy-x/usr/lib/x86_64-linux-gnu/libepoxy.so.0* .devbuild/lib/
     fi
-    cmake -S . -B .devbuild/cmake -DSDFVJ_HEADLESS_ONLY=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
-    cmake --build .devbuild/cmake -j"$(nproc)" --target sdfvj-headless
-    cp .devbuild/cmake/src/app/sdfvj-headless .devbuild/
+    # The build folder stays outside .devbuild (not carried), so the next prepare rebuilds only what changed.
+    b="${DEVBUILD_CMAKE:-/tmp/sdfvj-devbuild-cmake}"
     rm -rf .devbuild/cmake
+    cmake -S . -B "$b" -DSDFVJ_HEADLESS_ONLY=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake --build "$b" -j"$(nproc)" --target sdfvj-headless
+    cp "$b/src/app/sdfvj-headless" .devbuild/
     du -sh .gl .devbuild
     ;;
   prepare-ab)

@@ -36,14 +36,15 @@ struct Way {
     const char* name;
     std::unique_ptr<IsfHost> host;
     std::string file, original;   // the copy its saves go to, and the effect as shipped
-    std::vector<double> steady, toScreen, longest, swap;
+    std::vector<double> steady, toScreen, longest, swap, adopt;
 };
 
 // One frame: a finished build goes on screen, the chain draws over `input`, the GPU finishes.
-double Frame(IsfHost& host, unsigned input, int w, int h, IsfFrameInputs& in, bool* adopted = nullptr) {
+double Frame(IsfHost& host, unsigned input, int w, int h, IsfFrameInputs& in, bool* adopted = nullptr, double* adoptMs = nullptr) {
     const auto t0 = Clock::now();
     IsfHost::Done done;
     if (host.Poll(&done) && adopted) *adopted = done.adopted;
+    if (adoptMs) *adoptMs = done.adoptMs;
     ++in.frame;
     host.Render(input, w, h, in);
     glFinish();
@@ -70,8 +71,8 @@ int RunPostBench(const PostBenchOptions& o) {
     const std::string gpu = (const char*)glGetString(GL_RENDERER);
     std::printf("# sdfvj bench post: %s on %s\ndrivers' disk caches %s; frames paced at %.0f fps during saves\n\n", o.size.c_str(),
                 gpu.c_str(), caches.c_str(), o.fps);
-    std::printf("| effect | size | chain drawn in | steady frame | save -> screen | longest frame in a save | longest / steady | the swap's frame |\n"
-                "|---|---|---|---:|---:|---:|---:|---:|\n");
+    std::printf("| effect | size | chain drawn in | steady frame | save -> screen | longest frame in a save | longest / steady | the swap's frame | of it, adopting |\n"
+                "|---|---|---|---:|---:|---:|---:|---:|---:|\n");
     // The raymarched frame's stand-in: an RGBA8 gradient (the format FrameRenderer draws into).
     unsigned input = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &input);
@@ -133,10 +134,11 @@ int RunPostBench(const PostBenchOptions& o) {
                 double longest = 0.0;
                 bool adopted = false;
                 for (int f = 0; !adopted && MsSince(t0) < 60000; ++f) {
-                    const double ms = Frame(*way.host, input, w, h, in, &adopted) + (f == 0 ? reloadMs : 0.0);   // the save's own frame
+                    double adoptMs = 0.0;
+                    const double ms = Frame(*way.host, input, w, h, in, &adopted, &adoptMs) + (f == 0 ? reloadMs : 0.0);   // the save's own frame
                     longest = std::max(longest, ms);
                     if (!adopted) PaceFrame(ms, o.fps);
-                    else way.swap.push_back(ms);
+                    else way.swap.push_back(ms), way.adopt.push_back(adoptMs);
                 }
                 if (!errors.empty() || !adopted) {
                     std::fprintf(stderr, "sdfvj bench post: %s: the save did not build%s%s\n", name.c_str(), errors.empty() ? "" : ": ",
@@ -151,8 +153,8 @@ int RunPostBench(const PostBenchOptions& o) {
         drifts.push_back(drift);
         for (Way& way : ways) {
             const double st = MedianMs(way.steady), ts = MedianMs(way.toScreen), lo = MedianMs(way.longest), sw = MedianMs(way.swap);
-            std::printf("| %s | %s | %s | %.3f ms | %.1f ms | %.1f ms | %.1fx | %.2f ms |\n", name.c_str(), SizeName(w, h).c_str(), way.name, st, ts,
-                        lo, st > 0 ? lo / st : 0.0, sw);
+            std::printf("| %s | %s | %s | %.3f ms | %.1f ms | %.1f ms | %.1fx | %.2f ms | %.2f ms |\n", name.c_str(), SizeName(w, h).c_str(), way.name,
+                        st, ts, lo, st > 0 ? lo / st : 0.0, sw, MedianMs(way.adopt));
             csv.Add(name, "post", SizeName(w, h), "fragment", st, gpu,
                     {way.name, std::to_string(ts), std::to_string(lo), std::to_string(sw), std::to_string(o.rounds)});
         }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 
 namespace sdfvj {
 
@@ -50,10 +51,14 @@ IsfHost::~IsfHost() {
         thread_.join();
     }
     // A finished build nobody adopted, and the chain on screen, go with the contexts they live in.
-    if (result_.chain && own_ && UseContext(current_ ^ 1)) result_.chain.reset();
+    if ((result_.chain || retired_) && own_ && UseContext(current_ ^ 1)) {
+        result_.chain.reset();
+        retired_.reset();
+    }
     if (own_ && UseContext(current_)) chain_.reset();
     if (own_) UseContext(-1);
     result_.chain.reset();
+    retired_.reset();
     chain_.reset();
 }
 
@@ -124,6 +129,7 @@ void IsfHost::Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback) 
     job.w = lastW_ > 0 ? lastW_ : 64;
     job.h = lastH_ > 0 ? lastH_ : 64;
     job.inputFormat = lastFormat_;
+    job.input = lastInput_;
     job.waveSamples = lastWave_;
     job.spectrumBins = lastSpectrum_;
     if (!own_) {   // here and now: this frame waits for the build
@@ -167,10 +173,13 @@ void IsfHost::Build(const Job& job, Result* out) {
         // The first draw, as the show's frames will draw it: the driver's compile at first use
         // happens here. The same size, input format and audio texture formats as the last frame.
         unsigned input = 0;
-        if (job.inputFormat) {
+        const char* warm = std::getenv("SDFVJ_POST_WARM");
+        const bool real = warm && std::string(warm) == "input" && job.input;
+        if (job.inputFormat && !real) {
             glCreateTextures(GL_TEXTURE_2D, 1, &input);
             glTextureStorage2D(input, 1, job.inputFormat, job.w, job.h);
         }
+        if (real) input = job.input;
         IsfFrameInputs in;
         std::vector<float> wave((size_t)job.waveSamples, 0.0f), spectrum((size_t)job.spectrumBins, 0.0f);
         in.audioWaveform = wave;
@@ -178,7 +187,7 @@ void IsfHost::Build(const Job& job, Result* out) {
         chain->Render(input, job.w, job.h, in);
         chain->ClearBuffers();   // what that draw left in PERSISTENT targets is not the show's
         glFinish();
-        if (input) glDeleteTextures(1, &input);
+        if (input && !real) glDeleteTextures(1, &input);
     }
     ++built_;
     out->chain = std::move(chain);
@@ -193,21 +202,30 @@ void IsfHost::Loop() {
     int spare = 1;   // the worker's context: the one the chain on screen is not in
     for (;;) {
         std::unique_ptr<Job> job;
+        std::unique_ptr<IsfChain> retired;
         {
             std::unique_lock<std::mutex> lock(mutex_);
-            wake_.wait(lock, [&] { return stop_ || job_; });
+            wake_.wait(lock, [&] { return stop_ || job_ || retired_; });
             if (stop_) return;
+            retired = std::move(retired_);
             job = std::move(job_);
-            running_ = true;
+            running_ = job != nullptr;
             spare = current_ ^ 1;
         }
         Result r;
         if (contexts_[(size_t)spare].makeCurrent()) {
-            Build(*job, &r);
+            // The chain a swap replaced lives in this context: freed here, not in a frame (on
+            // NVIDIA a 4K float target's memory is not given back for free).
+            if (retired) {
+                retired.reset();
+                glFinish();
+            }
+            if (job) Build(*job, &r);
             contexts_[(size_t)spare].release();
-        } else {
+        } else if (job) {
             r.errors.push_back("the post chain's build context could not be made current — keeping the chain on screen");
         }
+        if (!job) continue;
         std::lock_guard<std::mutex> lock(mutex_);
         result_ = std::move(r);
         result_.done = true;
@@ -216,7 +234,6 @@ void IsfHost::Loop() {
 }
 
 void IsfHost::Adopt(Result& r) {
-    const int from = current_;
     std::unique_ptr<IsfChain> old = std::move(chain_);
     chain_ = std::move(r.chain);
     shown_ = std::move(r.files);
@@ -225,14 +242,19 @@ void IsfHost::Adopt(Result& r) {
         current_ ^= 1;   // the worker's next build goes to the context the old chain leaves
     }
     // Feedback (PERSISTENT targets) carries over; textures are shared between the contexts.
-    if (own_) UseContext(current_);
-    chain_->CopyBuffersFrom(*old);
-    if (own_) {
-        glFlush();
-        UseContext(from);   // the old chain's framebuffers and vertex arrays live in its context
+    if (!own_) {
+        chain_->CopyBuffersFrom(*old);
+        return;
     }
-    old.reset();
-    if (own_) UseContext(-1);
+    UseContext(current_);
+    chain_->CopyBuffersFrom(*old);
+    glFlush();
+    UseContext(-1);
+    // The old chain's framebuffers and vertex arrays live in its context, which is the worker's
+    // now: it deletes the chain there, before its next build.
+    std::lock_guard<std::mutex> lock(mutex_);
+    retired_ = std::move(old);
+    wake_.notify_all();
 }
 
 bool IsfHost::Poll(Done* done) {
@@ -253,7 +275,9 @@ bool IsfHost::Poll(Done* done) {
     done->errors = r.errors;
     done->buildMs = r.buildMs;
     if (r.chain) {
+        const auto t0 = std::chrono::steady_clock::now();
         Adopt(r);
+        done->adoptMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         done->adopted = true;
     }
     if (next) {

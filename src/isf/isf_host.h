@@ -6,7 +6,7 @@
 // So a chain is built *and drawn* in a context of its own. A worker thread builds each new chain
 // in the spare of two contexts that share objects with the render thread's, and draws it once at
 // the show's size with the show's kind of input. The render thread then draws the chain with that
-// context current, between fences, and deletes the chain it replaced.
+// context current, between fences; the worker deletes the chain it replaced, in its context.
 //
 //   IsfHost host({ctxA, ctxB}, [&] { return MakeMainCurrent(); });
 //   host.Request(files, w, h);                   // files parsed already (LoadIsfFile)
@@ -56,6 +56,7 @@ public:
         bool adopted = false;              // a new chain is on screen
         std::vector<std::string> errors;   // "file:line: ..." of what did not build (the chain on screen stays)
         double buildMs = 0.0;              // build and first draw, on the worker
+        double adoptMs = 0.0;              // on the render thread: feedback copied, the old chain deleted
     };
     // Each frame, before Render: true when a requested build finished (adopted or failed).
     bool Poll(Done* done);
@@ -74,6 +75,7 @@ private:
         std::vector<IsfFile> files, fallback;   // fallback[i]: stage i's last good file (empty path: none)
         int w = 0, h = 0;
         unsigned inputFormat = 0;               // 0: no input (a generator)
+        unsigned input = 0;                     // the last frame's input texture (SDFVJ_POST_WARM=input draws over it)
         int waveSamples = 0, spectrumBins = 0;  // the audio the last frame had (0: silence)
     };
     struct Result {
@@ -107,6 +109,7 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     std::unique_ptr<Job> job_;                 // waiting for the worker
+    std::unique_ptr<IsfChain> retired_;        // a swap's old chain, for the worker to delete in its context
     Result result_;
     bool running_ = false, stop_ = false;
     std::thread thread_;
