@@ -36,8 +36,10 @@ struct Way {
     const char* name;
     std::unique_ptr<IsfHost> host;
     std::string file, original;   // the copy its saves go to, and the effect as shipped
-    std::vector<double> steady, toScreen, longest, swap, adopt;
+    std::vector<double> steady, toScreen, longest, swap, adopt, toChain, draw, back, finish;
 };
+
+double lastFinishMs = 0.0;   // the last Frame's glFinish
 
 // One frame: a finished build goes on screen, the chain draws over `input`, the GPU finishes.
 double Frame(IsfHost& host, unsigned input, int w, int h, IsfFrameInputs& in, bool* adopted = nullptr, double* adoptMs = nullptr) {
@@ -47,7 +49,9 @@ double Frame(IsfHost& host, unsigned input, int w, int h, IsfFrameInputs& in, bo
     if (adoptMs) *adoptMs = done.adoptMs;
     ++in.frame;
     host.Render(input, w, h, in);
+    const auto t1 = Clock::now();
     glFinish();
+    lastFinishMs = MsSince(t1);
     return MsSince(t0);
 }
 
@@ -71,8 +75,8 @@ int RunPostBench(const PostBenchOptions& o) {
     const std::string gpu = (const char*)glGetString(GL_RENDERER);
     std::printf("# sdfvj bench post: %s on %s\ndrivers' disk caches %s; frames paced at %.0f fps during saves\n\n", o.size.c_str(),
                 gpu.c_str(), caches.c_str(), o.fps);
-    std::printf("| effect | size | chain drawn in | steady frame | save -> screen | longest frame in a save | longest / steady | the swap's frame | of it, adopting |\n"
-                "|---|---|---|---:|---:|---:|---:|---:|---:|\n");
+    std::printf("| effect | size | chain drawn in | steady frame | save -> screen | longest frame in a save | longest / steady | the swap's frame | of it: adopt / to the chain's context / draw / back / finish |\n"
+                "|---|---|---|---:|---:|---:|---:|---:|---|\n");
     // The raymarched frame's stand-in: an RGBA8 gradient (the format FrameRenderer draws into).
     unsigned input = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &input);
@@ -138,7 +142,11 @@ int RunPostBench(const PostBenchOptions& o) {
                     const double ms = Frame(*way.host, input, w, h, in, &adopted, &adoptMs) + (f == 0 ? reloadMs : 0.0);   // the save's own frame
                     longest = std::max(longest, ms);
                     if (!adopted) PaceFrame(ms, o.fps);
-                    else way.swap.push_back(ms), way.adopt.push_back(adoptMs);
+                    if (adopted) {   // the swap's frame, and where its time went
+                        const IsfHost::Split& sp = way.host->LastSplit();
+                        way.swap.push_back(ms), way.adopt.push_back(adoptMs), way.toChain.push_back(sp.toChain);
+                        way.draw.push_back(sp.draw), way.back.push_back(sp.back), way.finish.push_back(lastFinishMs);
+                    }
                 }
                 if (!errors.empty() || !adopted) {
                     std::fprintf(stderr, "sdfvj bench post: %s: the save did not build%s%s\n", name.c_str(), errors.empty() ? "" : ": ",
@@ -153,8 +161,9 @@ int RunPostBench(const PostBenchOptions& o) {
         drifts.push_back(drift);
         for (Way& way : ways) {
             const double st = MedianMs(way.steady), ts = MedianMs(way.toScreen), lo = MedianMs(way.longest), sw = MedianMs(way.swap);
-            std::printf("| %s | %s | %s | %.3f ms | %.1f ms | %.1f ms | %.1fx | %.2f ms | %.2f ms |\n", name.c_str(), SizeName(w, h).c_str(), way.name,
-                        st, ts, lo, st > 0 ? lo / st : 0.0, sw, MedianMs(way.adopt));
+            std::printf("| %s | %s | %s | %.3f ms | %.1f ms | %.1f ms | %.1fx | %.2f ms | %.2f / %.2f / %.2f / %.2f / %.2f ms |\n", name.c_str(),
+                        SizeName(w, h).c_str(), way.name, st, ts, lo, st > 0 ? lo / st : 0.0, sw, MedianMs(way.adopt), MedianMs(way.toChain),
+                        MedianMs(way.draw), MedianMs(way.back), MedianMs(way.finish));
             csv.Add(name, "post", SizeName(w, h), "fragment", st, gpu,
                     {way.name, std::to_string(ts), std::to_string(lo), std::to_string(sw), std::to_string(o.rounds)});
         }

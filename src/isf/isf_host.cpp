@@ -10,6 +10,8 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <deque>
+#include <future>
 
 namespace sdfvj {
 
@@ -29,12 +31,80 @@ void FenceThen(const std::function<bool()>& makeNextCurrent) {
 
 }  // namespace
 
+// A thread that makes one context current once and runs tasks on it, in order, until it ends.
+class IsfHost::ContextThread {
+public:
+    explicit ContextThread(IsfHostContext context) {
+        std::promise<bool> started;
+        std::future<bool> ok = started.get_future();
+        thread_ = std::thread([this, context, &started] {
+            const bool current = context.makeCurrent();
+            started.set_value(current);
+            if (!current) return;
+            for (;;) {
+                std::function<void()> task;
+                {
+                    std::unique_lock<std::mutex> lock(mutex_);
+                    wake_.wait(lock, [&] { return stop_ || !tasks_.empty(); });
+                    if (tasks_.empty()) break;   // stopped, nothing left to run
+                    task = std::move(tasks_.front());
+                    tasks_.pop_front();
+                }
+                task();
+            }
+            context.release();
+        });
+        ok_ = ok.get();
+    }
+    ~ContextThread() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        wake_.notify_all();
+        thread_.join();
+    }
+    bool Ok() const { return ok_; }
+    void Post(std::function<void()> task) {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            tasks_.push_back(std::move(task));
+        }
+        wake_.notify_all();
+    }
+    // Runs `task` there and waits for it (after the tasks posted before it).
+    void Run(const std::function<void()>& task) {
+        std::promise<void> done;
+        std::future<void> f = done.get_future();
+        Post([&] {
+            task();
+            done.set_value();
+        });
+        f.wait();
+    }
+
+private:
+    std::thread thread_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    std::deque<std::function<void()>> tasks_;
+    bool stop_ = false, ok_ = false;
+};
+
 IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()) {}
 
-IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent)
+IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent, bool pinned)
     : contexts_(std::move(contexts)), main_(std::move(makeMainCurrent)), chain_(std::make_unique<IsfChain>()) {
     own_ = contexts_[0].makeCurrent && contexts_[1].makeCurrent && main_;
     if (!own_) return;
+    const char* env = std::getenv("SDFVJ_POST_PINNED");
+    pinned_ = pinned && !(env && std::string(env) == "0");
+    if (pinned_) {
+        for (size_t i = 0; i < 2; ++i) threads_[i] = std::make_unique<ContextThread>(contexts_[i]);
+        own_ = threads_[0]->Ok() && threads_[1]->Ok();
+        if (!own_) threads_ = {};
+        return;
+    }
     // Both contexts must be usable from this thread and the worker's: try each once here.
     for (int i = 0; i < 2 && own_; ++i) own_ = contexts_[i].makeCurrent();
     main_();
@@ -42,6 +112,19 @@ IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> m
 }
 
 IsfHost::~IsfHost() {
+    if (pinned_ && own_) {   // each chain goes on the thread whose context it lives in
+        threads_[(size_t)current_]->Run([&] {
+            chain_.reset();
+            glFinish();
+        });
+        threads_[(size_t)current_ ^ 1]->Run([&] {
+            result_.chain.reset();
+            copyFrom_.reset();
+            glFinish();
+        });
+        threads_ = {};
+        return;
+    }
     if (thread_.joinable()) {
         {
             std::lock_guard<std::mutex> lock(mutex_);
@@ -109,12 +192,19 @@ bool IsfHost::Reload(std::vector<std::string>* errors) {
     // The GLSL on screen already (a header-only change, or the last good file put back after a
     // broken save): the chain on screen takes the new headers without compiling.
     if (!program && !Busy() && chain_->Size() == next.size()) {
-        if (own_) UseContext(current_);
-        for (size_t i = 0; i < next.size(); ++i) {
-            std::string error;
-            if (!chain_->Stage(i).LoadParsed(next[i], &error)) errors->push_back(error + " — still showing the previous shader");
+        auto apply = [&] {
+            for (size_t i = 0; i < next.size(); ++i) {
+                std::string error;
+                if (!chain_->Stage(i).LoadParsed(next[i], &error)) errors->push_back(error + " — still showing the previous shader");
+            }
+        };
+        if (pinned_ && own_) {
+            threads_[(size_t)current_]->Run(apply);
+        } else {
+            if (own_) UseContext(current_);
+            apply();
+            if (own_) UseContext(-1);
         }
-        if (own_) UseContext(-1);
         shown_ = next;
         return false;
     }
@@ -144,6 +234,18 @@ void IsfHost::Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback) 
     if (running_ || job_ || result_.done) {   // one build at a time: this one follows the running one
         queued_ = true;
         queuedFallback_ = std::move(job.fallback);
+        return;
+    }
+    if (pinned_) {   // the thread of the context the chain on screen is not in builds it
+        running_ = true;
+        threads_[(size_t)current_ ^ 1]->Post([this, job = std::move(job)] {
+            Result r;
+            Build(job, &r);
+            std::lock_guard<std::mutex> lock(mutex_);
+            result_ = std::move(r);
+            result_.done = true;
+            running_ = false;
+        });
         return;
     }
     job_ = std::make_unique<Job>(std::move(job));
@@ -233,6 +335,14 @@ void IsfHost::Loop() {
     }
 }
 
+void IsfHost::Retire(std::unique_ptr<IsfChain> chain, int context) {
+    IsfChain* c = chain.release();
+    threads_[(size_t)context]->Post([c] {
+        delete c;
+        glFinish();
+    });
+}
+
 void IsfHost::Adopt(Result& r) {
     std::unique_ptr<IsfChain> old = std::move(chain_);
     chain_ = std::move(r.chain);
@@ -244,6 +354,11 @@ void IsfHost::Adopt(Result& r) {
     // Feedback (PERSISTENT targets) carries over; textures are shared between the contexts.
     if (!own_) {
         chain_->CopyBuffersFrom(*old);
+        return;
+    }
+    if (pinned_) {   // the next frame copies the feedback on the new chain's thread, then the old chain goes
+        if (copyFrom_) Retire(std::move(copyFrom_), current_);
+        copyFrom_ = std::move(old);
         return;
     }
     UseContext(current_);
@@ -305,10 +420,39 @@ unsigned IsfHost::Render(unsigned input, int w, int h, const IsfFrameInputs& in)
         lastFormat_ = (unsigned)format;
     }
     if (chain_->Empty()) return input;
-    if (!own_) return chain_->Render(input, w, h, in);
-    FenceThen([&] { return UseContext(current_); });
+    using Ms = std::chrono::duration<double, std::milli>;
+    if (pinned_ && own_) {
+        const auto t0 = std::chrono::steady_clock::now();
+        GLsync ready = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0), drawn = nullptr;
+        glFlush();
+        unsigned out = input;
+        double draw = 0.0;
+        threads_[(size_t)current_]->Run([&] {
+            const auto d0 = std::chrono::steady_clock::now();
+            if (ready) glWaitSync(ready, 0, GL_TIMEOUT_IGNORED);
+            if (copyFrom_) chain_->CopyBuffersFrom(*copyFrom_);   // a swap's first frame: the feedback carries over
+            out = chain_->Render(input, w, h, in);
+            drawn = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+            glFlush();
+            draw = Ms(std::chrono::steady_clock::now() - d0).count();
+        });
+        if (ready) glDeleteSync(ready);
+        if (drawn) {
+            glWaitSync(drawn, 0, GL_TIMEOUT_IGNORED);
+            glDeleteSync(drawn);
+        }
+        if (copyFrom_) Retire(std::move(copyFrom_), current_ ^ 1);
+        const double all = Ms(std::chrono::steady_clock::now() - t0).count();
+        split_ = {all - draw, draw, 0.0};   // handing over to the chain's thread and back / its draw there
+        return out;
+    }
+    auto t0 = std::chrono::steady_clock::now();
+    if (own_) FenceThen([&] { return UseContext(current_); });
+    auto t1 = std::chrono::steady_clock::now();
     const unsigned out = chain_->Render(input, w, h, in);
-    FenceThen([&] { return UseContext(-1); });
+    auto t2 = std::chrono::steady_clock::now();
+    if (own_) FenceThen([&] { return UseContext(-1); });
+    split_ = {Ms(t1 - t0).count(), Ms(t2 - t1).count(), Ms(std::chrono::steady_clock::now() - t2).count()};
     return out;
 }
 

@@ -17,6 +17,7 @@
 // drawn in the render thread's context, and a build holds that frame. Render thread only.
 #pragma once
 #include <array>
+#include <atomic>
 #include <condition_variable>
 #include <functional>
 #include <memory>
@@ -37,7 +38,11 @@ struct IsfHostContext {
 class IsfHost {
 public:
     IsfHost();   // builds and draws in the render thread's context
-    IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent);
+    // pinned: each context is current on a thread of its own for good, which builds the chains
+    // that live in it and draws them (the render thread hands it each frame's input between two
+    // fences). Otherwise (SDFVJ_POST_PINNED=0) one worker builds in either context and the render
+    // thread draws with the chain's context made current.
+    IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent, bool pinned = true);
     ~IsfHost();   // render thread, its own context current
     IsfHost(const IsfHost&) = delete;
     IsfHost& operator=(const IsfHost&) = delete;
@@ -68,7 +73,13 @@ public:
     // the render thread's context, valid until the next Render); `input` when the chain is empty.
     unsigned Render(unsigned input, int w, int h, const IsfFrameInputs& in);
     // Chains built so far (adopted or not): a save that changes only the header builds none.
-    int ChainsBuilt() const { return built_; }
+    int ChainsBuilt() const { return built_.load(); }
+    // Where the last Render's time went on this thread (ms): switching to the chain's context
+    // (fence, make current, wait), the chain's draw calls, switching back.
+    struct Split {
+        double toChain = 0.0, draw = 0.0, back = 0.0;
+    };
+    const Split& LastSplit() const { return split_; }
 
 private:
     struct Job {
@@ -90,6 +101,11 @@ private:
     void Loop();
     void Adopt(Result& r);
     bool UseContext(int i);                    // render thread: context i current (or main for -1)
+    void Retire(std::unique_ptr<IsfChain> chain, int context);
+    class ContextThread;                       // pinned: a thread keeping one context current, running tasks in order
+    bool pinned_ = false;
+    std::array<std::unique_ptr<ContextThread>, 2> threads_;
+    std::unique_ptr<IsfChain> copyFrom_;       // pinned: the chain a swap replaced, until the first frame copied its feedback
 
     bool own_ = false;
     std::array<IsfHostContext, 2> contexts_;
@@ -101,7 +117,8 @@ private:
     std::vector<uint64_t> hashes_;             // IsfFilesHash of each wanted file when last read
     bool queued_ = false;                      // a request came while a build ran
     std::vector<IsfFile> queuedFallback_;
-    int built_ = 0;
+    std::atomic<int> built_{0};
+    Split split_;
     // The last frame's input, which the next build's first draw copies.
     unsigned lastInput_ = 0, lastFormat_ = 0;
     int lastW_ = 0, lastH_ = 0, lastWave_ = 0, lastSpectrum_ = 0;
