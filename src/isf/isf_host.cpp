@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <deque>
-#include <future>
 
 namespace sdfvj {
 
@@ -32,14 +31,19 @@ void FenceThen(const std::function<bool()>& makeNextCurrent) {
 }  // namespace
 
 // A thread that makes one context current once and runs tasks on it, in order, until it ends.
+// Everything the two threads share lives here (no promise on a caller's stack that the other
+// thread could still be touching as the caller returns).
 class IsfHost::ContextThread {
 public:
     explicit ContextThread(IsfHostContext context) {
-        std::promise<bool> started;
-        std::future<bool> ok = started.get_future();
-        thread_ = std::thread([this, context, &started] {
+        thread_ = std::thread([this, context] {
             const bool current = context.makeCurrent();
-            started.set_value(current);
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                started_ = true;
+                ok_ = current;
+            }
+            done_.notify_all();
             if (!current) return;
             for (;;) {
                 std::function<void()> task;
@@ -51,10 +55,16 @@ public:
                     tasks_.pop_front();
                 }
                 task();
+                {
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    ++ran_;
+                }
+                done_.notify_all();
             }
             context.release();
         });
-        ok_ = ok.get();
+        std::unique_lock<std::mutex> lock(mutex_);
+        done_.wait(lock, [&] { return started_; });
     }
     ~ContextThread() {
         {
@@ -65,30 +75,31 @@ public:
         thread_.join();
     }
     bool Ok() const { return ok_; }
-    void Post(std::function<void()> task) {
+    // Queues `task`; returns its number in the queue's order.
+    uint64_t Post(std::function<void()> task) {
+        uint64_t n = 0;
         {
             std::lock_guard<std::mutex> lock(mutex_);
             tasks_.push_back(std::move(task));
+            n = ++posted_;
         }
         wake_.notify_all();
+        return n;
     }
     // Runs `task` there and waits for it (after the tasks posted before it).
     void Run(const std::function<void()>& task) {
-        std::promise<void> done;
-        std::future<void> f = done.get_future();
-        Post([&] {
-            task();
-            done.set_value();
-        });
-        f.wait();
+        const uint64_t n = Post([&task] { task(); });
+        std::unique_lock<std::mutex> lock(mutex_);
+        done_.wait(lock, [&] { return ran_ >= n; });
     }
 
 private:
     std::thread thread_;
     std::mutex mutex_;
-    std::condition_variable wake_;
+    std::condition_variable wake_, done_;
     std::deque<std::function<void()>> tasks_;
-    bool stop_ = false, ok_ = false;
+    uint64_t posted_ = 0, ran_ = 0;
+    bool stop_ = false, ok_ = false, started_ = false;
 };
 
 IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()) {}
