@@ -36,7 +36,7 @@ struct Way {
     const char* name;
     std::unique_ptr<IsfHost> host;
     std::string file, original;   // the copy its saves go to, and the effect as shipped
-    std::vector<double> steady, toScreen, longest, swap, adopt, toChain, draw, back, finish;
+    std::vector<double> steady, toScreen, longest, swap, adopt, handover, draw, finish;
 };
 
 double lastFinishMs = 0.0;   // the last Frame's glFinish
@@ -75,7 +75,7 @@ int RunPostBench(const PostBenchOptions& o) {
     const std::string gpu = (const char*)glGetString(GL_RENDERER);
     std::printf("# sdfvj bench post: %s on %s\ndrivers' disk caches %s; frames paced at %.0f fps during saves\n\n", o.size.c_str(),
                 gpu.c_str(), caches.c_str(), o.fps);
-    std::printf("| effect | size | chain drawn in | steady frame | save -> screen | longest frame in a save | longest / steady | the swap's frame | of it: adopt / to the chain's context / draw / back / finish |\n"
+    std::printf("| effect | size | chain drawn in | steady frame | save -> screen | longest frame in a save | longest / steady | the swap's frame | of it: adopt / hand-over / draw / finish |\n"
                 "|---|---|---|---:|---:|---:|---:|---:|---|\n");
     // The raymarched frame's stand-in: an RGBA8 gradient (the format FrameRenderer draws into).
     unsigned input = 0;
@@ -96,7 +96,7 @@ int RunPostBench(const PostBenchOptions& o) {
             std::fprintf(stderr, "sdfvj bench post: cannot read %s\n", path.c_str());
             return 2;
         }
-        Way ways[2] = {{"own contexts", std::make_unique<IsfHost>(std::array<IsfHostContext, 2>{own(a), own(b)}, [&main] { return main.MakeCurrent(); })},
+        Way ways[2] = {{"own contexts", std::make_unique<IsfHost>(std::array<IsfHostContext, 2>{own(a), own(b)})},
                        {"the window's context", std::make_unique<IsfHost>()}};
         IsfFrameInputs in;
         for (int k = 0; k < 2; ++k) {
@@ -144,8 +144,8 @@ int RunPostBench(const PostBenchOptions& o) {
                     if (!adopted) PaceFrame(ms, o.fps);
                     if (adopted) {   // the swap's frame, and where its time went
                         const IsfHost::Split& sp = way.host->LastSplit();
-                        way.swap.push_back(ms), way.adopt.push_back(adoptMs), way.toChain.push_back(sp.toChain);
-                        way.draw.push_back(sp.draw), way.back.push_back(sp.back), way.finish.push_back(lastFinishMs);
+                        way.swap.push_back(ms), way.adopt.push_back(adoptMs), way.handover.push_back(sp.handover);
+                        way.draw.push_back(sp.draw), way.finish.push_back(lastFinishMs);
                     }
                 }
                 if (!errors.empty() || !adopted) {
@@ -161,9 +161,9 @@ int RunPostBench(const PostBenchOptions& o) {
         drifts.push_back(drift);
         for (Way& way : ways) {
             const double st = MedianMs(way.steady), ts = MedianMs(way.toScreen), lo = MedianMs(way.longest), sw = MedianMs(way.swap);
-            std::printf("| %s | %s | %s | %.3f ms | %.1f ms | %.1f ms | %.1fx | %.2f ms | %.2f / %.2f / %.2f / %.2f / %.2f ms |\n", name.c_str(),
-                        SizeName(w, h).c_str(), way.name, st, ts, lo, st > 0 ? lo / st : 0.0, sw, MedianMs(way.adopt), MedianMs(way.toChain),
-                        MedianMs(way.draw), MedianMs(way.back), MedianMs(way.finish));
+            std::printf("| %s | %s | %s | %.3f ms | %.1f ms | %.1f ms | %.1fx | %.2f ms | %.2f / %.2f / %.2f / %.2f ms |\n", name.c_str(),
+                        SizeName(w, h).c_str(), way.name, st, ts, lo, st > 0 ? lo / st : 0.0, sw, MedianMs(way.adopt), MedianMs(way.handover),
+                        MedianMs(way.draw), MedianMs(way.finish));
             csv.Add(name, "post", SizeName(w, h), "fragment", st, gpu,
                     {way.name, std::to_string(ts), std::to_string(lo), std::to_string(sw), std::to_string(o.rounds)});
         }

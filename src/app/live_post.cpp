@@ -50,11 +50,7 @@ void LiveSession::UpdatePost() {
         // SDFVJ_POST_CONTEXTS=0: in the window's context, as before session 31 (scripts/live_gaps.sh --post compares).
         const char* env = std::getenv("SDFVJ_POST_CONTEXTS");
         if (postContexts_ && !files.empty() && !(env && std::string(env) == "0")) own = postContexts_();
-        post_ = own[0].makeCurrent ? std::make_unique<IsfHost>(own, [w = window_] {
-            glfwMakeContextCurrent(w);
-            return glfwGetCurrentContext() == w;
-        })
-                                   : std::make_unique<IsfHost>();
+        post_ = own[0].makeCurrent ? std::make_unique<IsfHost>(own) : std::make_unique<IsfHost>();
         if (!files.empty() && !post_->OwnContexts())
             state_.report.Say("sdfvj live: no context of its own for the post chain; its builds hold a frame");
     }

@@ -1,34 +1,14 @@
-// IsfHost (isf_host.h): post chains built and first drawn on a worker thread's context, drawn
-// on the render thread with that context current.
+// IsfHost (isf_host.h): post chains built, first drawn and drawn by the thread whose context
+// they live in.
 #include "isf/isf_host.h"
 
 #include <epoxy/gl.h>
 
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
 #include <chrono>
-#include <cstdlib>
 #include <deque>
 
 namespace sdfvj {
 
-namespace {
-
-// Orders the GL commands of the context current now before those of the next one made current
-// on this thread (the render thread switches contexts twice a frame).
-void FenceThen(const std::function<bool()>& makeNextCurrent) {
-    GLsync sync = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    glFlush();
-    makeNextCurrent();
-    if (sync) {
-        glWaitSync(sync, 0, GL_TIMEOUT_IGNORED);
-        glDeleteSync(sync);
-    }
-}
-
-}  // namespace
 
 // A thread that makes one context current once and runs tasks on it, in order, until it ends.
 // Everything the two threads share lives here (no promise on a caller's stack that the other
@@ -104,65 +84,31 @@ private:
 
 IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()) {}
 
-IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent, bool pinned)
-    : contexts_(std::move(contexts)), main_(std::move(makeMainCurrent)), chain_(std::make_unique<IsfChain>()) {
-    own_ = contexts_[0].makeCurrent && contexts_[1].makeCurrent && main_;
-    if (!own_) return;
-    const char* env = std::getenv("SDFVJ_POST_PINNED");
-    pinned_ = pinned && !(env && std::string(env) == "0");
-    if (pinned_) {
-        for (size_t i = 0; i < 2; ++i) threads_[i] = std::make_unique<ContextThread>(contexts_[i]);
-        own_ = threads_[0]->Ok() && threads_[1]->Ok();
-        if (!own_) threads_ = {};
-        return;
-    }
-    // Both contexts must be usable from this thread and the worker's: try each once here.
-    for (int i = 0; i < 2 && own_; ++i) own_ = contexts_[i].makeCurrent();
-    main_();
-    if (own_) thread_ = std::thread([this] { Loop(); });
+IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts) : chain_(std::make_unique<IsfChain>()) {
+    if (!contexts[0].makeCurrent || !contexts[1].makeCurrent) return;
+    for (size_t i = 0; i < 2; ++i) threads_[i] = std::make_unique<ContextThread>(contexts[i]);
+    own_ = threads_[0]->Ok() && threads_[1]->Ok();
+    if (!own_) threads_ = {};
 }
 
 IsfHost::~IsfHost() {
-    if (pinned_ && own_) {   // each chain goes on the thread whose context it lives in
-        threads_[(size_t)current_]->Run([&] {
-            chain_.reset();
-            glFinish();
-        });
-        threads_[(size_t)current_ ^ 1]->Run([&] {
-            result_.chain.reset();
-            copyFrom_.reset();
-            glFinish();
-        });
-        threads_ = {};
-        return;
-    }
-    if (thread_.joinable()) {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        wake_.notify_all();
-        thread_.join();
-    }
-    // A finished build nobody adopted, and the chain on screen, go with the contexts they live in.
-    if ((result_.chain || retired_) && own_ && UseContext(current_ ^ 1)) {
+    if (!own_) return;
+    // Each chain goes on the thread whose context it lives in.
+    threads_[(size_t)current_]->Run([&] {
+        chain_.reset();
+        glFinish();
+    });
+    threads_[(size_t)current_ ^ 1]->Run([&] {
         result_.chain.reset();
-        retired_.reset();
-    }
-    if (own_ && UseContext(current_)) chain_.reset();
-    if (own_) UseContext(-1);
-    result_.chain.reset();
-    retired_.reset();
-    chain_.reset();
-}
-
-bool IsfHost::UseContext(int i) {
-    return i < 0 ? main_() : contexts_[(size_t)i].makeCurrent();
+        copyFrom_.reset();
+        glFinish();
+    });
+    threads_ = {};
 }
 
 bool IsfHost::Busy() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    return running_ || job_ || result_.done || queued_;
+    return running_ || result_.done || queued_;
 }
 
 void IsfHost::Request(std::vector<IsfFile> files, int w, int h) {
@@ -209,13 +155,8 @@ bool IsfHost::Reload(std::vector<std::string>* errors) {
                 if (!chain_->Stage(i).LoadParsed(next[i], &error)) errors->push_back(error + " — still showing the previous shader");
             }
         };
-        if (pinned_ && own_) {
-            threads_[(size_t)current_]->Run(apply);
-        } else {
-            if (own_) UseContext(current_);
-            apply();
-            if (own_) UseContext(-1);
-        }
+        if (own_) threads_[(size_t)current_]->Run(apply);
+        else apply();
         shown_ = next;
         return false;
     }
@@ -230,7 +171,6 @@ void IsfHost::Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback) 
     job.w = lastW_ > 0 ? lastW_ : 64;
     job.h = lastH_ > 0 ? lastH_ : 64;
     job.inputFormat = lastFormat_;
-    job.input = lastInput_;
     job.waveSamples = lastWave_;
     job.spectrumBins = lastSpectrum_;
     if (!own_) {   // here and now: this frame waits for the build
@@ -242,25 +182,21 @@ void IsfHost::Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback) 
         return;
     }
     std::lock_guard<std::mutex> lock(mutex_);
-    if (running_ || job_ || result_.done) {   // one build at a time: this one follows the running one
+    if (running_ || result_.done) {   // one build at a time: this one follows the running one
         queued_ = true;
         queuedFallback_ = std::move(job.fallback);
         return;
     }
-    if (pinned_) {   // the thread of the context the chain on screen is not in builds it
-        running_ = true;
-        threads_[(size_t)current_ ^ 1]->Post([this, job = std::move(job)] {
-            Result r;
-            Build(job, &r);
-            std::lock_guard<std::mutex> lock(mutex_);
-            result_ = std::move(r);
-            result_.done = true;
-            running_ = false;
-        });
-        return;
-    }
-    job_ = std::make_unique<Job>(std::move(job));
-    wake_.notify_all();
+    // The thread of the context the chain on screen is not in builds it.
+    running_ = true;
+    threads_[(size_t)current_ ^ 1]->Post([this, job = std::move(job)] {
+        Result r;
+        Build(job, &r);
+        std::lock_guard<std::mutex> lock(mutex_);
+        result_ = std::move(r);
+        result_.done = true;
+        running_ = false;
+    });
 }
 
 void IsfHost::Build(const Job& job, Result* out) {
@@ -286,13 +222,10 @@ void IsfHost::Build(const Job& job, Result* out) {
         // The first draw, as the show's frames will draw it: the driver's compile at first use
         // happens here. The same size, input format and audio texture formats as the last frame.
         unsigned input = 0;
-        const char* warm = std::getenv("SDFVJ_POST_WARM");
-        const bool real = warm && std::string(warm) == "input" && job.input;
-        if (job.inputFormat && !real) {
+        if (job.inputFormat) {
             glCreateTextures(GL_TEXTURE_2D, 1, &input);
             glTextureStorage2D(input, 1, job.inputFormat, job.w, job.h);
         }
-        if (real) input = job.input;
         IsfFrameInputs in;
         std::vector<float> wave((size_t)job.waveSamples, 0.0f), spectrum((size_t)job.spectrumBins, 0.0f);
         in.audioWaveform = wave;
@@ -300,50 +233,12 @@ void IsfHost::Build(const Job& job, Result* out) {
         chain->Render(input, job.w, job.h, in);
         chain->ClearBuffers();   // what that draw left in PERSISTENT targets is not the show's
         glFinish();
-        if (input && !real) glDeleteTextures(1, &input);
+        if (input) glDeleteTextures(1, &input);
     }
     ++built_;
     out->chain = std::move(chain);
     out->files = std::move(files);
     out->buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-void IsfHost::Loop() {
-    // Below the render thread: on a CPU renderer the build's compile takes the cores the frames
-    // are drawn on, and the show's frames come first (as the compile worker's, compile_worker.cpp).
-    setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), 10);
-    int spare = 1;   // the worker's context: the one the chain on screen is not in
-    for (;;) {
-        std::unique_ptr<Job> job;
-        std::unique_ptr<IsfChain> retired;
-        {
-            std::unique_lock<std::mutex> lock(mutex_);
-            wake_.wait(lock, [&] { return stop_ || job_ || retired_; });
-            if (stop_) return;
-            retired = std::move(retired_);
-            job = std::move(job_);
-            running_ = job != nullptr;
-            spare = current_ ^ 1;
-        }
-        Result r;
-        if (contexts_[(size_t)spare].makeCurrent()) {
-            // The chain a swap replaced lives in this context: freed here, not in a frame (on
-            // NVIDIA a 4K float target's memory is not given back for free).
-            if (retired) {
-                retired.reset();
-                glFinish();
-            }
-            if (job) Build(*job, &r);
-            contexts_[(size_t)spare].release();
-        } else if (job) {
-            r.errors.push_back("the post chain's build context could not be made current — keeping the chain on screen");
-        }
-        if (!job) continue;
-        std::lock_guard<std::mutex> lock(mutex_);
-        result_ = std::move(r);
-        result_.done = true;
-        running_ = false;
-    }
 }
 
 void IsfHost::Retire(std::unique_ptr<IsfChain> chain, int context) {
@@ -358,29 +253,15 @@ void IsfHost::Adopt(Result& r) {
     std::unique_ptr<IsfChain> old = std::move(chain_);
     chain_ = std::move(r.chain);
     shown_ = std::move(r.files);
-    if (own_) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        current_ ^= 1;   // the worker's next build goes to the context the old chain leaves
-    }
-    // Feedback (PERSISTENT targets) carries over; textures are shared between the contexts.
     if (!own_) {
         chain_->CopyBuffersFrom(*old);
         return;
     }
-    if (pinned_) {   // the next frame copies the feedback on the new chain's thread, then the old chain goes
-        if (copyFrom_) Retire(std::move(copyFrom_), current_);
-        copyFrom_ = std::move(old);
-        return;
-    }
-    UseContext(current_);
-    chain_->CopyBuffersFrom(*old);
-    glFlush();
-    UseContext(-1);
-    // The old chain's framebuffers and vertex arrays live in its context, which is the worker's
-    // now: it deletes the chain there, before its next build.
-    std::lock_guard<std::mutex> lock(mutex_);
-    retired_ = std::move(old);
-    wake_.notify_all();
+    current_ ^= 1;   // the next build goes to the context the old chain leaves
+    // The next frame copies the feedback (PERSISTENT targets) on the new chain's thread, then the
+    // old chain is deleted by its own.
+    if (copyFrom_) Retire(std::move(copyFrom_), current_);
+    copyFrom_ = std::move(old);
 }
 
 bool IsfHost::Poll(Done* done) {
@@ -432,38 +313,32 @@ unsigned IsfHost::Render(unsigned input, int w, int h, const IsfFrameInputs& in)
     }
     if (chain_->Empty()) return input;
     using Ms = std::chrono::duration<double, std::milli>;
-    if (pinned_ && own_) {
-        const auto t0 = std::chrono::steady_clock::now();
-        GLsync ready = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0), drawn = nullptr;
-        glFlush();
-        unsigned out = input;
-        double draw = 0.0;
-        threads_[(size_t)current_]->Run([&] {
-            const auto d0 = std::chrono::steady_clock::now();
-            if (ready) glWaitSync(ready, 0, GL_TIMEOUT_IGNORED);
-            if (copyFrom_) chain_->CopyBuffersFrom(*copyFrom_);   // a swap's first frame: the feedback carries over
-            out = chain_->Render(input, w, h, in);
-            drawn = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-            glFlush();
-            draw = Ms(std::chrono::steady_clock::now() - d0).count();
-        });
-        if (ready) glDeleteSync(ready);
-        if (drawn) {
-            glWaitSync(drawn, 0, GL_TIMEOUT_IGNORED);
-            glDeleteSync(drawn);
-        }
-        if (copyFrom_) Retire(std::move(copyFrom_), current_ ^ 1);
-        const double all = Ms(std::chrono::steady_clock::now() - t0).count();
-        split_ = {all - draw, draw, 0.0};   // handing over to the chain's thread and back / its draw there
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!own_) {
+        const unsigned out = chain_->Render(input, w, h, in);
+        split_ = {0.0, Ms(std::chrono::steady_clock::now() - t0).count()};
         return out;
     }
-    auto t0 = std::chrono::steady_clock::now();
-    if (own_) FenceThen([&] { return UseContext(current_); });
-    auto t1 = std::chrono::steady_clock::now();
-    const unsigned out = chain_->Render(input, w, h, in);
-    auto t2 = std::chrono::steady_clock::now();
-    if (own_) FenceThen([&] { return UseContext(-1); });
-    split_ = {Ms(t1 - t0).count(), Ms(t2 - t1).count(), Ms(std::chrono::steady_clock::now() - t2).count()};
+    GLsync ready = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0), drawn = nullptr;
+    glFlush();
+    unsigned out = input;
+    double draw = 0.0;
+    threads_[(size_t)current_]->Run([&] {
+        const auto d0 = std::chrono::steady_clock::now();
+        if (ready) glWaitSync(ready, 0, GL_TIMEOUT_IGNORED);
+        if (copyFrom_) chain_->CopyBuffersFrom(*copyFrom_);   // a swap's first frame: the feedback carries over
+        out = chain_->Render(input, w, h, in);
+        drawn = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        glFlush();
+        draw = Ms(std::chrono::steady_clock::now() - d0).count();
+    });
+    if (ready) glDeleteSync(ready);
+    if (drawn) {
+        glWaitSync(drawn, 0, GL_TIMEOUT_IGNORED);
+        glDeleteSync(drawn);
+    }
+    if (copyFrom_) Retire(std::move(copyFrom_), current_ ^ 1);
+    split_ = {Ms(std::chrono::steady_clock::now() - t0).count() - draw, draw};
     return out;
 }
 

@@ -2,13 +2,15 @@
 //
 // A driver may compile a program's pixel code at its first draw in each context: on llvmpipe,
 // bloom's first draw takes 120-360 ms, and a program drawn first in a second, shared context
-// still costs the render thread's context nearly all of it again (100 against 118 ms, measured).
-// So a chain is built *and drawn* in a context of its own. A worker thread builds each new chain
-// in the spare of two contexts that share objects with the render thread's, and draws it once at
-// the show's size with the show's kind of input. The render thread then draws the chain with that
-// context current, between fences; the worker deletes the chain it replaced, in its context.
+// still costs the render thread's context nearly all of it again (100 against 118 ms, measured);
+// on NVIDIA the render thread's first draw of a chain a worker had drawn in the same context still
+// took 69-237 ms. So the chain has two contexts of its own (sharing objects with the render
+// thread's), each current for good on a thread of its own. The thread of the spare context builds
+// a new chain and draws it once at the show's size with the show's kind of input; each frame the
+// render thread hands the thread of the chain on screen its input between two fences. After a
+// swap the new chain takes the old one's feedback and the old chain's thread deletes it.
 //
-//   IsfHost host({ctxA, ctxB}, [&] { return MakeMainCurrent(); });
+//   IsfHost host({ctxA, ctxB});
 //   host.Request(files, w, h);                   // files parsed already (LoadIsfFile)
 //   each frame: host.Poll(&done); out = host.Render(sceneTexture, w, h, in);
 //   on a file change: host.Reload(&errors);      // changed stages rebuilt, broken ones keep their last good file
@@ -38,11 +40,7 @@ struct IsfHostContext {
 class IsfHost {
 public:
     IsfHost();   // builds and draws in the render thread's context
-    // pinned: each context is current on a thread of its own for good, which builds the chains
-    // that live in it and draws them (the render thread hands it each frame's input between two
-    // fences). Otherwise (SDFVJ_POST_PINNED=0) one worker builds in either context and the render
-    // thread draws with the chain's context made current.
-    IsfHost(std::array<IsfHostContext, 2> contexts, std::function<bool()> makeMainCurrent, bool pinned = true);
+    explicit IsfHost(std::array<IsfHostContext, 2> contexts);
     ~IsfHost();   // render thread, its own context current
     IsfHost(const IsfHost&) = delete;
     IsfHost& operator=(const IsfHost&) = delete;
@@ -74,10 +72,10 @@ public:
     unsigned Render(unsigned input, int w, int h, const IsfFrameInputs& in);
     // Chains built so far (adopted or not): a save that changes only the header builds none.
     int ChainsBuilt() const { return built_.load(); }
-    // Where the last Render's time went on this thread (ms): switching to the chain's context
-    // (fence, make current, wait), the chain's draw calls, switching back.
+    // Where the last Render's time went (ms): handing over to the chain's thread and back, and
+    // the chain's draw calls there.
     struct Split {
-        double toChain = 0.0, draw = 0.0, back = 0.0;
+        double handover = 0.0, draw = 0.0;
     };
     const Split& LastSplit() const { return split_; }
 
@@ -86,7 +84,6 @@ private:
         std::vector<IsfFile> files, fallback;   // fallback[i]: stage i's last good file (empty path: none)
         int w = 0, h = 0;
         unsigned inputFormat = 0;               // 0: no input (a generator)
-        unsigned input = 0;                     // the last frame's input texture (SDFVJ_POST_WARM=input draws over it)
         int waveSamples = 0, spectrumBins = 0;  // the audio the last frame had (0: silence)
     };
     struct Result {
@@ -98,18 +95,13 @@ private:
     };
     void Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback);
     void Build(const Job& job, Result* out);   // on the context current on the calling thread
-    void Loop();
     void Adopt(Result& r);
-    bool UseContext(int i);                    // render thread: context i current (or main for -1)
     void Retire(std::unique_ptr<IsfChain> chain, int context);
-    class ContextThread;                       // pinned: a thread keeping one context current, running tasks in order
-    bool pinned_ = false;
+    class ContextThread;                       // a thread keeping one context current, running tasks in order
     std::array<std::unique_ptr<ContextThread>, 2> threads_;
-    std::unique_ptr<IsfChain> copyFrom_;       // pinned: the chain a swap replaced, until the first frame copied its feedback
+    std::unique_ptr<IsfChain> copyFrom_;       // the chain a swap replaced, until the first frame copied its feedback
 
     bool own_ = false;
-    std::array<IsfHostContext, 2> contexts_;
-    std::function<bool()> main_;
     int current_ = 0;                          // the context the chain on screen lives in
     std::unique_ptr<IsfChain> chain_;
     std::vector<IsfFile> shown_;               // the files of the chain on screen
@@ -123,13 +115,9 @@ private:
     unsigned lastInput_ = 0, lastFormat_ = 0;
     int lastW_ = 0, lastH_ = 0, lastWave_ = 0, lastSpectrum_ = 0;
 
-    mutable std::mutex mutex_;
-    std::condition_variable wake_;
-    std::unique_ptr<Job> job_;                 // waiting for the worker
-    std::unique_ptr<IsfChain> retired_;        // a swap's old chain, for the worker to delete in its context
+    mutable std::mutex mutex_;                 // result_ and running_: the build threads write them
     Result result_;
-    bool running_ = false, stop_ = false;
-    std::thread thread_;
+    bool running_ = false;
 };
 
 }  // namespace sdfvj

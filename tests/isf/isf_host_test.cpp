@@ -107,7 +107,7 @@ TEST_CASE("isf host: a saved effect is built and first drawn in a context of its
     WriteText(path, Tint("1.0, 0.0, 0.0", 48));
     const unsigned input = MakeTexture(kW, kH, [](int, int) { return std::array<uint8_t, 4>{0, 0, 0, 255}; });
     {
-        IsfHost host(gl.Own(), [&gl] { return gl.main.MakeCurrent(); });
+        IsfHost host(gl.Own());
         REQUIRE(host.OwnContexts());
         Frames f{host, input, {}};
         host.Request({Parse(path)}, kW, kH);
@@ -170,7 +170,7 @@ TEST_CASE("isf host: a broken save keeps its stage's last good file and a save o
     WriteText(second, Multiply("1.0, 1.0, 0.5"));
     const unsigned input = MakeTexture(kW, kH, [](int, int) { return std::array<uint8_t, 4>{0, 0, 0, 255}; });
     {
-        IsfHost host(gl.Own(), [&gl] { return gl.main.MakeCurrent(); });
+        IsfHost host(gl.Own());
         Frames f{host, input, {}};
         host.Request({Parse(first), Parse(second)}, kW, kH);
         REQUIRE(f.UntilBuilt().adopted);
@@ -235,7 +235,7 @@ TEST_CASE("isf host: a rebuilt effect keeps its PERSISTENT feedback", "[isf][gl]
     const std::string path = TempDir() + "/host_persistent.fs";
     WriteText(path, text);
     {
-        IsfHost host(gl.Own(), [&gl] { return gl.main.MakeCurrent(); });
+        IsfHost host(gl.Own());
         Frames f{host, 0, {}};
         f.in.params = {{"step", 0.0002f}};   // a frame adds 0.051 of an 8-bit level: 5000 frames to saturate
         host.Request({Parse(path)}, kW, kH);
