@@ -40,6 +40,7 @@ sleep 1
 export MESA_SHADER_CACHE_DISABLE=true __GL_SHADER_DISK_CACHE=0 JACK_NO_START_SERVER=1
 modes="in-process render-process"
 [ -n "$post" ] && modes="post-own-contexts post-window-context"
+modes=${LIVE_GAPS_MODES:-$modes}
 run_mode() {   # $1: one of $modes
     local mode=$1 root=$work/$1 extra=() contexts=1
     mkdir -p "$root"
@@ -81,7 +82,24 @@ for mode in sys.argv[3:]:
         at = 5 + 4 * k
         window = [(gaps[i - 1], t[i] - at) for i in range(1, len(t)) if at - 0.2 <= t[i] <= at + 3]
         rows.append(max(window) if window else (float("nan"), 0))
-    comp = ", ".join(f"{int(b) + int(u)}" for b, u in builds[1:]) or "not reported"
+    comp = ", ".join(f"{int(b) + int(u)}" for b, u in builds[1:]) or \
+        ", ".join(re.findall(r"post reloaded \(built in (\d+) ms\)", log)) or "not reported"
     print(f"{mode:20s} median frame {med:6.1f} ms; longest frame after each save (when): " +
           " / ".join(f"{r:.0f} (+{a:.2f} s)" for r, a in rows) + f" ms; compiles (build + first use): {comp} ms")
+    # The frames drawn while each post build ran (from the save to the build's end, as the log reports it).
+    posts = [float(b) for b in re.findall(r"post reloaded \(built in (\d+) ms\)", log)]
+    if posts and len(posts) >= saves:
+        during = []
+        for k, b in enumerate(posts[-saves:]):
+            at = 5 + 4 * k
+            idx = [i for i in range(1, len(t)) if at <= t[i] <= at + b / 1000 + 0.1]
+            if not idx: continue
+            w = [gaps[i - 1] for i in idx]
+            # as many frames just before the save, with no build running: the machine's own noise
+            q = gaps[max(0, idx[0] - 1 - len(w)):idx[0] - 1]
+            during.append((statistics.median(w), max(w), len(w), (statistics.median(q), max(q)) if q else (0, 0)))
+        print(f"{'':20s} frames during each build (median / longest / count): " +
+              " / ".join(f"{m:.0f} / {x:.0f} / {n}" for m, x, n, _ in during) + " ms; longest against the median frame: " +
+              " / ".join(f"{x / med:.1f}x" for _, x, _, _ in during) + "; as many frames before the save (median / longest): " +
+              " / ".join(f"{q[0]:.0f} / {q[1]:.0f}" for *_, q in during) + " ms")
 PY

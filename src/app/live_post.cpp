@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -27,7 +28,11 @@ void LiveSession::UpdatePost() {
             postDecls_ = post_->Chain().Params();
             if (done.adopted) {
                 for (const std::string& line : post_->Chain().Notices()) state_.report.Say(line);
-                if (!postSay_.empty()) state_.report.Say(postSay_);
+                if (!postSay_.empty()) {
+                    char ms[64];
+                    std::snprintf(ms, sizeof ms, " (built in %.0f ms)", done.buildMs);
+                    state_.report.Say(postSay_ + ms);
+                }
                 postSay_.clear();
             }
         }
