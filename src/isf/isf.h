@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <vector>
@@ -124,6 +125,36 @@ struct IsfFrameInputs {
 // the texel covering its bin). The texture is that many texels wide (IMG_SIZE says so).
 std::vector<float> IsfAudioRow(std::span<const float> values, int maxSamples);
 
+// Render targets a rebuilt chain takes over from the chain it replaced, instead of allocating its
+// own. On NVIDIA the first draw into a newly allocated texture holds the CPU (and every context's
+// frames) for about 1 ms per MB: a 3840x2160 RGBA32F target's first two draws (its two buffers)
+// cost 70-170 ms, a reused one's 0.1 ms (docs/performance.md, "Session 32"). Textures are shared
+// by the contexts of a share group; any thread may call it, each with one of them current.
+class IsfTexturePool {
+public:
+    // A texture of that size and internal format the pool held (it no longer does), or 0.
+    unsigned Take(int w, int h, unsigned format);
+    // Keeps `texture` for a later Take.
+    void Put(unsigned texture, int w, int h, unsigned format);
+    // Deletes the oldest textures it holds until it holds at most `capBytes`.
+    void SetCap(size_t capBytes);
+    // Deletes everything it holds.
+    void Clear();
+    size_t Bytes() const;
+    static size_t BytesOf(int w, int h, unsigned format);
+
+private:
+    struct Entry {
+        unsigned texture = 0;
+        int w = 0, h = 0;
+        unsigned format = 0;
+    };
+    void Trim();   // mutex_ held
+    mutable std::mutex mutex_;
+    std::vector<Entry> entries_;   // oldest first
+    size_t cap_ = 0, bytes_ = 0;
+};
+
 // One ISF file with its program, buffers and imported images. Owns GL objects: create, use and
 // destroy it on the render thread with the context current.
 class IsfEffect {
@@ -143,6 +174,10 @@ public:
     void CopyBuffersFrom(const IsfEffect& other);
     // Every target back to transparent black, as a new effect's are.
     void ClearBuffers();
+    // New targets come from `pool` where it holds one of their size and format (null: none).
+    void SetTexturePool(IsfTexturePool* pool);
+    // Hands every target's textures to `pool` (the effect keeps none); the bytes they hold.
+    size_t GiveTextures(IsfTexturePool& pool);
     bool IsValid() const;
     const IsfFile& File() const;
     const std::vector<ParamDecl>& Params() const;
@@ -171,6 +206,8 @@ public:
     // Each stage's feedback from `other`'s stage at the same place in the chain, of the same file.
     void CopyBuffersFrom(const IsfChain& other);
     void ClearBuffers();
+    void SetTexturePool(IsfTexturePool* pool);
+    size_t GiveTextures(IsfTexturePool& pool);
     bool Empty() const { return effects_.empty(); }
     size_t Size() const { return effects_.size(); }
     IsfEffect& Stage(size_t i) { return *effects_[i]; }

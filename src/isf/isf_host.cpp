@@ -92,7 +92,11 @@ IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts) : chain_(std::make_uniq
 }
 
 IsfHost::~IsfHost() {
-    if (!own_) return;
+    if (!own_) {   // the render thread, its context current
+        pool_.Clear();
+        if (buildInput_.texture) glDeleteTextures(1, &buildInput_.texture);
+        return;
+    }
     // Each chain goes on the thread whose context it lives in.
     threads_[(size_t)current_]->Run([&] {
         chain_.reset();
@@ -101,6 +105,8 @@ IsfHost::~IsfHost() {
     threads_[(size_t)current_ ^ 1]->Run([&] {
         result_.chain.reset();
         copyFrom_.reset();
+        pool_.Clear();
+        if (buildInput_.texture) glDeleteTextures(1, &buildInput_.texture);
         glFinish();
     });
     threads_ = {};
@@ -223,9 +229,21 @@ void IsfHost::Build(const Job& job, Result* out) {
         // happens here. The same size, input format and audio texture formats as the last frame.
         unsigned input = 0;
         if (job.inputFormat) {
-            glCreateTextures(GL_TEXTURE_2D, 1, &input);
-            glTextureStorage2D(input, 1, job.inputFormat, job.w, job.h);
+            Scratch& in = buildInput_;
+            if (in.texture && (in.w != job.w || in.h != job.h || in.format != job.inputFormat)) {
+                glDeleteTextures(1, &in.texture);
+                in = Scratch{};
+            }
+            if (!in.texture) {
+                glCreateTextures(GL_TEXTURE_2D, 1, &in.texture);
+                glTextureStorage2D(in.texture, 1, job.inputFormat, job.w, job.h);
+                in.w = job.w;
+                in.h = job.h;
+                in.format = job.inputFormat;
+            }
+            input = in.texture;
         }
+        chain->SetTexturePool(&pool_);
         IsfFrameInputs in;
         std::vector<float> wave((size_t)job.waveSamples, 0.0f), spectrum((size_t)job.spectrumBins, 0.0f);
         in.audioWaveform = wave;
@@ -233,7 +251,6 @@ void IsfHost::Build(const Job& job, Result* out) {
         chain->Render(input, job.w, job.h, in);
         chain->ClearBuffers();   // what that draw left in PERSISTENT targets is not the show's
         glFinish();
-        if (input) glDeleteTextures(1, &input);
     }
     ++built_;
     out->chain = std::move(chain);
@@ -241,9 +258,12 @@ void IsfHost::Build(const Job& job, Result* out) {
     out->buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The pool keeps the retired chain's targets (what the next build most likely asks for) and lets
+// older ones go.
 void IsfHost::Retire(std::unique_ptr<IsfChain> chain, int context) {
     IsfChain* c = chain.release();
-    threads_[(size_t)context]->Post([c] {
+    threads_[(size_t)context]->Post([this, c] {
+        pool_.SetCap(c->GiveTextures(pool_));
         delete c;
         glFinish();
     });
@@ -255,6 +275,7 @@ void IsfHost::Adopt(Result& r) {
     shown_ = std::move(r.files);
     if (!own_) {
         chain_->CopyBuffersFrom(*old);
+        pool_.SetCap(old->GiveTextures(pool_));
         return;
     }
     current_ ^= 1;   // the next build goes to the context the old chain leaves

@@ -99,6 +99,14 @@ private:
     void Retire(std::unique_ptr<IsfChain> chain, int context);
     class ContextThread;                       // a thread keeping one context current, running tasks in order
     std::array<std::unique_ptr<ContextThread>, 2> threads_;
+    // The retired chain's render targets, which the next build takes (IsfTexturePool says why), and
+    // the input its first draw reads, kept from build to build for the same reason. Builds run one
+    // at a time.
+    IsfTexturePool pool_;
+    struct Scratch {
+        unsigned texture = 0, format = 0;
+        int w = 0, h = 0;
+    } buildInput_;
     std::unique_ptr<IsfChain> copyFrom_;       // the chain a swap replaced, until the first frame copied its feedback
 
     bool own_ = false;

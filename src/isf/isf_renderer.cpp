@@ -30,15 +30,20 @@ struct Buffer {
         tex[0] = tex[1] = fbo[0] = fbo[1] = 0;
         w = h = 0;
     }
-    // (Re)creates both textures cleared to transparent black when size or format changed.
-    void Ensure(int width, int height, bool floatTarget) {
+    // (Re)creates both textures cleared to transparent black when size or format changed (taken
+    // from `pool` where it has them).
+    void Ensure(int width, int height, bool floatTarget, IsfTexturePool* pool) {
         if (tex[0] && w == width && h == height && isFloat == floatTarget) return;
         Release();
-        glCreateTextures(GL_TEXTURE_2D, 2, tex);
         glCreateFramebuffers(2, fbo);
         const float zero[4] = {0, 0, 0, 0};
+        const unsigned format = floatTarget ? GL_RGBA32F : GL_RGBA8;
         for (int i = 0; i < 2; ++i) {
-            glTextureStorage2D(tex[i], 1, floatTarget ? GL_RGBA32F : GL_RGBA8, width, height);
+            tex[i] = pool ? pool->Take(width, height, format) : 0;
+            if (!tex[i]) {
+                glCreateTextures(GL_TEXTURE_2D, 1, &tex[i]);
+                glTextureStorage2D(tex[i], 1, format, width, height);
+            }
             glClearTexImage(tex[i], 0, GL_RGBA, GL_FLOAT, zero);
             glNamedFramebufferTexture(fbo[i], GL_COLOR_ATTACHMENT0, tex[i], 0);
         }
@@ -111,6 +116,7 @@ struct IsfEffect::State {
     std::pair<uint64_t, uint64_t> programHash{};    // ShaderSource::hash of the stages `program` was built from
     int built = 0;                                  // programs built (ProgramsBuilt)
     std::vector<unsigned> boundUnits;
+    IsfTexturePool* pool = nullptr;                 // where new targets come from (SetTexturePool)
 
     int Location(const std::string& name) {
         auto it = locations.find(name);
@@ -270,6 +276,73 @@ void IsfEffect::ClearBuffers() {
             if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
 }
 
+void IsfEffect::SetTexturePool(IsfTexturePool* pool) { s_->pool = pool; }
+
+size_t IsfEffect::GiveTextures(IsfTexturePool& pool) {
+    size_t bytes = 0;
+    for (auto& [target, b] : s_->buffers) {
+        const unsigned format = b.isFloat ? GL_RGBA32F : GL_RGBA8;
+        for (unsigned& t : b.tex) {
+            if (!t) continue;
+            pool.Put(t, b.w, b.h, format);
+            bytes += IsfTexturePool::BytesOf(b.w, b.h, format);
+            t = 0;
+        }
+        b.Release();   // its framebuffers (the textures are the pool's now)
+    }
+    return bytes;
+}
+
+size_t IsfTexturePool::BytesOf(int w, int h, unsigned format) {
+    const size_t texel = format == GL_RGBA32F ? 16 : format == GL_RGBA16F ? 8 : 4;
+    return (size_t)std::max(w, 0) * (size_t)std::max(h, 0) * texel;
+}
+
+unsigned IsfTexturePool::Take(int w, int h, unsigned format) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = entries_.rbegin(); it != entries_.rend(); ++it) {   // the newest first
+        if (it->w != w || it->h != h || it->format != format) continue;
+        const unsigned t = it->texture;
+        bytes_ -= BytesOf(w, h, format);
+        entries_.erase(std::next(it).base());
+        return t;
+    }
+    return 0;
+}
+
+void IsfTexturePool::Put(unsigned texture, int w, int h, unsigned format) {
+    if (!texture) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.push_back({texture, w, h, format});
+    bytes_ += BytesOf(w, h, format);
+}
+
+void IsfTexturePool::SetCap(size_t capBytes) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cap_ = capBytes;
+    Trim();
+}
+
+void IsfTexturePool::Trim() {
+    while (!entries_.empty() && bytes_ > cap_) {
+        glDeleteTextures(1, &entries_.front().texture);
+        bytes_ -= BytesOf(entries_.front().w, entries_.front().h, entries_.front().format);
+        entries_.erase(entries_.begin());
+    }
+}
+
+void IsfTexturePool::Clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const Entry& e : entries_) glDeleteTextures(1, &e.texture);
+    entries_.clear();
+    bytes_ = 0;
+}
+
+size_t IsfTexturePool::Bytes() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return bytes_;
+}
+
 void IsfEffect::CopyBuffersFrom(const IsfEffect& other) {
     for (auto& [target, b] : s_->buffers) {
         auto it = other.s_->buffers.find(target);
@@ -337,7 +410,7 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
         };
         const int pw = side(pass.widthExpr, w), ph = side(pass.heightExpr, h);
         Buffer& b = s.buffers[pass.target];
-        b.Ensure(pw, ph, pass.floatTarget);
+        b.Ensure(pw, ph, pass.floatTarget, s.pool);
         glBindFramebuffer(GL_FRAMEBUFFER, b.fbo[b.front ^ 1]);
         glViewport(0, 0, pw, ph);
 
@@ -417,6 +490,16 @@ bool IsfChain::Load(const std::vector<std::string>& paths, std::string* error) {
 
 void IsfChain::ClearBuffers() {
     for (auto& e : effects_) e->ClearBuffers();
+}
+
+void IsfChain::SetTexturePool(IsfTexturePool* pool) {
+    for (auto& e : effects_) e->SetTexturePool(pool);
+}
+
+size_t IsfChain::GiveTextures(IsfTexturePool& pool) {
+    size_t bytes = 0;
+    for (auto& e : effects_) bytes += e->GiveTextures(pool);
+    return bytes;
 }
 
 void IsfChain::CopyBuffersFrom(const IsfChain& other) {

@@ -2,6 +2,7 @@
 // render thread keeps drawing the chain on screen; broken saves keep each stage's last good file;
 // feedback survives a rebuild.
 #include <catch2/catch.hpp>
+#include <epoxy/gl.h>
 
 #include <algorithm>
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <set>
 
 #include "isf/isf_host.h"
 #include "isf_test_util.h"
@@ -256,4 +258,52 @@ TEST_CASE("isf host: a rebuilt effect keeps its PERSISTENT feedback", "[isf][gl]
         INFO(frames << " frames drawn in all");
         CHECK(std::abs(px.r - (int)std::lround(frames * 0.0002 * 255)) <= 1);   // not 1 frame's worth: the sum went on
     }
+}
+
+// On NVIDIA a texture's first draws cost about 1 ms of CPU per MB and hold every context's frames
+// (docs/performance.md, "Session 32"), so a rebuilt chain draws into the targets of the chain it
+// replaced. Each chain's targets are seen as the output textures Render returns.
+TEST_CASE("isf host: a rebuilt chain draws into the render targets of the chain it replaced", "[isf][gl]") {
+    const bool own = GENERATE(true, false);
+    INFO((own ? "contexts of its own" : "the window's context"));
+    Gl gl;
+    const std::string path = TempDir() + "/host_pool.fs";
+    WriteText(path, Multiply("1.0, 0.5, 0.25"));
+    // A white input, so each chain's colour is its own.
+    unsigned white = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &white);
+    glTextureStorage2D(white, 1, GL_RGBA8, kW, kH);
+    const float one[4] = {1, 1, 1, 1};
+    glClearTexImage(white, 0, GL_RGBA, GL_FLOAT, one);
+    {
+        IsfHost host = own ? IsfHost(gl.Own()) : IsfHost();
+        REQUIRE(host.OwnContexts() == own);
+        Frames f{host, white, {}};
+        auto outputs = [&](int frames) {
+            std::set<unsigned> seen;
+            for (int i = 0; i < frames; ++i) seen.insert(host.Render(white, kW, kH, f.in));
+            glFinish();
+            return seen;
+        };
+        host.Request({Parse(path)}, kW, kH);
+        REQUIRE(f.UntilBuilt().adopted);
+        const std::set<unsigned> first = outputs(4);
+        REQUIRE(first.size() == 2);   // the output's two buffers, by turns
+        std::vector<std::string> errors;
+        WriteText(path, Multiply("0.25, 1.0, 0.5"));   // built while the first chain is on screen: targets of its own
+        REQUIRE(host.Reload(&errors));
+        REQUIRE(f.UntilBuilt().adopted);
+        const std::set<unsigned> second = outputs(4);
+        CHECK(std::none_of(second.begin(), second.end(), [&](unsigned t) { return first.count(t) > 0; }));
+        WriteText(path, Multiply("0.5, 0.25, 1.0"));   // built once the first chain was retired: its targets
+        REQUIRE(host.Reload(&errors));
+        REQUIRE(f.UntilBuilt().adopted);
+        const std::set<unsigned> third = outputs(4);
+        CHECK(third == first);
+        Px px;
+        f.Draw(&px);
+        CHECK(Is(px, 128, 64, 255));   // the third chain's image, on targets cleared and drawn anew
+        CHECK(errors.empty());
+    }
+    glDeleteTextures(1, &white);
 }
