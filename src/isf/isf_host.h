@@ -2,13 +2,14 @@
 //
 // A driver may compile a program's pixel code at its first draw in each context: on llvmpipe,
 // bloom's first draw takes 120-360 ms, and a program drawn first in a second, shared context
-// still costs the render thread's context nearly all of it again (100 against 118 ms, measured);
-// on NVIDIA the render thread's first draw of a chain a worker had drawn in the same context still
-// took 69-237 ms. So the chain has two contexts of its own (sharing objects with the render
-// thread's), each current for good on a thread of its own. The thread of the spare context builds
-// a new chain and draws it once at the show's size with the show's kind of input; each frame the
-// render thread hands the thread of the chain on screen its input between two fences. After a
-// swap the new chain takes the old one's feedback and the old chain's thread deletes it.
+// still costs the render thread's context nearly all of it again (100 against 118 ms, measured).
+// So the chain has two contexts of its own (sharing objects with the render thread's), each
+// current for good on a thread of its own. The thread of the spare context builds a new chain and
+// draws it once at the show's size with the show's kind of input; each frame the render thread
+// hands the thread of the chain on screen its input between two fences. After a swap the new
+// chain takes the old one's feedback and the old chain's thread hands its textures to a pool the
+// next build draws into: on NVIDIA a new texture's first draw holds every context's frames for
+// about 1 ms per MB (IsfTexturePool).
 //
 //   IsfHost host({ctxA, ctxB});
 //   host.Request(files, w, h);                   // files parsed already (LoadIsfFile)
