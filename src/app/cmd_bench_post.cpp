@@ -1,6 +1,7 @@
 // `sdfvj bench post`: what a post effect's save costs the show's frames (issue 12), with the chain
-// in contexts of its own (IsfHost, as `live` draws it) against the chain in the render thread's
-// context (as before; `live` with SDFVJ_POST_CONTEXTS=0). Per effect and size:
+// built in contexts of its own (IsfHost, as `live` builds it: drawn there on llvmpipe, by the render
+// thread elsewhere; SDFVJ_POST_DRAW=own|render picks) against the chain built and drawn in the
+// render thread's context (as before; `live` with SDFVJ_POST_CONTEXTS=0). Per effect and size:
 //   steady   the chain's frame (IsfHost::Render + glFinish), both ways interleaved in blocks,
 //            after the GPU has warmed; the first way timed again at the end (drift check)
 //   saves    rounds of a save (the effect with a new function appended: a program no cache has
@@ -34,7 +35,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct Way {
-    const char* name;
+    std::string name;
     std::unique_ptr<IsfHost> host;
     std::string file, original;   // the copy its saves go to, and the effect as shipped
     std::vector<double> steady, toScreen, longest, swap, adopt, handover, draw, finish;
@@ -99,6 +100,8 @@ int RunPostBench(const PostBenchOptions& o) {
         }
         Way ways[2] = {{"own contexts", std::make_unique<IsfHost>(std::array<IsfHostContext, 2>{own(a), own(b)})},
                        {"the window's context", std::make_unique<IsfHost>()}};
+        // Built in contexts of its own, then drawn there or by the render thread (IsfDrawIn::Auto).
+        ways[0].name = ways[0].host->DrawIn() == IsfDrawIn::OwnContexts ? "own contexts" : "built in own contexts, drawn here";
         IsfFrameInputs in;
         for (int k = 0; k < 2; ++k) {
             Way& way = ways[k];
@@ -121,7 +124,7 @@ int RunPostBench(const PostBenchOptions& o) {
         }
         WarmGpu([&] { for (Way& way : ways) Frame(*way.host, input, w, h, in); }, 1.0);
         auto steady = [&](Way& way) { return TimeMedian([&] { return Frame(*way.host, input, w, h, in); }, std::max(5, o.frames / 10)); };
-        Drift drift{name + " " + SizeName(w, h) + " own contexts"};
+        Drift drift{name + " " + SizeName(w, h) + " " + ways[0].name};
         drift.startMs = steady(ways[0]);
         for (int block = 0; block < 10; ++block)
             for (int k = 0; k < 2; ++k) ways[(block + k) % 2].steady.push_back(steady(ways[(block + k) % 2]));
@@ -163,7 +166,7 @@ int RunPostBench(const PostBenchOptions& o) {
         for (Way& way : ways) {
             const double st = MedianMs(way.steady), ts = MedianMs(way.toScreen), lo = MedianMs(way.longest), sw = MedianMs(way.swap);
             std::printf("| %s | %s | %s | %.3f ms | %.1f ms | %.1f ms | %.1fx | %.2f ms | %.2f / %.2f / %.2f / %.2f ms |\n", name.c_str(),
-                        SizeName(w, h).c_str(), way.name, st, ts, lo, st > 0 ? lo / st : 0.0, sw, MedianMs(way.adopt), MedianMs(way.handover),
+                        SizeName(w, h).c_str(), way.name.c_str(), st, ts, lo, st > 0 ? lo / st : 0.0, sw, MedianMs(way.adopt), MedianMs(way.handover),
                         MedianMs(way.draw), MedianMs(way.finish));
             csv.Add(name, "post", SizeName(w, h), "fragment", st, gpu,
                     {way.name, std::to_string(ts), std::to_string(lo), std::to_string(sw), std::to_string(o.rounds)});
@@ -173,7 +176,7 @@ int RunPostBench(const PostBenchOptions& o) {
         for (Way& way : ways) {
             std::string list;
             for (double ms : way.longest) list += (list.empty() ? "" : " / ") + std::to_string((int)std::lround(ms));
-            std::printf("|  | | %s: the longest frame of each save in order | | | %s ms | | | |\n", way.name, list.c_str());
+            std::printf("|  | | %s: the longest frame of each save in order | | | %s ms | | | |\n", way.name.c_str(), list.c_str());
         }
         std::fflush(stdout);
     }

@@ -178,6 +178,9 @@ public:
     void SetTexturePool(IsfTexturePool* pool);
     // Hands every target's textures to `pool` (the effect keeps none); the bytes they hold.
     size_t GiveTextures(IsfTexturePool& pool);
+    // Deletes the objects only the current context can use (vertex array, framebuffers); the next
+    // Render, in any context of the share group, makes them there.
+    void ReleaseContextObjects();
     bool IsValid() const;
     const IsfFile& File() const;
     const std::vector<ParamDecl>& Params() const;
@@ -208,6 +211,7 @@ public:
     void ClearBuffers();
     void SetTexturePool(IsfTexturePool* pool);
     size_t GiveTextures(IsfTexturePool& pool);
+    void ReleaseContextObjects();
     bool Empty() const { return effects_.empty(); }
     size_t Size() const { return effects_.size(); }
     IsfEffect& Stage(size_t i) { return *effects_[i]; }

@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <deque>
 
 namespace sdfvj {
@@ -84,15 +85,30 @@ private:
 
 IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()) {}
 
-IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts) : chain_(std::make_unique<IsfChain>()) {
+IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, IsfDrawIn drawIn) : chain_(std::make_unique<IsfChain>()) {
+    if (drawIn == IsfDrawIn::Auto) {
+        const char* env = std::getenv("SDFVJ_POST_DRAW");
+        const std::string forced = env ? env : "";
+        const char* renderer = (const char*)glGetString(GL_RENDERER);
+        const std::string name = renderer ? renderer : "";
+        const bool perContext = name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+        drawIn = forced == "own"      ? IsfDrawIn::OwnContexts
+                 : forced == "render" ? IsfDrawIn::RenderThread
+                 : perContext         ? IsfDrawIn::OwnContexts
+                                      : IsfDrawIn::RenderThread;
+    }
     if (!contexts[0].makeCurrent || !contexts[1].makeCurrent) return;
     for (size_t i = 0; i < 2; ++i) threads_[i] = std::make_unique<ContextThread>(contexts[i]);
     own_ = threads_[0]->Ok() && threads_[1]->Ok();
     if (!own_) threads_ = {};
+    drawHere_ = own_ && drawIn == IsfDrawIn::RenderThread;
 }
 
 IsfHost::~IsfHost() {
-    if (!own_) {   // the render thread, its context current
+    if (drawHere_) threads_ = {};   // the builds end first; every chain is drawn here
+    if (!own_ || drawHere_) {   // the render thread, its context current
+        chain_.reset();
+        result_.chain.reset();
         pool_.Clear();
         if (buildInput_.texture) glDeleteTextures(1, &buildInput_.texture);
         return;
@@ -161,7 +177,7 @@ bool IsfHost::Reload(std::vector<std::string>* errors) {
                 if (!chain_->Stage(i).LoadParsed(next[i], &error)) errors->push_back(error + " — still showing the previous shader");
             }
         };
-        if (own_) threads_[(size_t)current_]->Run(apply);
+        if (own_ && !drawHere_) threads_[(size_t)current_]->Run(apply);
         else apply();
         shown_ = next;
         return false;
@@ -250,6 +266,7 @@ void IsfHost::Build(const Job& job, Result* out) {
         in.audioSpectrum = spectrum;
         chain->Render(input, job.w, job.h, in);
         chain->ClearBuffers();   // what that draw left in PERSISTENT targets is not the show's
+        if (drawHere_) chain->ReleaseContextObjects();   // the render thread draws it, in its context
         glFinish();
     }
     ++built_;
@@ -273,7 +290,7 @@ void IsfHost::Adopt(Result& r) {
     std::unique_ptr<IsfChain> old = std::move(chain_);
     chain_ = std::move(r.chain);
     shown_ = std::move(r.files);
-    if (!own_) {
+    if (!own_ || drawHere_) {
         chain_->CopyBuffersFrom(*old);
         pool_.SetCap(old->GiveTextures(pool_));
         return;
@@ -335,7 +352,7 @@ unsigned IsfHost::Render(unsigned input, int w, int h, const IsfFrameInputs& in)
     if (chain_->Empty()) return input;
     using Ms = std::chrono::duration<double, std::milli>;
     const auto t0 = std::chrono::steady_clock::now();
-    if (!own_) {
+    if (!own_ || drawHere_) {
         const unsigned out = chain_->Render(input, w, h, in);
         split_ = {0.0, Ms(std::chrono::steady_clock::now() - t0).count()};
         return out;

@@ -33,6 +33,17 @@
 
 namespace sdfvj {
 
+// Where a chain built in the host's own contexts is drawn each frame.
+enum class IsfDrawIn {
+    Auto,           // RenderThread, or OwnContexts on a renderer that compiles a program's pixel code
+                    // again in each context (Mesa's llvmpipe and softpipe); SDFVJ_POST_DRAW=own|render forces one
+    OwnContexts,    // by the thread of the chain's own context, the render thread handing it each frame's
+                    // input between two fences: no frame compiles, but every frame switches contexts
+                    // (NVIDIA: 0.4-0.8 ms a frame; llvmpipe: within 1-4 %)
+    RenderThread,   // in the render thread's context (its vertex arrays and framebuffers made there at its
+                    // first draw): no switch; the first draw there finishes the program for that context
+};
+
 struct IsfHostContext {
     std::function<bool()> makeCurrent;   // on the calling thread; false if it could not be
     std::function<void()> release;       // no context current on the calling thread
@@ -41,12 +52,15 @@ struct IsfHostContext {
 class IsfHost {
 public:
     IsfHost();   // builds and draws in the render thread's context
-    explicit IsfHost(std::array<IsfHostContext, 2> contexts);
+    explicit IsfHost(std::array<IsfHostContext, 2> contexts, IsfDrawIn drawIn = IsfDrawIn::Auto);   // render thread, its context current
     ~IsfHost();   // render thread, its own context current
     IsfHost(const IsfHost&) = delete;
     IsfHost& operator=(const IsfHost&) = delete;
 
     bool OwnContexts() const { return own_; }
+    // Where the chains are drawn (Auto resolved): OwnContexts or RenderThread with contexts of its
+    // own, RenderThread without.
+    IsfDrawIn DrawIn() const { return own_ && !drawHere_ ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread; }
     // The chain of these files (an empty list: none). With contexts of its own it returns at
     // once and the chain on screen keeps drawing until the new one is built; Poll says when.
     void Request(std::vector<IsfFile> files, int w, int h);
@@ -111,6 +125,7 @@ private:
     std::unique_ptr<IsfChain> copyFrom_;       // the chain a swap replaced, until the first frame copied its feedback
 
     bool own_ = false;
+    bool drawHere_ = false;                    // built in its own contexts, drawn in the render thread's (IsfDrawIn::RenderThread)
     int current_ = 0;                          // the context the chain on screen lives in
     std::unique_ptr<IsfChain> chain_;
     std::vector<IsfFile> shown_;               // the files of the chain on screen

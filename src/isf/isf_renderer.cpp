@@ -33,7 +33,13 @@ struct Buffer {
     // (Re)creates both textures cleared to transparent black when size or format changed (taken
     // from `pool` where it has them).
     void Ensure(int width, int height, bool floatTarget, IsfTexturePool* pool) {
-        if (tex[0] && w == width && h == height && isFloat == floatTarget) return;
+        if (tex[0] && w == width && h == height && isFloat == floatTarget) {
+            if (!fbo[0]) {   // drawn first in another context (IsfEffect::ReleaseContextObjects)
+                glCreateFramebuffers(2, fbo);
+                for (int i = 0; i < 2; ++i) glNamedFramebufferTexture(fbo[i], GL_COLOR_ATTACHMENT0, tex[i], 0);
+            }
+            return;
+        }
         Release();
         glCreateFramebuffers(2, fbo);
         const float zero[4] = {0, 0, 0, 0};
@@ -278,6 +284,15 @@ void IsfEffect::ClearBuffers() {
 
 void IsfEffect::SetTexturePool(IsfTexturePool* pool) { s_->pool = pool; }
 
+void IsfEffect::ReleaseContextObjects() {
+    if (s_->vao) glDeleteVertexArrays(1, &s_->vao);
+    s_->vao = 0;
+    for (auto& [target, b] : s_->buffers) {
+        glDeleteFramebuffers(2, b.fbo);
+        b.fbo[0] = b.fbo[1] = 0;
+    }
+}
+
 size_t IsfEffect::GiveTextures(IsfTexturePool& pool) {
     size_t bytes = 0;
     for (auto& [target, b] : s_->buffers) {
@@ -381,6 +396,7 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
     }
 
     glUseProgram(s.program);
+    if (!s.vao) glCreateVertexArrays(1, &s.vao);   // drawn first in another context
     glBindVertexArray(s.vao);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
@@ -494,6 +510,10 @@ void IsfChain::ClearBuffers() {
 
 void IsfChain::SetTexturePool(IsfTexturePool* pool) {
     for (auto& e : effects_) e->SetTexturePool(pool);
+}
+
+void IsfChain::ReleaseContextObjects() {
+    for (auto& e : effects_) e->ReleaseContextObjects();
 }
 
 size_t IsfChain::GiveTextures(IsfTexturePool& pool) {

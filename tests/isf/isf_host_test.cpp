@@ -109,7 +109,7 @@ TEST_CASE("isf host: a saved effect is built and first drawn in a context of its
     WriteText(path, Tint("1.0, 0.0, 0.0", 48));
     const unsigned input = MakeTexture(kW, kH, [](int, int) { return std::array<uint8_t, 4>{0, 0, 0, 255}; });
     {
-        IsfHost host(gl.Own());
+        IsfHost host(gl.Own(), IsfDrawIn::OwnContexts);   // drawn there: on llvmpipe no frame compiles
         REQUIRE(host.OwnContexts());
         Frames f{host, input, {}};
         host.Request({Parse(path)}, kW, kH);
@@ -165,6 +165,8 @@ TEST_CASE("isf host: a saved effect is built and first drawn in a context of its
 }
 
 TEST_CASE("isf host: a broken save keeps its stage's last good file and a save of the GLSL on screen builds nothing", "[isf][gl]") {
+    const IsfDrawIn drawIn = GENERATE(IsfDrawIn::OwnContexts, IsfDrawIn::RenderThread);
+    INFO((drawIn == IsfDrawIn::OwnContexts ? "drawn in its own contexts" : "drawn by the render thread"));
     Gl gl;
     const std::string first = TempDir() + "/host_first.fs", second = TempDir() + "/host_second.fs";
     const std::string tint = Tint("1.0, 0.5, 1.0", 4);
@@ -172,7 +174,7 @@ TEST_CASE("isf host: a broken save keeps its stage's last good file and a save o
     WriteText(second, Multiply("1.0, 1.0, 0.5"));
     const unsigned input = MakeTexture(kW, kH, [](int, int) { return std::array<uint8_t, 4>{0, 0, 0, 255}; });
     {
-        IsfHost host(gl.Own());
+        IsfHost host(gl.Own(), drawIn);
         Frames f{host, input, {}};
         host.Request({Parse(first), Parse(second)}, kW, kH);
         REQUIRE(f.UntilBuilt().adopted);
@@ -231,13 +233,15 @@ TEST_CASE("isf host: a broken save keeps its stage's last good file and a save o
 }
 
 TEST_CASE("isf host: a rebuilt effect keeps its PERSISTENT feedback", "[isf][gl]") {
+    const IsfDrawIn drawIn = GENERATE(IsfDrawIn::OwnContexts, IsfDrawIn::RenderThread);
+    INFO((drawIn == IsfDrawIn::OwnContexts ? "drawn in its own contexts" : "drawn by the render thread"));
     Gl gl;
     std::ifstream src(TestFile("persistent.fs"));
     const std::string text((std::istreambuf_iterator<char>(src)), {});
     const std::string path = TempDir() + "/host_persistent.fs";
     WriteText(path, text);
     {
-        IsfHost host(gl.Own());
+        IsfHost host(gl.Own(), drawIn);
         Frames f{host, 0, {}};
         f.in.params = {{"step", 0.0002f}};   // a frame adds 0.051 of an 8-bit level: 5000 frames to saturate
         host.Request({Parse(path)}, kW, kH);
@@ -264,8 +268,9 @@ TEST_CASE("isf host: a rebuilt effect keeps its PERSISTENT feedback", "[isf][gl]
 // (docs/performance.md, "Session 32"), so a rebuilt chain draws into the targets of the chain it
 // replaced. Each chain's targets are seen as the output textures Render returns.
 TEST_CASE("isf host: a rebuilt chain draws into the render targets of the chain it replaced", "[isf][gl]") {
-    const bool own = GENERATE(true, false);
-    INFO((own ? "contexts of its own" : "the window's context"));
+    const int form = GENERATE(0, 1, 2);
+    INFO((form == 0 ? "drawn in its own contexts" : form == 1 ? "built in its own contexts, drawn by the render thread" : "the window's context"));
+    const bool own = form < 2;
     Gl gl;
     const std::string path = TempDir() + "/host_pool.fs";
     WriteText(path, Multiply("1.0, 0.5, 0.25"));
@@ -276,7 +281,8 @@ TEST_CASE("isf host: a rebuilt chain draws into the render targets of the chain 
     const float one[4] = {1, 1, 1, 1};
     glClearTexImage(white, 0, GL_RGBA, GL_FLOAT, one);
     {
-        IsfHost host = own ? IsfHost(gl.Own()) : IsfHost();
+        IsfHost host = own ? IsfHost(gl.Own(), form == 0 ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread) : IsfHost();
+        CHECK(host.DrawIn() == (form == 0 ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread));
         REQUIRE(host.OwnContexts() == own);
         Frames f{host, white, {}};
         auto outputs = [&](int frames) {
@@ -306,4 +312,28 @@ TEST_CASE("isf host: a rebuilt chain draws into the render targets of the chain 
         CHECK(errors.empty());
     }
     glDeleteTextures(1, &white);
+}
+
+TEST_CASE("isf host: by default a chain is drawn in its own contexts where the renderer compiles again in each context", "[isf][gl]") {
+    Gl gl;
+    const char* renderer = (const char*)glGetString(GL_RENDERER);
+    REQUIRE(renderer);
+    const bool perContext = std::string(renderer).find("llvmpipe") != std::string::npos;
+    {
+        IsfHost host(gl.Own());
+        CHECK(host.DrawIn() == (perContext ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread));
+    }
+    setenv("SDFVJ_POST_DRAW", "render", 1);
+    {
+        IsfHost host(gl.Own());
+        CHECK(host.DrawIn() == IsfDrawIn::RenderThread);
+    }
+    setenv("SDFVJ_POST_DRAW", "own", 1);
+    {
+        IsfHost host(gl.Own());
+        CHECK(host.DrawIn() == IsfDrawIn::OwnContexts);
+    }
+    unsetenv("SDFVJ_POST_DRAW");
+    IsfHost none;
+    CHECK(none.DrawIn() == IsfDrawIn::RenderThread);
 }
