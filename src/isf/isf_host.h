@@ -9,7 +9,7 @@
 // the render thread hands the thread of the chain on screen its input between two fences; on
 // others the render thread draws the chain itself (IsfDrawIn: no context switch each frame, which
 // cost NVIDIA 0.4-0.8 ms). After a swap the new
-// chain takes the old one's feedback and the old chain's thread hands its textures to a pool the
+// chain takes the old one's feedback and the old chain's textures go to a pool the
 // next build draws into: on NVIDIA a new texture's first draw holds every context's frames for
 // about 1 ms per MB (IsfTexturePool).
 //
