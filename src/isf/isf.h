@@ -132,13 +132,17 @@ std::vector<float> IsfAudioRow(std::span<const float> values, int maxSamples);
 // by the contexts of a share group; any thread may call it, each with one of them current.
 class IsfTexturePool {
 public:
-    // A texture of that size and internal format the pool held (it no longer does), or 0.
+    // A texture of that size and internal format the pool held (it no longer does), or 0. The
+    // calling context's later commands wait (on the GPU) for those the giver issued before Seal.
     unsigned Take(int w, int h, unsigned format);
     // Keeps `texture` for a later Take.
     void Put(unsigned texture, int w, int h, unsigned format);
+    // After Puts: a fence behind the current context's commands so far (which may still read or
+    // draw the textures given), which a Take in another context waits for.
+    void Seal();
     // Deletes the oldest textures it holds until it holds at most `capBytes`.
     void SetCap(size_t capBytes);
-    // Deletes everything it holds.
+    // Deletes everything it holds, and its fence.
     void Clear();
     size_t Bytes() const;
     static size_t BytesOf(int w, int h, unsigned format);
@@ -153,6 +157,7 @@ private:
     mutable std::mutex mutex_;
     std::vector<Entry> entries_;   // oldest first
     size_t cap_ = 0, bytes_ = 0;
+    void* sealed_ = nullptr;       // the last Seal's GLsync
 };
 
 // One ISF file with its program, buffers and imported images. Owns GL objects: create, use and

@@ -281,6 +281,7 @@ void IsfHost::Retire(std::unique_ptr<IsfChain> chain, int context) {
     IsfChain* c = chain.release();
     threads_[(size_t)context]->Post([this, c] {
         pool_.SetCap(c->GiveTextures(pool_));
+        pool_.Seal();
         delete c;
         glFinish();
     });
@@ -293,6 +294,7 @@ void IsfHost::Adopt(Result& r) {
     if (!own_ || drawHere_) {
         chain_->CopyBuffersFrom(*old);
         pool_.SetCap(old->GiveTextures(pool_));
+        pool_.Seal();   // the build thread may take them while this context's last frames still read them
         return;
     }
     current_ ^= 1;   // the next build goes to the context the old chain leaves

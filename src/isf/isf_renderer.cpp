@@ -320,6 +320,7 @@ unsigned IsfTexturePool::Take(int w, int h, unsigned format) {
         const unsigned t = it->texture;
         bytes_ -= BytesOf(w, h, format);
         entries_.erase(std::next(it).base());
+        if (sealed_) glWaitSync((GLsync)sealed_, 0, GL_TIMEOUT_IGNORED);
         return t;
     }
     return 0;
@@ -330,6 +331,14 @@ void IsfTexturePool::Put(unsigned texture, int w, int h, unsigned format) {
     std::lock_guard<std::mutex> lock(mutex_);
     entries_.push_back({texture, w, h, format});
     bytes_ += BytesOf(w, h, format);
+}
+
+void IsfTexturePool::Seal() {
+    GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    glFlush();   // so that another context's wait on it can end
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (sealed_) glDeleteSync((GLsync)sealed_);   // deleted once no wait is pending on it
+    sealed_ = fence;
 }
 
 void IsfTexturePool::SetCap(size_t capBytes) {
@@ -351,6 +360,8 @@ void IsfTexturePool::Clear() {
     for (const Entry& e : entries_) glDeleteTextures(1, &e.texture);
     entries_.clear();
     bytes_ = 0;
+    if (sealed_) glDeleteSync((GLsync)sealed_);
+    sealed_ = nullptr;
 }
 
 size_t IsfTexturePool::Bytes() const {
