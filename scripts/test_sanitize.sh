@@ -58,6 +58,10 @@ ctest --output-on-failure -j"$JOBS" --timeout 900 -L '^(control|input|mapping|sc
 # The second run's records replace the first's in Testing/Temporary: keep the first's beside them,
 # as a folder scripts/ci_failures.py reads like a build (build-asan/labelled).
 rm -rf labelled && mkdir -p labelled/Testing && cp -r Testing/Temporary labelled/Testing/ 2>/dev/null || true
-ctest --output-on-failure -j"$JOBS" --timeout 900 -R '^(take/|reload)' "$@" || status=1
+# Not `reload: on llvmpipe no frame waits for the compile`: a timing ratio, which the main suite
+# asserts. It holds when Mesa's idle-priority disk-cache thread has written the worker's JIT before
+# the render context's first draw looks it up; under the sanitizers' slowdown that race was lost in
+# 2 of 3 saves once (session 32's CI), while its code paths run in the other reload tests here.
+ctest --output-on-failure -j"$JOBS" --timeout 900 -R '^(take/|reload)' -E '^reload: on llvmpipe no frame waits for the compile' "$@" || status=1
 echo "sanitize: tests took $(( $(date +%s) - built )) s"
 exit $status
