@@ -144,7 +144,6 @@ public:
     void SetCap(size_t capBytes);
     // Deletes everything it holds, and its fence.
     void Clear();
-    size_t Bytes() const;
     static size_t BytesOf(int w, int h, unsigned format);
 
 private:

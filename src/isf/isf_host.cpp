@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <deque>
 
+#include "render/render.h"
+
 namespace sdfvj {
 
 
@@ -89,13 +91,11 @@ IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, IsfDrawIn drawIn) : cha
     if (drawIn == IsfDrawIn::Auto) {
         const char* env = std::getenv("SDFVJ_POST_DRAW");
         const std::string forced = env ? env : "";
-        const char* renderer = (const char*)glGetString(GL_RENDERER);
-        const std::string name = renderer ? renderer : "";
-        const bool perContext = name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
-        drawIn = forced == "own"      ? IsfDrawIn::OwnContexts
-                 : forced == "render" ? IsfDrawIn::RenderThread
-                 : perContext         ? IsfDrawIn::OwnContexts
-                                      : IsfDrawIn::RenderThread;
+        // Mesa's software rasterizers compile a program's pixel code again in each context.
+        drawIn = forced == "own"            ? IsfDrawIn::OwnContexts
+                 : forced == "render"       ? IsfDrawIn::RenderThread
+                 : IsSoftwareRenderer()     ? IsfDrawIn::OwnContexts
+                                            : IsfDrawIn::RenderThread;
     }
     if (!contexts[0].makeCurrent || !contexts[1].makeCurrent) return;
     for (size_t i = 0; i < 2; ++i) threads_[i] = std::make_unique<ContextThread>(contexts[i]);
@@ -276,12 +276,16 @@ void IsfHost::Build(const Job& job, Result* out) {
 }
 
 // The pool keeps the retired chain's targets (what the next build most likely asks for) and lets
-// older ones go.
+// older ones go; a build in another context waits for this one's last use of them (Seal).
+void IsfHost::Pool(IsfChain& retired) {
+    pool_.SetCap(retired.GiveTextures(pool_));
+    pool_.Seal();
+}
+
 void IsfHost::Retire(std::unique_ptr<IsfChain> chain, int context) {
     IsfChain* c = chain.release();
     threads_[(size_t)context]->Post([this, c] {
-        pool_.SetCap(c->GiveTextures(pool_));
-        pool_.Seal();
+        Pool(*c);
         delete c;
         glFinish();
     });
@@ -293,8 +297,7 @@ void IsfHost::Adopt(Result& r) {
     shown_ = std::move(r.files);
     if (!own_ || drawHere_) {
         chain_->CopyBuffersFrom(*old);
-        pool_.SetCap(old->GiveTextures(pool_));
-        pool_.Seal();   // the build thread may take them while this context's last frames still read them
+        Pool(*old);
         return;
     }
     current_ ^= 1;   // the next build goes to the context the old chain leaves

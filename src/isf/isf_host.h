@@ -114,6 +114,7 @@ private:
     void Build(const Job& job, Result* out);   // on the context current on the calling thread
     void Adopt(Result& r);
     void Retire(std::unique_ptr<IsfChain> chain, int context);
+    void Pool(IsfChain& retired);              // its textures to pool_, on the thread of its context
     class ContextThread;                       // a thread keeping one context current, running tasks in order
     std::array<std::unique_ptr<ContextThread>, 2> threads_;
     // The retired chain's render targets, which the next build takes (IsfTexturePool says why), and

@@ -13,6 +13,7 @@
 #include <set>
 
 #include "isf/isf_host.h"
+#include "render/render.h"
 #include "isf_test_util.h"
 
 using namespace sdfvj;
@@ -316,12 +317,9 @@ TEST_CASE("isf host: a rebuilt chain draws into the render targets of the chain 
 
 TEST_CASE("isf host: by default a chain is drawn in its own contexts where the renderer compiles again in each context", "[isf][gl]") {
     Gl gl;
-    const char* renderer = (const char*)glGetString(GL_RENDERER);
-    REQUIRE(renderer);
-    const bool perContext = std::string(renderer).find("llvmpipe") != std::string::npos;
     {
         IsfHost host(gl.Own());
-        CHECK(host.DrawIn() == (perContext ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread));
+        CHECK(host.DrawIn() == (IsSoftwareRenderer() ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread));
     }
     setenv("SDFVJ_POST_DRAW", "render", 1);
     {
