@@ -24,6 +24,8 @@
 #                                 s29 (CONE_PAST_FLOOR, CONE_MIRROR, MANDELBULB_FEW_SFU: one call),
 #                                 s29b (the defaults: frames, the 7680x4320 show, scales);
 #                                 post (issue 12: a post effect's save, `bench post`), s31 (post + s29b);
+#                                 resize (a render-scale change's frame, `bench resize`), s33 (resize + a
+#                                 post effect's first save with and without the first build's spare targets);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -380,6 +382,28 @@ case "${1:-}" in
     fi
     if [ "$part" = s31 ]; then
     mkdir -p "$out/s29b"; OUT="$out/s29b" bash "$0" measure s29b
+    fi
+    if [ "$part" = resize ] || [ "$part" = s33 ]; then
+    # A change of the render scale (the resolution slider, `live --frame-budget`): the frame that makes
+    # it, with other sizes' targets kept against new targets each time (`bench resize`), the scene alone
+    # and under a post chain.
+    for args in "--size 3840x2160" "--size 3840x2160 --post bloom" "--size 1920x1080 --post feedback_trails"; do
+      n=$(echo "$args" | tr -d ' -' | tr ',' '_')
+      timeout 90 bash "$0" remote bench resize --scene character $args --scales 1,0.7,0.5,0.85,2 --rounds 4 \
+        --csv "$out/resize_$n.csv" > "$out/resize_$n.txt" 2>&1 || true
+      cat "$out/resize_$n.txt"
+    done
+    fi
+    if [ "$part" = s33 ]; then
+    # A post effect's first save: the first build's spare targets (on by default on NVIDIA) against
+    # none (SDFVJ_POST_SPARE=0), one run after the other on the same machine; `bench post` lists each
+    # save's longest frame in order.
+    for spare in 1 0; do for size in 1920x1080 3840x2160; do
+      n="spare${spare}_$size"
+      SDFVJ_POST_SPARE=$spare timeout 80 bash "$0" remote bench post --size $size --rounds 4 \
+        --csv "$out/post_$n.csv" > "$out/post_$n.txt" 2>&1 || true
+      echo "== SDFVJ_POST_SPARE=$spare"; cat "$out/post_$n.txt"
+    done; done
     fi
     if [ "$part" = scales ]; then
     # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -45,6 +46,8 @@ bool LiveSession::Start(std::string* error) {
     overlay_ = !o_.hideOverlay;   // --hide-overlay: start as after Tab (clean screenshots)
     renderScale_ = (float)std::clamp(o_.renderScale, 0.25, 2.0);
     softwareGl_ = IsSoftwareRenderer();
+    if (const char* keep = std::getenv("SDFVJ_KEEP_SIZES"); keep && *keep >= '0' && *keep <= '9' && !keep[1]) keepSizes_ = *keep - '0';
+    for (FrameRenderer* r : {&renderer_, &fadeRenderer_, &postInput_}) r->SetKeptSizes(keepSizes_);
     in_.quality = state_.show.quality;
     std::string budgetError;
     if (o_.frameBudgetMs > 0) {

@@ -115,6 +115,20 @@ struct PostBenchOptions {
 };
 int RunPostBench(const PostBenchOptions& o);
 
+// `sdfvj bench resize`: a change of the render scale, the frame that makes it (cmd_bench_resize.cpp).
+struct ResizeBenchOptions {
+    std::string scene = "character";
+    std::string size = "1920x1080";
+    std::string path = "compute";
+    std::string scales = "1,0.7,0.5,0.85";
+    std::string post;    // ISF chain over the scene, as `live --post`
+    int keep = 4;        // sizes kept by the first way
+    int rounds = 4;
+    double fps = 60;
+    std::string csv;
+};
+int RunResizeBench(const ResizeBenchOptions& o);
+
 // `sdfvj bench reload`: save -> first frame with the new program, and the longest frame meanwhile.
 struct ReloadBenchOptions {
     std::string scene = "midi";

@@ -338,6 +338,9 @@ private:
     int frame_ = 0, fbw_ = 0, fbh_ = 0;
     FrameBudget budget_;         // --frame-budget: moves renderScale_ and in_.quality
     float renderScale_ = 1.0f;   // --render-scale and the overlay's resolution slider
+    // Other sizes' render targets kept (FrameRenderer::SetKeptSizes, IsfHost::SetKeptSizes), so a scale
+    // change back to a size drawn at before allocates nothing: SDFVJ_KEEP_SIZES=N, default 4.
+    int keepSizes_ = 4;
     uint64_t internalErrors_ = 0;
 };
 

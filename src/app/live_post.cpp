@@ -56,6 +56,7 @@ void LiveSession::UpdatePost() {
         const char* env = std::getenv("SDFVJ_POST_CONTEXTS");
         if (postContexts_ && !files.empty() && !(env && std::string(env) == "0")) own = postContexts_();
         post_ = own[0].makeCurrent ? std::make_unique<IsfHost>(own) : std::make_unique<IsfHost>();
+        post_->SetKeptSizes(keepSizes_);
         if (!files.empty() && !post_->OwnContexts())
             state_.report.Say("sdfvj live: no context of its own for the post chain; its builds hold a frame");
     }

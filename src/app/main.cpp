@@ -149,6 +149,18 @@ int main(int argc, char** argv) {
     cmdPost->add_option("--frames", postBench.frames, "steady frames per way (10 interleaved blocks)")->capture_default_str();
     cmdPost->add_option("--fps", postBench.fps, "pace frames like a display during saves (0: flat out)")->capture_default_str();
     cmdPost->add_option("--csv", postBench.csv, "also write the rows as CSV: scene,lighting,size,path,ms,gpu + chain_in, save_to_screen_ms, longest_ms, swap_frame_ms, rounds");
+    ResizeBenchOptions resizeBench;
+    auto* cmdResize = cmdBench->add_subcommand("resize", "a change of the render scale (the resolution slider, --frame-budget): the frame "
+                                                         "that makes it, with the targets of other sizes kept against new ones each time");
+    cmdResize->add_option("--scene", resizeBench.scene, "scene")->capture_default_str();
+    cmdResize->add_option("--size", resizeBench.size, "window size")->capture_default_str();
+    cmdResize->add_option("--path", resizeBench.path, "compute or fragment")->capture_default_str();
+    cmdResize->add_option("--scales", resizeBench.scales, "render scales visited in turn, the first the start (0.25..2)")->capture_default_str();
+    cmdResize->add_option("--post", resizeBench.post, "an ISF chain over the scene, as live --post")->capture_default_str();
+    cmdResize->add_option("--keep", resizeBench.keep, "other sizes the first way keeps")->capture_default_str();
+    cmdResize->add_option("--rounds", resizeBench.rounds, "visits of every scale per way (interleaved)")->capture_default_str();
+    cmdResize->add_option("--fps", resizeBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();
+    cmdResize->add_option("--csv", resizeBench.csv, "also write the rows as CSV: scene,lighting,size,path,ms,gpu + way, scale, first_change_ms, later_change_ms, after_ms");
     ReloadBenchOptions reloadBench;
     auto* cmdReload = cmdBench->add_subcommand("reload", "hot reload: save -> new program on screen, longest frame meanwhile");
     cmdReload->add_option("--scene", reloadBench.scene, "scene")->capture_default_str();
@@ -288,6 +300,7 @@ int main(int argc, char** argv) {
     if (cmdWork->parsed()) return RunWorkBench(workBench);
     if (cmdSpirv->parsed()) return RunSpirvBench(spirvBench);
     if (cmdPost->parsed()) return RunPostBench(postBench);
+    if (cmdResize->parsed()) return RunResizeBench(resizeBench);
     if (cmdReload->parsed()) return RunReloadBench(reloadBench);
 #ifdef SDFVJ_HAS_LIVE
     if (cmdInput->parsed()) return RunInputBench(inputSeconds);

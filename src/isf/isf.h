@@ -142,6 +142,8 @@ public:
     void Seal();
     // Deletes the oldest textures it holds until it holds at most `capBytes`.
     void SetCap(size_t capBytes);
+    // Takes that found nothing (the caller made a new texture) so far.
+    int Misses() const;
     // Deletes everything it holds, and its fence.
     void Clear();
     static size_t BytesOf(int w, int h, unsigned format);
@@ -156,6 +158,7 @@ private:
     mutable std::mutex mutex_;
     std::vector<Entry> entries_;   // oldest first
     size_t cap_ = 0, bytes_ = 0;
+    int misses_ = 0;
     void* sealed_ = nullptr;       // the last Seal's GLsync
 };
 
@@ -180,7 +183,10 @@ public:
     void ClearBuffers();
     // New targets come from `pool` where it holds one of their size and format (null: none).
     void SetTexturePool(IsfTexturePool* pool);
-    // Hands every target's textures to `pool` (the effect keeps none); the bytes they hold.
+    // Keeps the targets of the last `n` other sizes each pass drew at (0: none, the default), so a
+    // return to a size (`live`'s render scale under --frame-budget) takes them again, not new ones.
+    void SetKeptSizes(int n);
+    // Hands every target's textures (those of kept sizes too) to `pool` (the effect keeps none); the bytes they hold.
     size_t GiveTextures(IsfTexturePool& pool);
     // Deletes the objects only the current context can use (vertex array, framebuffers); the next
     // Render, in any context of the share group, makes them there.
@@ -214,6 +220,7 @@ public:
     void CopyBuffersFrom(const IsfChain& other);
     void ClearBuffers();
     void SetTexturePool(IsfTexturePool* pool);
+    void SetKeptSizes(int n);
     size_t GiveTextures(IsfTexturePool& pool);
     void ReleaseContextObjects();
     bool Empty() const { return effects_.empty(); }

@@ -24,7 +24,13 @@ unsigned IsfTexturePool::Take(int w, int h, unsigned format) {
         if (sealed_) glWaitSync((GLsync)sealed_, 0, GL_TIMEOUT_IGNORED);
         return t;
     }
+    ++misses_;
     return 0;
+}
+
+int IsfTexturePool::Misses() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return misses_;
 }
 
 void IsfTexturePool::Put(unsigned texture, int w, int h, unsigned format) {
@@ -82,6 +88,10 @@ void IsfChain::ClearBuffers() {
 
 void IsfChain::SetTexturePool(IsfTexturePool* pool) {
     for (auto& e : effects_) e->SetTexturePool(pool);
+}
+
+void IsfChain::SetKeptSizes(int n) {
+    for (auto& e : effects_) e->SetKeptSizes(n);
 }
 
 void IsfChain::ReleaseContextObjects() {

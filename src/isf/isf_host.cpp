@@ -85,9 +85,19 @@ private:
     bool stop_ = false, ok_ = false, started_ = false;
 };
 
-IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()) {}
+namespace {
+// SpareTargets' default.
+bool SpareByDefault() {
+    const char* env = std::getenv("SDFVJ_POST_SPARE");
+    if (env && (std::string(env) == "0" || std::string(env) == "1")) return std::string(env) == "1";
+    return !IsSoftwareRenderer();
+}
+}  // namespace
 
-IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, IsfDrawIn drawIn) : chain_(std::make_unique<IsfChain>()) {
+IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()), spare_(SpareByDefault()) {}
+
+IsfHost::IsfHost(std::array<IsfHostContext, 2> contexts, IsfDrawIn drawIn)
+    : chain_(std::make_unique<IsfChain>()), spare_(SpareByDefault()) {
     if (drawIn == IsfDrawIn::Auto) {
         const char* env = std::getenv("SDFVJ_POST_DRAW");
         const std::string forced = env ? env : "";
@@ -260,11 +270,30 @@ void IsfHost::Build(const Job& job, Result* out) {
             input = in.texture;
         }
         chain->SetTexturePool(&pool_);
+        chain->SetKeptSizes(keepSizes_);
         IsfFrameInputs in;
         std::vector<float> wave((size_t)job.waveSamples, 0.0f), spectrum((size_t)job.spectrumBins, 0.0f);
         in.audioWaveform = wave;
         in.audioSpectrum = spectrum;
+        const int missed = pool_.Misses();
         chain->Render(input, job.w, job.h, in);
+        if (pool_.Misses() > missed) {   // new textures: their first draws here, not in the show's frames
+            chain->Render(input, job.w, job.h, in);   // each target's other texture
+            if (spare_) {   // a second set, drawn twice too, for the next build to take from the pool
+                IsfTexturePool first;
+                chain->GiveTextures(first);
+                chain->Render(input, job.w, job.h, in);
+                chain->Render(input, job.w, job.h, in);
+                const size_t bytes = chain->GiveTextures(pool_);
+                chain->SetTexturePool(&first);
+                chain->Render(input, job.w, job.h, in);   // the first set back, drawn already
+                chain->SetTexturePool(&pool_);
+                first.Clear();
+                pool_.SetCap(bytes);
+                pool_.Seal();
+                out->spareMade = true;
+            }
+        }
         chain->ClearBuffers();   // what that draw left in PERSISTENT targets is not the show's
         if (drawHere_) chain->ReleaseContextObjects();   // the render thread draws it, in its context
         glFinish();
@@ -278,14 +307,16 @@ void IsfHost::Build(const Job& job, Result* out) {
 // The pool keeps the retired chain's targets (what the next build most likely asks for) and lets
 // older ones go; a build in another context waits for this one's last use of them (Seal).
 void IsfHost::Pool(IsfChain& retired) {
-    pool_.SetCap(retired.GiveTextures(pool_));
+    const size_t bytes = retired.GiveTextures(pool_);
+    if (bytes == 0) return;   // the empty chain a first build replaces: the pool keeps what it has (a spare set)
+    pool_.SetCap(bytes);
     pool_.Seal();
 }
 
-void IsfHost::Retire(std::unique_ptr<IsfChain> chain, int context) {
+void IsfHost::Retire(std::unique_ptr<IsfChain> chain, int context, bool pool) {
     IsfChain* c = chain.release();
-    threads_[(size_t)context]->Post([this, c] {
-        Pool(*c);
+    threads_[(size_t)context]->Post([this, c, pool] {
+        if (pool) Pool(*c);
         delete c;
         glFinish();
     });
@@ -297,14 +328,17 @@ void IsfHost::Adopt(Result& r) {
     shown_ = std::move(r.files);
     if (!own_ || drawHere_) {
         chain_->CopyBuffersFrom(*old);
-        Pool(*old);
+        // A build that made a spare set found none of its sizes in the pool: the old chain's targets
+        // are of other sizes, and the pool keeps the spare set instead.
+        if (!r.spareMade) Pool(*old);
         return;
     }
     current_ ^= 1;   // the next build goes to the context the old chain leaves
     // The next frame copies the feedback (PERSISTENT targets) on the new chain's thread, then the
     // old chain is deleted by its own.
-    if (copyFrom_) Retire(std::move(copyFrom_), current_);
+    if (copyFrom_) Retire(std::move(copyFrom_), current_, copyFromPool_);
     copyFrom_ = std::move(old);
+    copyFromPool_ = !r.spareMade;   // as above: the pool keeps a spare set
 }
 
 bool IsfHost::Poll(Done* done) {
@@ -380,7 +414,7 @@ unsigned IsfHost::Render(unsigned input, int w, int h, const IsfFrameInputs& in)
         glWaitSync(drawn, 0, GL_TIMEOUT_IGNORED);
         glDeleteSync(drawn);
     }
-    if (copyFrom_) Retire(std::move(copyFrom_), current_ ^ 1);
+    if (copyFrom_) Retire(std::move(copyFrom_), current_ ^ 1, copyFromPool_);
     split_ = {Ms(std::chrono::steady_clock::now() - t0).count() - draw, draw};
     return out;
 }

@@ -89,6 +89,21 @@ public:
     unsigned Render(unsigned input, int w, int h, const IsfFrameInputs& in);
     // Chains built so far (adopted or not): a save that changes only the header builds none.
     int ChainsBuilt() const { return built_.load(); }
+    // A build that had to make new render targets (the first, or one at a new size) draws them
+    // twice (both textures of each double-buffered target) and, with spare targets on, makes and
+    // draws a second set for the pool, which the next build takes: so the first save draws into no
+    // new texture either (H100, feedback_trails at 4K: its longest frame 268 -> 11 ms, the first
+    // build's frame on screen 9 -> 7 ms; docs/performance.md, "Session 33"). Drawn in the build's
+    // context only: drawing it in the render thread's too was measured and cost that frame more.
+    // Default: on, except on Mesa's software rasterizers, where a new texture costs nothing;
+    // SDFVJ_POST_SPARE=0|1 forces. Before the first Request.
+    void SetSpareTargets(bool on) { spare_ = on; }
+    bool SpareTargets() const { return spare_; }
+    // Every chain keeps the render targets of its last `n` other sizes (IsfEffect::SetKeptSizes).
+    // Before the first Request.
+    void SetKeptSizes(int n) { keepSizes_ = n; }
+    // Render targets the builds had to make new so far (not taken from the pool).
+    int TargetsMade() const { return pool_.Misses(); }
     // Where the last Render's time went (ms): handing over to the chain's thread and back, and
     // the chain's draw calls there.
     struct Split {
@@ -108,12 +123,13 @@ private:
         std::vector<IsfFile> files;             // what each stage was built from
         std::vector<std::string> errors;
         double buildMs = 0.0;
+        bool spareMade = false;                 // the build put a spare set of targets in the pool
         bool done = false;
     };
     void Submit(std::vector<IsfFile> files, std::vector<IsfFile> fallback);
     void Build(const Job& job, Result* out);   // on the context current on the calling thread
     void Adopt(Result& r);
-    void Retire(std::unique_ptr<IsfChain> chain, int context);
+    void Retire(std::unique_ptr<IsfChain> chain, int context, bool pool);   // pool: its textures to pool_
     void Pool(IsfChain& retired);              // its textures to pool_, on the thread of its context
     class ContextThread;                       // a thread keeping one context current, running tasks in order
     std::array<std::unique_ptr<ContextThread>, 2> threads_;
@@ -126,6 +142,7 @@ private:
         int w = 0, h = 0;
     } buildInput_;
     std::unique_ptr<IsfChain> copyFrom_;       // the chain a swap replaced, until the first frame copied its feedback
+    bool copyFromPool_ = true;                 // its textures go to the pool (not when the new chain's build made a spare set)
 
     bool own_ = false;
     bool drawHere_ = false;                    // built in its own contexts, drawn in the render thread's (IsfDrawIn::RenderThread)
@@ -137,6 +154,8 @@ private:
     bool queued_ = false;                      // a request came while a build ran
     std::vector<IsfFile> queuedFallback_;
     std::atomic<int> built_{0};
+    bool spare_ = false;
+    int keepSizes_ = 0;
     Split split_;
     // The last frame's input, which the next build's first draw copies.
     unsigned lastInput_ = 0, lastFormat_ = 0;

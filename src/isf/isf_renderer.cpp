@@ -23,16 +23,31 @@ struct Buffer {
     unsigned tex[2] = {0, 0}, fbo[2] = {0, 0};
     int w = 0, h = 0, front = 0;
     bool isFloat = false;
+    // Other sizes' textures, the least recently left first (IsfEffect::SetKeptSizes): a return to
+    // a size takes them again, with no new texture's first draw.
+    struct Kept {
+        unsigned tex[2] = {0, 0};
+        int w = 0, h = 0;
+        bool isFloat = false;
+    };
+    std::vector<Kept> kept;
 
+    static void DeleteKept(Kept& k) {
+        glDeleteTextures(2, k.tex);
+        k = Kept{};
+    }
     void Release() {
         glDeleteFramebuffers(2, fbo);
         glDeleteTextures(2, tex);
         tex[0] = tex[1] = fbo[0] = fbo[1] = 0;
         w = h = 0;
+        for (Kept& k : kept) DeleteKept(k);
+        kept.clear();
     }
     // (Re)creates both textures cleared to transparent black when size or format changed (taken
-    // from `pool` where it has them).
-    void Ensure(int width, int height, bool floatTarget, IsfTexturePool* pool) {
+    // from the kept sizes, or from `pool`, where they have them). With `keep` > 0 the size left is
+    // kept (at most `keep` sizes).
+    void Ensure(int width, int height, bool floatTarget, IsfTexturePool* pool, size_t keep) {
         if (tex[0] && w == width && h == height && isFloat == floatTarget) {
             if (!fbo[0]) {   // drawn first in another context (IsfEffect::ReleaseContextObjects)
                 glCreateFramebuffers(2, fbo);
@@ -40,12 +55,30 @@ struct Buffer {
             }
             return;
         }
-        Release();
+        glDeleteFramebuffers(2, fbo);
+        fbo[0] = fbo[1] = 0;
+        unsigned next[2] = {0, 0};
+        for (auto it = kept.begin(); it != kept.end(); ++it)
+            if (it->w == width && it->h == height && it->isFloat == floatTarget) {
+                next[0] = it->tex[0], next[1] = it->tex[1];
+                kept.erase(it);
+                break;
+            }
+        if (tex[0] && keep > 0) {
+            kept.push_back(Kept{{tex[0], tex[1]}, w, h, isFloat});
+            if (kept.size() > keep) {
+                DeleteKept(kept.front());
+                kept.erase(kept.begin());
+            }
+        } else {
+            glDeleteTextures(2, tex);
+        }
+        tex[0] = next[0], tex[1] = next[1];
         glCreateFramebuffers(2, fbo);
         const float zero[4] = {0, 0, 0, 0};
         const unsigned format = floatTarget ? GL_RGBA32F : GL_RGBA8;
         for (int i = 0; i < 2; ++i) {
-            tex[i] = pool ? pool->Take(width, height, format) : 0;
+            if (!tex[i] && pool) tex[i] = pool->Take(width, height, format);
             if (!tex[i]) {
                 glCreateTextures(GL_TEXTURE_2D, 1, &tex[i]);
                 glTextureStorage2D(tex[i], 1, format, width, height);
@@ -123,6 +156,7 @@ struct IsfEffect::State {
     int built = 0;                                  // programs built (ProgramsBuilt)
     std::vector<unsigned> boundUnits;
     IsfTexturePool* pool = nullptr;                 // where new targets come from (SetTexturePool)
+    size_t keepSizes = 0;                           // other sizes' targets kept (SetKeptSizes)
 
     int Location(const std::string& name) {
         auto it = locations.find(name);
@@ -284,6 +318,8 @@ void IsfEffect::ClearBuffers() {
 
 void IsfEffect::SetTexturePool(IsfTexturePool* pool) { s_->pool = pool; }
 
+void IsfEffect::SetKeptSizes(int n) { s_->keepSizes = (size_t)std::max(n, 0); }
+
 void IsfEffect::ReleaseContextObjects() {
     if (s_->vao) glDeleteVertexArrays(1, &s_->vao);
     s_->vao = 0;
@@ -295,19 +331,21 @@ void IsfEffect::ReleaseContextObjects() {
 
 size_t IsfEffect::GiveTextures(IsfTexturePool& pool) {
     size_t bytes = 0;
+    auto give = [&](unsigned& t, int w, int h, bool isFloat) {
+        if (!t) return;
+        const unsigned format = isFloat ? GL_RGBA32F : GL_RGBA8;
+        pool.Put(t, w, h, format);
+        bytes += IsfTexturePool::BytesOf(w, h, format);
+        t = 0;
+    };
     for (auto& [target, b] : s_->buffers) {
-        const unsigned format = b.isFloat ? GL_RGBA32F : GL_RGBA8;
-        for (unsigned& t : b.tex) {
-            if (!t) continue;
-            pool.Put(t, b.w, b.h, format);
-            bytes += IsfTexturePool::BytesOf(b.w, b.h, format);
-            t = 0;
-        }
+        for (unsigned& t : b.tex) give(t, b.w, b.h, b.isFloat);
+        for (Buffer::Kept& k : b.kept)
+            for (unsigned& t : k.tex) give(t, k.w, k.h, k.isFloat);
         b.Release();   // its framebuffers (the textures are the pool's now)
     }
     return bytes;
 }
-
 
 void IsfEffect::CopyBuffersFrom(const IsfEffect& other) {
     for (auto& [target, b] : s_->buffers) {
@@ -377,7 +415,7 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
         };
         const int pw = side(pass.widthExpr, w), ph = side(pass.heightExpr, h);
         Buffer& b = s.buffers[pass.target];
-        b.Ensure(pw, ph, pass.floatTarget, s.pool);
+        b.Ensure(pw, ph, pass.floatTarget, s.pool, s.keepSizes);
         glBindFramebuffer(GL_FRAMEBUFFER, b.fbo[b.front ^ 1]);
         glViewport(0, 0, pw, ph);
 

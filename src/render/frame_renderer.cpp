@@ -19,14 +19,31 @@ constexpr int kConeTile = 8;   // main_comp.glsl's CONE_TILE
 
 FrameRenderer::~FrameRenderer() { Release(); }
 
+void FrameRenderer::ReleaseTarget(Target& t) {
+    if (t.fbo) glDeleteFramebuffers(1, &t.fbo);
+    if (t.texture) glDeleteTextures(1, &t.texture);
+    if (t.cone) glDeleteTextures(1, &t.cone);
+    t = Target{};
+}
+
 void FrameRenderer::Release() {
-    if (fbo_) glDeleteFramebuffers(1, &fbo_);
-    if (texture_) glDeleteTextures(1, &texture_);
+    Target t = Current();
+    ReleaseTarget(t);
+    for (Target& k : kept_) ReleaseTarget(k);
+    kept_.clear();
     if (vao_) glDeleteVertexArrays(1, &vao_);
     if (query_) glDeleteQueries(1, &query_);
-    if (coneTexture_) glDeleteTextures(1, &coneTexture_);
     if (stateBuffer_) glDeleteBuffers(1, &stateBuffer_);
     fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = 0;
+    width_ = height_ = 0;
+}
+
+void FrameRenderer::SetKeptSizes(int n) {
+    keepSizes_ = (size_t)std::max(n, 0);
+    while (kept_.size() > keepSizes_) {
+        ReleaseTarget(kept_.front());
+        kept_.erase(kept_.begin());
+    }
 }
 
 bool FrameRenderer::Resize(int width, int height, std::string* error, bool floatTarget) {
@@ -38,7 +55,31 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
                  std::to_string(maxSize) + " per side)";
         return false;
     }
-    Release();
+    // The size asked for, if kept; then the size left, kept for a return to it (the least recently
+    // left let go past the count), or deleted.
+    Target next;
+    for (auto it = kept_.begin(); it != kept_.end(); ++it)
+        if (it->w == width && it->h == height && it->isFloat == floatTarget) {   // drawn into before: no new texture
+            next = *it;
+            kept_.erase(it);
+            break;
+        }
+    Target left = Current();
+    if (left.fbo && keepSizes_ > 0) {
+        kept_.push_back(left);
+        if (kept_.size() > keepSizes_) {
+            ReleaseTarget(kept_.front());
+            kept_.erase(kept_.begin());
+        }
+    } else {
+        ReleaseTarget(left);
+    }
+    fbo_ = next.fbo, texture_ = next.texture, coneTexture_ = next.cone;
+    width_ = next.w, height_ = next.h, floatTarget_ = next.isFloat;
+    if (!vao_) glGenVertexArrays(1, &vao_);
+    if (!query_) glGenQueries(1, &query_);
+    if (!stateBuffer_) stateBuffer_ = CreateSceneStateBuffer();
+    if (fbo_) return true;
     glGenTextures(1, &texture_);
     glBindTexture(GL_TEXTURE_2D, texture_);
     glTexStorage2D(GL_TEXTURE_2D, 1, floatTarget ? GL_RGBA32F : GL_RGBA8, width, height);
@@ -49,18 +90,18 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_, 0);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         *error = "offscreen framebuffer is incomplete";
-        Release();
+        Target t = Current();
+        ReleaseTarget(t);
+        fbo_ = texture_ = coneTexture_ = 0;
         return false;
     }
     glGenTextures(1, &coneTexture_);
     glBindTexture(GL_TEXTURE_2D, coneTexture_);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, (width + kConeTile - 1) / kConeTile, (height + kConeTile - 1) / kConeTile);
-    stateBuffer_ = CreateSceneStateBuffer();
-    glGenVertexArrays(1, &vao_);
-    glGenQueries(1, &query_);
     width_ = width;
     height_ = height;
     floatTarget_ = floatTarget;
+    ++targetsMade_;
     return true;
 }
 

@@ -240,6 +240,13 @@ public:
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
     bool Resize(int width, int height, std::string* error, bool floatTarget = false);
+    // Keeps the targets of the last `n` other sizes (0: none, the default) so that a Resize back to
+    // one of them takes it again instead of allocating: on NVIDIA a new texture's first draw holds
+    // the CPU and every context's frames for about 1 ms per MB (docs/performance.md, "Session 33"),
+    // and `live --frame-budget` or the resolution slider move between a few sizes.
+    void SetKeptSizes(int n);
+    // Sizes a Resize allocated a new target for (not taken from the kept ones) so far.
+    int TargetsMade() const { return targetsMade_; }
     int Width() const { return width_; }
     bool FloatTarget() const { return floatTarget_; }
     int Height() const { return height_; }
@@ -259,11 +266,21 @@ public:
     unsigned Framebuffer() const { return fbo_; }
     unsigned Texture() const { return texture_; }
 private:
+    struct Target {
+        int w = 0, h = 0;
+        bool isFloat = false;
+        unsigned fbo = 0, texture = 0, cone = 0;
+    };
     void Release();
+    static void ReleaseTarget(Target& t);
+    Target Current() const { return {width_, height_, floatTarget_, fbo_, texture_, coneTexture_}; }
     int width_ = 0, height_ = 0;
     bool floatTarget_ = false;
     unsigned fbo_ = 0, texture_ = 0, vao_ = 0, query_ = 0;
     unsigned coneTexture_ = 0;   // r32f, one texel per 8x8 tile: the cone pre-pass's start distances
+    std::vector<Target> kept_;   // other sizes' targets, the least recently left first
+    size_t keepSizes_ = 0;
+    int targetsMade_ = 0;
     unsigned stateBuffer_ = 0;   // the scene's frame state (Program::FrameState), kSceneStateBytes
     double lastGpuMs_ = 0.0;
     int strips_ = 1;

@@ -335,3 +335,111 @@ TEST_CASE("isf host: by default a chain is drawn in its own contexts where the r
     IsfHost none;
     CHECK(none.DrawIn() == IsfDrawIn::RenderThread);
 }
+
+// A chain's first build makes a second set of targets and draws both sets twice (each target is
+// two textures drawn in turn), so neither the show's first frames nor the first save's build draw
+// into a texture never drawn before (what holds NVIDIA's frames). Without the spare set (as on
+// llvmpipe by default) the first save's build makes new targets.
+TEST_CASE("isf host: a chain's first build draws a spare set of targets so the first save makes none", "[isf][gl]") {
+    const int form = GENERATE(0, 1, 2);
+    const bool spare = GENERATE(true, false);
+    INFO((form == 0 ? "drawn in its own contexts" : form == 1 ? "built in its own contexts, drawn by the render thread" : "the window's context"));
+    INFO((spare ? "spare targets on" : "spare targets off"));
+    Gl gl;
+    const std::string path = TempDir() + "/host_spare.fs";
+    WriteText(path, Multiply("1.0, 0.5, 0.25"));
+    unsigned white = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &white);
+    glTextureStorage2D(white, 1, GL_RGBA8, kW, kH);
+    const float one[4] = {1, 1, 1, 1};
+    glClearTexImage(white, 0, GL_RGBA, GL_FLOAT, one);
+    {
+        IsfHost host = form < 2 ? IsfHost(gl.Own(), form == 0 ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread) : IsfHost();
+        host.SetSpareTargets(spare);
+        Frames f{host, white, {}};
+        auto outputs = [&](int frames) {
+            std::set<unsigned> seen;
+            for (int i = 0; i < frames; ++i) seen.insert(host.Render(white, kW, kH, f.in));
+            glFinish();
+            return seen;
+        };
+        host.Request({Parse(path)}, kW, kH);
+        REQUIRE(f.UntilBuilt().adopted);
+        const std::set<unsigned> first = outputs(4);
+        REQUIRE(first.size() == 2);
+        const int made = host.TargetsMade();
+        CHECK(made == (spare ? 4 : 2));   // the output's two textures, and as many spare
+        std::vector<std::string> errors;
+        WriteText(path, Multiply("0.25, 1.0, 0.5"));
+        REQUIRE(host.Reload(&errors));
+        REQUIRE(f.UntilBuilt().adopted);
+        const std::set<unsigned> second = outputs(4);
+        CHECK(std::none_of(second.begin(), second.end(), [&](unsigned t) { return first.count(t) > 0; }));
+        CHECK(host.TargetsMade() == (spare ? made : made + 2));   // the spare set, or new ones
+        Px px;
+        f.Draw(&px);
+        CHECK(Is(px, 64, 255, 128));   // the second chain's image on the spare set, cleared first
+        WriteText(path, Multiply("0.5, 0.25, 1.0"));
+        REQUIRE(host.Reload(&errors));
+        REQUIRE(f.UntilBuilt().adopted);
+        CHECK(outputs(4) == first);
+        CHECK(host.TargetsMade() == (spare ? made : made + 2));
+        f.Draw(&px);
+        CHECK(Is(px, 128, 64, 255));
+        CHECK(errors.empty());
+    }
+    glDeleteTextures(1, &white);
+}
+
+// `live`'s render scale moves between a few sizes (--frame-budget, the resolution slider): with
+// kept sizes a chain that returns to a size draws into the targets it had there.
+TEST_CASE("isf host: a chain returning to a size it drew at takes that size's targets again when sizes are kept", "[isf][gl]") {
+    const int keep = GENERATE(0, 2);
+    INFO("kept sizes " << keep);
+    Gl gl;
+    const std::string path = TempDir() + "/host_sizes.fs";
+    WriteText(path, Multiply("1.0, 0.5, 0.25"));
+    unsigned white = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &white);
+    glTextureStorage2D(white, 1, GL_RGBA8, kW, kH);
+    const float one[4] = {1, 1, 1, 1};
+    glClearTexImage(white, 0, GL_RGBA, GL_FLOAT, one);
+    {
+        IsfHost host(gl.Own(), IsfDrawIn::RenderThread);
+        host.SetSpareTargets(false);
+        host.SetKeptSizes(keep);
+        Frames f{host, white, {}};
+        auto outputs = [&](int w, int h) {
+            std::set<unsigned> seen;
+            for (int i = 0; i < 4; ++i) seen.insert(host.Render(white, w, h, f.in));
+            glFinish();
+            return seen;
+        };
+        host.Request({Parse(path)}, kW, kH);
+        REQUIRE(f.UntilBuilt().adopted);
+        const std::set<unsigned> full = outputs(kW, kH);
+        const int made = host.TargetsMade();
+        const std::set<unsigned> half = outputs(kW / 2, kH / 2);
+        CHECK(host.TargetsMade() == made + 2);   // a size never drawn at: new targets
+        const std::set<unsigned> back = outputs(kW, kH);
+        const std::set<unsigned> halfAgain = outputs(kW / 2, kH / 2);
+        // Kept: each size's own targets again, nothing new. Not kept: new ones at every change (their
+        // names may be the deleted ones', so only the count tells).
+        CHECK(host.TargetsMade() == (keep > 0 ? made + 2 : made + 6));
+        if (keep > 0) {
+            CHECK(back == full);
+            CHECK(halfAgain == half);
+            CHECK(std::none_of(half.begin(), half.end(), [&](unsigned t) { return full.count(t) > 0; }));
+        }
+        // A cycle through one size more than are kept finds each size still kept.
+        outputs(kW / 4, kH / 4);
+        const int cycled = host.TargetsMade();
+        outputs(kW, kH), outputs(kW / 2, kH / 2), outputs(kW / 4, kH / 4);
+        CHECK(host.TargetsMade() == (keep > 0 ? cycled : cycled + 6));
+        outputs(kW, kH);
+        Px px;
+        f.Draw(&px);
+        CHECK(Is(px, 255, 128, 64));   // the image at the size returned to, on targets cleared and drawn anew
+    }
+    glDeleteTextures(1, &white);
+}

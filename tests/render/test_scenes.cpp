@@ -332,3 +332,58 @@ TEST_CASE("render: the camera's basis set once per frame draws what the per-pixe
             }
     }
 }
+
+// `live`'s render scale moves between a few sizes (--frame-budget, the resolution slider). On
+// NVIDIA a new texture's first draw holds every context's frames (about 1 ms per MB), so with kept
+// sizes a return to a size takes the target it had there: the same texture, the same image a
+// renderer new at that size draws (the cone pre-pass's texture, kept with it, is rewritten each
+// frame), and no target made. Without kept sizes every change makes one.
+TEST_CASE("render: a return to a size drawn at before takes its target again when sizes are kept", "[render]") {
+    const int keep = GENERATE(0, 2);
+    INFO("kept sizes " << keep);
+    RequireGl();
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    ShaderSource src;
+    REQUIRE(AssembleProgram(scene, VariantKey{scene.path, scene.effects, RenderPath::Compute}, &src, &error));
+    Program prog;
+    if (!prog.Build(src, RenderPath::Compute, &error)) FAIL(error);
+    FrameInputs in;
+    in.time = 1.0;
+    for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
+    FrameRenderer fr;
+    fr.SetKeptSizes(keep);
+    auto draw = [&](int w, int h) {
+        REQUIRE(fr.Resize(w, h, &error));
+        fr.Draw(prog, scene, in);
+        return fr.Texture();
+    };
+    const unsigned full = draw(64, 36);
+    const unsigned half = draw(32, 18);
+    CHECK(fr.TargetsMade() == 2);
+    const unsigned back = draw(64, 36);
+    const Image image{64, 36, fr.ReadPixels()};
+    const unsigned halfAgain = draw(32, 18);
+    CHECK(fr.TargetsMade() == (keep > 0 ? 2 : 4));
+    if (keep > 0) {   // without, a new texture may get a deleted one's name: only the count tells
+        CHECK(back == full);
+        CHECK(halfAgain == half);
+        CHECK(half != full);
+    }
+    const Image fresh = RenderScene("midi", scene.effects, RenderPath::Compute, 64, 36, 1.0);
+    CHECK(image.rgba == fresh.rgba);
+    // Sizes past the count are let go, the least recently left first.
+    fr.SetKeptSizes(1);
+    draw(48, 27);   // leaves 32x18 kept; 64x36 goes
+    draw(64, 36);
+    CHECK(fr.TargetsMade() == (keep > 0 ? 4 : 6));
+    // A cycle through one size more than are kept (the one drawn at and `keep` others) finds each
+    // size still kept: the size asked for is taken before the size left can push it out.
+    fr.SetKeptSizes(keep);
+    for (int round = 0; round < 2; ++round) {
+        const int made = fr.TargetsMade();
+        draw(32, 18), draw(48, 27), draw(64, 36);
+        if (round == 1) CHECK(fr.TargetsMade() == (keep > 0 ? made : made + 3));
+    }
+}
