@@ -59,6 +59,11 @@ bool LiveSession::Start(std::string* error) {
             std::snprintf(line, sizeof line, "frame budget %.3g ms: starts at %s, the best of %zu settings on the front above the floor",
                           o_.frameBudgetMs, budget_.front[budget_.current].label.c_str(), budget_.front.size());
             state_.report.Say(line);
+            // Drawn ahead where a new target costs (not on Mesa's software rasterizers, where the extra
+            // frames cost more than the allocations they save); SDFVJ_SCALES_AHEAD=0|1 forces.
+            const char* ahead = std::getenv("SDFVJ_SCALES_AHEAD");
+            if (ahead && (*ahead == '0' || *ahead == '1') ? *ahead == '1' : !softwareGl_)
+                scalesAhead_ = BudgetScalesAhead(budget_, renderScale_, keepSizes_);
         }
     }
     if (o_.show.path == "auto" && !state_.show.isfScene) {
@@ -360,6 +365,7 @@ void LiveSession::DrawScene(double now) {
         DrawServerScene(now, rw, rh);
         return;
     }
+    if (fbw_ > 0 && fbh_ > 0 && live_.Current()) DrawScalesAhead();
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;
     in_.time = now;
     in_.frame = frame_++;

@@ -319,6 +319,19 @@ void ApplyBudgetSetting(const BudgetSetting& s, Quality* q, float* scale) {
     *scale = s.scale;
 }
 
+std::vector<float> BudgetScalesAhead(const FrameBudget& b, float current, int n) {
+    std::vector<float> scales;
+    for (const BudgetSetting& s : b.front)
+        if (s.scale > 0.0f && std::fabs(s.scale - current) > 1e-4f &&
+            std::none_of(scales.begin(), scales.end(), [&](float x) { return std::fabs(x - s.scale) <= 1e-4f; }))
+            scales.push_back(s.scale);
+    const double c = std::max(current, 1e-3f);
+    std::stable_sort(scales.begin(), scales.end(),
+                     [&](float a, float x) { return std::fabs(std::log(a / c)) < std::fabs(std::log(x / c)); });
+    if ((int)scales.size() > std::max(n, 0)) scales.resize((size_t)std::max(n, 0));
+    return scales;
+}
+
 bool StartLiveFrameBudget(FrameBudget* b, double budgetMs, const std::string& floorText, const std::string& scene,
                           Quality* q, float* scale, std::string* error) {
     FrameBudgetDesc d;

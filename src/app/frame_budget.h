@@ -105,6 +105,12 @@ bool StepFrameBudget(FrameBudget& b, double now, double frameMs);
 
 void ApplyBudgetSetting(const BudgetSetting& s, Quality* q, float* scale);
 
+// The render scales of the front other than `current`, nearest to it first (by ratio), at most n:
+// the sizes `live` draws once ahead, so that the budget's first move to each takes targets kept
+// from that draw (FrameRenderer::SetKeptSizes) and allocates none in a frame that is already late
+// (on NVIDIA a new target's first draw held a 4K frame with bloom 36-48 ms, at scale 2 332 ms).
+std::vector<float> BudgetScalesAhead(const FrameBudget& b, float current, int n);
+
 // ---- live's glue (cmd_live.cpp calls these two) ------------------------------------------
 // Starts a budget of budgetMs for `scene` from DataRoot()/docs/accuracy/accuracy.csv with the
 // floor text of --budget-floor (scales up to kLiveMaxScale: 2, live's 2x2 supersampling);

@@ -337,6 +337,8 @@ private:
     double dragX_ = 0.0, dragY_ = 0.0;
     int frame_ = 0, fbw_ = 0, fbh_ = 0;
     FrameBudget budget_;         // --frame-budget: moves renderScale_ and in_.quality
+    std::vector<float> scalesAhead_;   // render scales its moves reach, drawn once ahead (DrawScalesAhead)
+    void DrawScalesAhead();
     float renderScale_ = 1.0f;   // --render-scale and the overlay's resolution slider
     // Other sizes' render targets kept (FrameRenderer::SetKeptSizes, IsfHost::SetKeptSizes), so a scale
     // change back to a size drawn at before allocates nothing: SDFVJ_KEEP_SIZES=N, default 4.

@@ -89,6 +89,34 @@ void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
     if (errors.empty() && !post_->Busy()) postDecls_ = post_->Chain().Params();   // a header-only change
 }
 
+// --frame-budget: once the scene (and the post chain asked for) is on screen, one frame draws the
+// scene and the chain at each size the budget's moves reach (BudgetScalesAhead, as many as are kept),
+// so that a move later takes kept targets instead of allocating them in a frame already late. The
+// kept targets are cleared when taken again (IsfEffect's feedback starts afresh at a new size anyway).
+void LiveSession::DrawScalesAhead() {
+    if (scalesAhead_.empty()) return;
+    if (!postShown_.empty() && (!post_ || post_->Busy() || post_->Chain().Empty())) return;   // the chain first
+    std::string error, list;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const float s : scalesAhead_) {
+        const int w = std::max(1, (int)std::lround(fbw_ * s)), h = std::max(1, (int)std::lround(fbh_ * s));
+        if (!renderer_.Resize(w, h, &error)) continue;
+        renderer_.Draw(*live_.Current(), live_.Scene(), in_);
+        if (HasPost()) {
+            IsfFrameInputs in;
+            in.params = in_.params;
+            for (int i = 0; i < 2; ++i) post_->Render(renderer_.Texture(), w, h, in);   // each target's two textures
+        }
+        char one[32];
+        std::snprintf(one, sizeof one, "%s%.2f", list.empty() ? "" : ", ", s);
+        list += one;
+    }
+    scalesAhead_.clear();
+    char ms[48];
+    std::snprintf(ms, sizeof ms, " (%.0f ms)", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    state_.report.Say("frame budget: the targets of render scales " + list + " drawn ahead" + ms);
+}
+
 // renderer_'s rw x rh frame to the window: through the post chain when there is one, else a blit
 // (scaled when the render scale is not 1).
 void LiveSession::PresentRenderer(int rw, int rh, double now) {

@@ -374,3 +374,21 @@ TEST_CASE("frame budget: on llvmpipe a tight budget is met and the setting is th
     CHECK(b.front[again].cost / b.front[settledOn].cost <= 2.0);
     CHECK(settledOn < b.front.size() - 1);              // it had to move
 }
+
+// live draws the front's other render scales once ahead (its targets are kept per size), nearest to
+// where it starts first: the budget's first move to one of them allocates nothing.
+TEST_CASE("frame budget: the scales drawn ahead are the front's others nearest first and as many as are kept", "[budget]") {
+    FrameBudget b;
+    for (float s : {0.25f, 0.5f, 0.5f, 0.7f, 0.85f, 1.0f, 1.0f, 2.0f}) {
+        BudgetSetting x;
+        x.scale = s;
+        b.front.push_back(x);
+    }
+    CHECK(BudgetScalesAhead(b, 1.0f, 4) == std::vector<float>{0.85f, 0.7f, 0.5f, 2.0f});   // 2 is as far as 0.5, listed later
+    CHECK(BudgetScalesAhead(b, 2.0f, 3) == std::vector<float>{1.0f, 0.85f, 0.7f});
+    CHECK(BudgetScalesAhead(b, 0.25f, 10) == std::vector<float>{0.5f, 0.7f, 0.85f, 1.0f, 2.0f});   // each once
+    CHECK(BudgetScalesAhead(b, 1.0f, 0).empty());
+    FrameBudget one;
+    one.front.resize(2);   // both at scale 1: nothing else to draw
+    CHECK(BudgetScalesAhead(one, 1.0f, 4).empty());
+}
