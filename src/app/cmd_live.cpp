@@ -62,8 +62,7 @@ bool LiveSession::Start(std::string* error) {
             // Drawn ahead where a new target costs (not on Mesa's software rasterizers, where the extra
             // frames cost more than the allocations they save); SDFVJ_SCALES_AHEAD=0|1 forces.
             const char* ahead = std::getenv("SDFVJ_SCALES_AHEAD");
-            if (ahead && (*ahead == '0' || *ahead == '1') ? *ahead == '1' : !softwareGl_)
-                scalesAhead_ = BudgetScalesAhead(budget_, renderScale_, keepSizes_);
+            scalesAheadOn_ = ahead && (*ahead == '0' || *ahead == '1') ? *ahead == '1' : !softwareGl_;
         }
     }
     if (o_.show.path == "auto" && !state_.show.isfScene) {
@@ -365,7 +364,7 @@ void LiveSession::DrawScene(double now) {
         DrawServerScene(now, rw, rh);
         return;
     }
-    if (fbw_ > 0 && fbh_ > 0 && live_.Current()) DrawScalesAhead();
+    if (fbw_ > 0 && fbh_ > 0 && live_.Current()) DrawScalesAhead(now);
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;
     in_.time = now;
     in_.frame = frame_++;

@@ -337,8 +337,12 @@ private:
     double dragX_ = 0.0, dragY_ = 0.0;
     int frame_ = 0, fbw_ = 0, fbh_ = 0;
     FrameBudget budget_;         // --frame-budget: moves renderScale_ and in_.quality
-    std::vector<float> scalesAhead_;   // render scales its moves reach, drawn once ahead (DrawScalesAhead)
-    void DrawScalesAhead();
+    // The render scales its moves reach, drawn once ahead at each window size (DrawScalesAhead).
+    bool scalesAheadOn_ = false;
+    int aheadW_ = 0, aheadH_ = 0;           // the window size they were drawn at
+    int pendingW_ = 0, pendingH_ = 0;       // a new window size, and since when it has held
+    double pendingSince_ = 0.0;
+    void DrawScalesAhead(double now);
     float renderScale_ = 1.0f;   // --render-scale and the overlay's resolution slider
     // Other sizes' render targets kept (FrameRenderer::SetKeptSizes, IsfHost::SetKeptSizes), so a scale
     // change back to a size drawn at before allocates nothing: SDFVJ_KEEP_SIZES=N, default 4.

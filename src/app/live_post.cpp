@@ -91,14 +91,22 @@ void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
 
 // --frame-budget: once the scene (and the post chain asked for) is on screen, one frame draws the
 // scene and the chain at each size the budget's moves reach (BudgetScalesAhead, as many as are kept),
-// so that a move later takes kept targets instead of allocating them in a frame already late. The
-// kept targets are cleared when taken again (IsfEffect's feedback starts afresh at a new size anyway).
-void LiveSession::DrawScalesAhead() {
-    if (scalesAhead_.empty()) return;
+// so that a move later takes kept targets instead of allocating them in a frame already late; again
+// when the window has held a new size for a second (a drag makes many). The kept targets are cleared
+// when taken again (IsfEffect's feedback starts afresh at a new size anyway).
+void LiveSession::DrawScalesAhead(double now) {
+    if (!scalesAheadOn_ || (fbw_ == aheadW_ && fbh_ == aheadH_)) return;
+    if (aheadW_ > 0) {   // the window changed size since: wait until the new size holds
+        if (fbw_ != pendingW_ || fbh_ != pendingH_) {
+            pendingW_ = fbw_, pendingH_ = fbh_, pendingSince_ = now;
+            return;
+        }
+        if (now - pendingSince_ < 1.0) return;
+    }
     if (!postShown_.empty() && (!post_ || post_->Busy() || post_->Chain().Empty())) return;   // the chain first
     std::string error, list;
     const auto t0 = std::chrono::steady_clock::now();
-    for (const float s : scalesAhead_) {
+    for (const float s : BudgetScalesAhead(budget_, renderScale_, keepSizes_)) {
         const int w = std::max(1, (int)std::lround(fbw_ * s)), h = std::max(1, (int)std::lround(fbh_ * s));
         if (!renderer_.Resize(w, h, &error)) continue;
         renderer_.Draw(*live_.Current(), live_.Scene(), in_);
@@ -111,9 +119,11 @@ void LiveSession::DrawScalesAhead() {
         std::snprintf(one, sizeof one, "%s%.2f", list.empty() ? "" : ", ", s);
         list += one;
     }
-    scalesAhead_.clear();
-    char ms[48];
-    std::snprintf(ms, sizeof ms, " (%.0f ms)", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    aheadW_ = fbw_, aheadH_ = fbh_;
+    if (list.empty()) return;
+    char ms[64];
+    std::snprintf(ms, sizeof ms, " at %dx%d (%.0f ms)", fbw_, fbh_,
+                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     state_.report.Say("frame budget: the targets of render scales " + list + " drawn ahead" + ms);
 }
 
