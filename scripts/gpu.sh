@@ -24,8 +24,8 @@
 #                                 s29 (CONE_PAST_FLOOR, CONE_MIRROR, MANDELBULB_FEW_SFU: one call),
 #                                 s29b (the defaults: frames, the 7680x4320 show, scales);
 #                                 post (issue 12: a post effect's save, `bench post`), s31 (post + s29b);
-#                                 resize (a render-scale change's frame, `bench resize`), s33 (resize + a
-#                                 post effect's first save with and without the first build's spare targets);
+#                                 resize (a render-scale change's frame, `bench resize`), s33 (resize + post;
+#                                 many files: OUT=/tmp/o ... measure s33, then tar /tmp/o into $OUT);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -395,15 +395,9 @@ case "${1:-}" in
     done
     fi
     if [ "$part" = s33 ]; then
-    # A post effect's first save: the first build's spare targets (on by default on NVIDIA) against
-    # none (SDFVJ_POST_SPARE=0), one run after the other on the same machine; `bench post` lists each
-    # save's longest frame in order.
-    for spare in 1 0; do for size in 1920x1080 3840x2160; do
-      n="spare${spare}_$size"
-      SDFVJ_POST_SPARE=$spare timeout 80 bash "$0" remote bench post --size $size --rounds 4 \
-        --csv "$out/post_$n.csv" > "$out/post_$n.txt" 2>&1 || true
-      echo "== SDFVJ_POST_SPARE=$spare"; cat "$out/post_$n.txt"
-    done; done
+    # A post effect's first save with and without the first build's spare set, interleaved in one run
+    # (`bench post`'s second way; each save's longest frame in order), as `measure post` runs it.
+    mkdir -p "$out/post"; OUT="$out/post" bash "$0" measure post
     fi
     if [ "$part" = scales ]; then
     # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1

@@ -1,13 +1,16 @@
 // `sdfvj bench post`: what a post effect's save costs the show's frames (issue 12), with the chain
 // built in contexts of its own (IsfHost, as `live` builds it: drawn there on llvmpipe, by the render
 // thread elsewhere; SDFVJ_POST_DRAW=own|render picks) against the chain built and drawn in the
-// render thread's context (as before; `live` with SDFVJ_POST_CONTEXTS=0). Per effect and size:
-//   steady   the chain's frame (IsfHost::Render + glFinish), both ways interleaved in blocks,
+// render thread's context (as before; `live` with SDFVJ_POST_CONTEXTS=0), and the first way with its
+// first build's spare set of targets the other way (IsfHost::SetSpareTargets). Per effect and size:
+//   steady   the chain's frame (IsfHost::Render + glFinish), the ways interleaved in blocks,
 //            after the GPU has warmed; the first way timed again at the end (drift check)
 //   saves    rounds of a save (the effect with a new function appended: a program no cache has
-//            seen, the drivers' disk caches off), both ways interleaved: save -> the first frame
+//            seen, the drivers' disk caches off), the ways interleaved: save -> the first frame
 //            drawn by the new program, the longest frame in between (frames paced like a display),
-//            and the frame that put the new chain on screen (the swap: adopt, delete the old chain)
+//            and the frame that put the new chain on screen (the swap: adopt, delete the old chain);
+//            each save's longest frame in order (the first save is the one the spare set is for), and
+//            the first build's frame on screen
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -70,8 +73,9 @@ int RunPostBench(const PostBenchOptions& o) {
         std::fprintf(stderr, "sdfvj bench post: %s\n", error.c_str());
         return 2;
     }
-    HeadlessContext main, a, b;
-    if (!main.Create(&error) || !a.CreateShared(main, &error, true) || !b.CreateShared(main, &error, true) || !main.MakeCurrent()) {
+    HeadlessContext main, a, b, c, d;
+    if (!main.Create(&error) || !a.CreateShared(main, &error, true) || !b.CreateShared(main, &error, true) ||
+        !c.CreateShared(main, &error, true) || !d.CreateShared(main, &error, true) || !main.MakeCurrent()) {
         std::fprintf(stderr, "sdfvj bench post: %s\n", error.c_str());
         return 2;
     }
@@ -99,12 +103,18 @@ int RunPostBench(const PostBenchOptions& o) {
             std::fprintf(stderr, "sdfvj bench post: cannot read %s\n", path.c_str());
             return 2;
         }
-        Way ways[2] = {{"own contexts", std::make_unique<IsfHost>(std::array<IsfHostContext, 2>{own(a), own(b)})},
-                       {"the window's context", std::make_unique<IsfHost>()}};
-        // Built in contexts of its own, then drawn there or by the render thread (IsfDrawIn::Auto).
-        ways[0].name = ways[0].host->DrawIn() == IsfDrawIn::OwnContexts ? "own contexts" : "built in own contexts, drawn here";
+        // As `live` builds it (its own contexts, the spare set as the renderer's default), the same with the
+        // spare set the other way (IsfHost::SetSpareTargets: a first save with and without it), and the window's context.
+        constexpr int kWays = 3;
+        Way ways[kWays] = {{"own contexts", std::make_unique<IsfHost>(std::array<IsfHostContext, 2>{own(a), own(b)})},
+                           {"own contexts", std::make_unique<IsfHost>(std::array<IsfHostContext, 2>{own(c), own(d)})},
+                           {"the window's context", std::make_unique<IsfHost>()}};
+        ways[1].host->SetSpareTargets(!ways[0].host->SpareTargets());
+        for (int k = 0; k < 2; ++k)   // built in contexts of its own, then drawn there or by the render thread (IsfDrawIn::Auto)
+            ways[k].name = std::string(ways[k].host->DrawIn() == IsfDrawIn::OwnContexts ? "own contexts" : "built in own contexts, drawn here") +
+                           (ways[k].host->SpareTargets() ? ", spare set" : ", no spare set");
         IsfFrameInputs in;
-        for (int k = 0; k < 2; ++k) {
+        for (int k = 0; k < kWays; ++k) {
             Way& way = ways[k];
             fs::create_directories(work / std::to_string(k));
             way.file = (work / std::to_string(k) / fs::path(path).filename()).string();
@@ -129,11 +139,11 @@ int RunPostBench(const PostBenchOptions& o) {
         Drift drift{name + " " + SizeName(w, h) + " " + ways[0].name};
         drift.startMs = steady(ways[0]);
         for (int block = 0; block < 10; ++block)
-            for (int k = 0; k < 2; ++k) ways[(block + k) % 2].steady.push_back(steady(ways[(block + k) % 2]));
+            for (int k = 0; k < kWays; ++k) ways[(block + k) % kWays].steady.push_back(steady(ways[(block + k) % kWays]));
         // Saves, the ways interleaved (which goes first alternates).
         for (int round = 1; round <= o.rounds; ++round)
-            for (int j = 0; j < 2; ++j) {
-                const int k = (round + j) % 2;
+            for (int j = 0; j < kWays; ++j) {
+                const int k = (round + j) % kWays;
                 Way& way = ways[k];
                 std::ofstream(way.file, std::ios::binary) << way.original << "\nfloat benchPostSave" << round << "_" << k << "() { return "
                                                           << round << ".0; }\n";
