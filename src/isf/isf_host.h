@@ -92,7 +92,7 @@ public:
     // A build that had to make new render targets (the first, or one at a new size) draws them
     // twice (both textures of each double-buffered target) and, with spare targets on, makes and
     // draws a second set for the pool, which the next build takes: so the first save draws into no
-    // new texture either (H100, feedback_trails at 4K: its longest frame 268 -> 11 ms, the first
+    // new texture either (H100, feedback_trails at 4K: the first save 144-268 -> 11 ms, the first
     // build's frame on screen 9 -> 7 ms; docs/performance.md, "Session 33"). Drawn in the build's
     // context only: drawing it in the render thread's too was measured and cost that frame more.
     // Default: on, except on Mesa's software rasterizers, where a new texture costs nothing;
