@@ -137,6 +137,8 @@ fi
 # --- the stage: a copy of the data, a display, a JACK server --------------------------------
 mkdir -p "$work/root"
 cp -r "$repo/shaders" "$repo/presets" "$repo/mappings" "$work/root/"
+# --frame-budget (--live-arg) reads the accuracy sweep from the data root; without it the budget did not start
+mkdir -p "$work/root/docs/accuracy" && cp "$repo/docs/accuracy/accuracy.csv" "$work/root/docs/accuracy/"
 
 setsid Xvfb -displayfd 3 -screen 0 640x360x24 -nolisten tcp 3>"$work/xvfb.display" >"$work/xvfb.log" 2>&1 </dev/null &
 XVFB_PID=$!
