@@ -61,8 +61,7 @@ bool LiveSession::Start(std::string* error) {
             state_.report.Say(line);
             // Drawn ahead where a new target costs (not on Mesa's software rasterizers, where the extra
             // frames cost more than the allocations they save); SDFVJ_SCALES_AHEAD=0|1 forces.
-            const char* ahead = std::getenv("SDFVJ_SCALES_AHEAD");
-            scalesAheadOn_ = ahead && (*ahead == '0' || *ahead == '1') ? *ahead == '1' : !softwareGl_;
+            scalesAheadOn_ = EnvSwitch("SDFVJ_SCALES_AHEAD", !softwareGl_);
         }
     }
     if (o_.show.path == "auto" && !state_.show.isfScene) {

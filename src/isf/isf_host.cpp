@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <deque>
 
+#include "render/live_program.h"
 #include "render/render.h"
 
 namespace sdfvj {
@@ -87,11 +88,7 @@ private:
 
 namespace {
 // SpareTargets' default.
-bool SpareByDefault() {
-    const char* env = std::getenv("SDFVJ_POST_SPARE");
-    if (env && (std::string(env) == "0" || std::string(env) == "1")) return std::string(env) == "1";
-    return !IsSoftwareRenderer();
-}
+bool SpareByDefault() { return EnvSwitch("SDFVJ_POST_SPARE", !IsSoftwareRenderer()); }
 }  // namespace
 
 IsfHost::IsfHost() : chain_(std::make_unique<IsfChain>()), spare_(SpareByDefault()) {}
@@ -275,18 +272,19 @@ void IsfHost::Build(const Job& job, Result* out) {
         std::vector<float> wave((size_t)job.waveSamples, 0.0f), spectrum((size_t)job.spectrumBins, 0.0f);
         in.audioWaveform = wave;
         in.audioSpectrum = spectrum;
+        auto draw = [&] { chain->Render(input, job.w, job.h, in); };
         const int missed = pool_.Misses();
-        chain->Render(input, job.w, job.h, in);
+        draw();
         if (pool_.Misses() > missed) {   // new textures: their first draws here, not in the show's frames
-            chain->Render(input, job.w, job.h, in);   // each target's other texture
+            draw();   // each target's other texture
             if (spare_) {   // a second set, drawn twice too, for the next build to take from the pool
                 IsfTexturePool first;
                 chain->GiveTextures(first);
-                chain->Render(input, job.w, job.h, in);
-                chain->Render(input, job.w, job.h, in);
+                draw();
+                draw();
                 const size_t bytes = chain->GiveTextures(pool_);
                 chain->SetTexturePool(&first);
-                chain->Render(input, job.w, job.h, in);   // the first set back, drawn already
+                draw();   // the first set back, drawn already
                 chain->SetTexturePool(&pool_);
                 first.Clear();
                 pool_.SetCap(bytes);

@@ -11,6 +11,7 @@
 
 #include "isf/isf.h"
 #include "render/gl_stages.h"
+#include "render/kept_sizes.h"
 
 namespace sdfvj {
 
@@ -57,23 +58,8 @@ struct Buffer {
         }
         glDeleteFramebuffers(2, fbo);
         fbo[0] = fbo[1] = 0;
-        unsigned next[2] = {0, 0};
-        for (auto it = kept.begin(); it != kept.end(); ++it)
-            if (it->w == width && it->h == height && it->isFloat == floatTarget) {
-                next[0] = it->tex[0], next[1] = it->tex[1];
-                kept.erase(it);
-                break;
-            }
-        if (tex[0] && keep > 0) {
-            kept.push_back(Kept{{tex[0], tex[1]}, w, h, isFloat});
-            if (kept.size() > keep) {
-                DeleteKept(kept.front());
-                kept.erase(kept.begin());
-            }
-        } else {
-            glDeleteTextures(2, tex);
-        }
-        tex[0] = next[0], tex[1] = next[1];
+        const Kept next = SwapKeptSize(kept, keep, Kept{{tex[0], tex[1]}, tex[0] ? w : 0, h, isFloat}, width, height, floatTarget, DeleteKept);
+        tex[0] = next.tex[0], tex[1] = next.tex[1];
         glCreateFramebuffers(2, fbo);
         const float zero[4] = {0, 0, 0, 0};
         const unsigned format = floatTarget ? GL_RGBA32F : GL_RGBA8;

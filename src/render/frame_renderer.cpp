@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "render/gpu_timer.h"
+#include "render/kept_sizes.h"
 #include "render/render.h"
 
 namespace sdfvj {
@@ -55,25 +56,7 @@ bool FrameRenderer::Resize(int width, int height, std::string* error, bool float
                  std::to_string(maxSize) + " per side)";
         return false;
     }
-    // The size asked for, if kept; then the size left, kept for a return to it (the least recently
-    // left let go past the count), or deleted.
-    Target next;
-    for (auto it = kept_.begin(); it != kept_.end(); ++it)
-        if (it->w == width && it->h == height && it->isFloat == floatTarget) {   // drawn into before: no new texture
-            next = *it;
-            kept_.erase(it);
-            break;
-        }
-    Target left = Current();
-    if (left.fbo && keepSizes_ > 0) {
-        kept_.push_back(left);
-        if (kept_.size() > keepSizes_) {
-            ReleaseTarget(kept_.front());
-            kept_.erase(kept_.begin());
-        }
-    } else {
-        ReleaseTarget(left);
-    }
+    const Target next = SwapKeptSize(kept_, keepSizes_, Current(), width, height, floatTarget, ReleaseTarget);
     fbo_ = next.fbo, texture_ = next.texture, coneTexture_ = next.cone;
     width_ = next.w, height_ = next.h, floatTarget_ = next.isFloat;
     if (!vao_) glGenVertexArrays(1, &vao_);

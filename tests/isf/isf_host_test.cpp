@@ -102,6 +102,19 @@ struct Frames {
 
 bool Is(const Px& p, int r, int g, int b) { return std::abs(p.r - r) <= 1 && std::abs(p.g - g) <= 1 && std::abs(p.b - b) <= 1; }
 
+// A white kW x kH input.
+unsigned White() {
+    return MakeTexture(kW, kH, [](int, int) { return std::array<uint8_t, 4>{255, 255, 255, 255}; });
+}
+
+// The output textures `frames` frames of the chain at w x h return: its targets, seen from outside.
+std::set<unsigned> Outputs(IsfHost& host, unsigned input, int w, int h, const IsfFrameInputs& in, int frames) {
+    std::set<unsigned> seen;
+    for (int i = 0; i < frames; ++i) seen.insert(host.Render(input, w, h, in));
+    glFinish();
+    return seen;
+}
+
 }  // namespace
 
 TEST_CASE("isf host: a saved effect is built and first drawn in a context of its own so no frame waits for its compile", "[isf][gl]") {
@@ -275,23 +288,13 @@ TEST_CASE("isf host: a rebuilt chain draws into the render targets of the chain 
     Gl gl;
     const std::string path = TempDir() + "/host_pool.fs";
     WriteText(path, Multiply("1.0, 0.5, 0.25"));
-    // A white input, so each chain's colour is its own.
-    unsigned white = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &white);
-    glTextureStorage2D(white, 1, GL_RGBA8, kW, kH);
-    const float one[4] = {1, 1, 1, 1};
-    glClearTexImage(white, 0, GL_RGBA, GL_FLOAT, one);
+    const unsigned white = White();   // so each chain's colour is its own
     {
         IsfHost host = own ? IsfHost(gl.Own(), form == 0 ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread) : IsfHost();
         CHECK(host.DrawIn() == (form == 0 ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread));
         REQUIRE(host.OwnContexts() == own);
         Frames f{host, white, {}};
-        auto outputs = [&](int frames) {
-            std::set<unsigned> seen;
-            for (int i = 0; i < frames; ++i) seen.insert(host.Render(white, kW, kH, f.in));
-            glFinish();
-            return seen;
-        };
+        auto outputs = [&](int frames) { return Outputs(host, white, kW, kH, f.in, frames); };
         host.Request({Parse(path)}, kW, kH);
         REQUIRE(f.UntilBuilt().adopted);
         const std::set<unsigned> first = outputs(4);
@@ -312,7 +315,7 @@ TEST_CASE("isf host: a rebuilt chain draws into the render targets of the chain 
         CHECK(Is(px, 128, 64, 255));   // the third chain's image, on targets cleared and drawn anew
         CHECK(errors.empty());
     }
-    glDeleteTextures(1, &white);
+    DeleteTexture(white);
 }
 
 TEST_CASE("isf host: by default a chain is drawn in its own contexts where the renderer compiles again in each context", "[isf][gl]") {
@@ -348,21 +351,12 @@ TEST_CASE("isf host: a chain's first build draws a spare set of targets so the f
     Gl gl;
     const std::string path = TempDir() + "/host_spare.fs";
     WriteText(path, Multiply("1.0, 0.5, 0.25"));
-    unsigned white = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &white);
-    glTextureStorage2D(white, 1, GL_RGBA8, kW, kH);
-    const float one[4] = {1, 1, 1, 1};
-    glClearTexImage(white, 0, GL_RGBA, GL_FLOAT, one);
+    const unsigned white = White();
     {
         IsfHost host = form < 2 ? IsfHost(gl.Own(), form == 0 ? IsfDrawIn::OwnContexts : IsfDrawIn::RenderThread) : IsfHost();
         host.SetSpareTargets(spare);
         Frames f{host, white, {}};
-        auto outputs = [&](int frames) {
-            std::set<unsigned> seen;
-            for (int i = 0; i < frames; ++i) seen.insert(host.Render(white, kW, kH, f.in));
-            glFinish();
-            return seen;
-        };
+        auto outputs = [&](int frames) { return Outputs(host, white, kW, kH, f.in, frames); };
         host.Request({Parse(path)}, kW, kH);
         REQUIRE(f.UntilBuilt().adopted);
         const std::set<unsigned> first = outputs(4);
@@ -388,7 +382,7 @@ TEST_CASE("isf host: a chain's first build draws a spare set of targets so the f
         CHECK(Is(px, 128, 64, 255));
         CHECK(errors.empty());
     }
-    glDeleteTextures(1, &white);
+    DeleteTexture(white);
 }
 
 // `live`'s render scale moves between a few sizes (--frame-budget, the resolution slider): with
@@ -399,22 +393,13 @@ TEST_CASE("isf host: a chain returning to a size it drew at takes that size's ta
     Gl gl;
     const std::string path = TempDir() + "/host_sizes.fs";
     WriteText(path, Multiply("1.0, 0.5, 0.25"));
-    unsigned white = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &white);
-    glTextureStorage2D(white, 1, GL_RGBA8, kW, kH);
-    const float one[4] = {1, 1, 1, 1};
-    glClearTexImage(white, 0, GL_RGBA, GL_FLOAT, one);
+    const unsigned white = White();
     {
         IsfHost host(gl.Own(), IsfDrawIn::RenderThread);
         host.SetSpareTargets(false);
         host.SetKeptSizes(keep);
         Frames f{host, white, {}};
-        auto outputs = [&](int w, int h) {
-            std::set<unsigned> seen;
-            for (int i = 0; i < 4; ++i) seen.insert(host.Render(white, w, h, f.in));
-            glFinish();
-            return seen;
-        };
+        auto outputs = [&](int w, int h) { return Outputs(host, white, w, h, f.in, 4); };
         host.Request({Parse(path)}, kW, kH);
         REQUIRE(f.UntilBuilt().adopted);
         const std::set<unsigned> full = outputs(kW, kH);
@@ -441,5 +426,5 @@ TEST_CASE("isf host: a chain returning to a size it drew at takes that size's ta
         f.Draw(&px);
         CHECK(Is(px, 255, 128, 64));   // the image at the size returned to, on targets cleared and drawn anew
     }
-    glDeleteTextures(1, &white);
+    DeleteTexture(white);
 }
