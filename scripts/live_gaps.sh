@@ -8,7 +8,8 @@
 #   --post NAME   the show runs the ISF post effect shaders/isf/NAME.fs over the scene, and the saves
 #                 go to that file instead of the scene (what a post effect's reload costs the frames).
 #                 The modes are then the chain in contexts of its own (the default) against the chain
-#                 in the window's context (SDFVJ_POST_CONTEXTS=0), both in-process.
+#                 in the window's context (SDFVJ_POST_CONTEXTS=0), both in-process, and the chain drawn
+#                 by the render processes (--render-process, post-render-process).
 #
 # Each show runs in an Xvfb display with SDFVJ_ROOT at a temporary copy of shaders/, the drivers'
 # shader disk caches off (every save is a compile). Every 4 s the scene gets a new constant (a
@@ -39,13 +40,13 @@ trap 'kill $xvfb 2>/dev/null; kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
 sleep 1
 export MESA_SHADER_CACHE_DISABLE=true __GL_SHADER_DISK_CACHE=0 JACK_NO_START_SERVER=1
 modes="in-process render-process"
-[ -n "$post" ] && modes="post-own-contexts post-window-context"
+[ -n "$post" ] && modes="post-own-contexts post-window-context post-render-process"
 modes=${LIVE_GAPS_MODES:-$modes}
 run_mode() {   # $1: one of $modes
     local mode=$1 root=$work/$1 extra=() contexts=1
     mkdir -p "$root"
     cp -r "$repo/shaders" "$root/"
-    [ "$mode" = render-process ] && extra=(--render-process)
+    [ "$mode" = render-process ] || [ "$mode" = post-render-process ] && extra=(--render-process)
     [ "$mode" = post-window-context ] && contexts=0
     local file=$root/shaders/scenes/$scene.glsl
     if [ -n "$post" ]; then file=$root/shaders/isf/$post.fs; extra+=(--post "$post"); fi

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 
 #include "app/live_app.h"
@@ -37,18 +36,29 @@ void LiveSession::UpdatePost() {
             }
         }
     }
+    if (postInServers_ && servers_) {
+        if (audio_) servers_->SetAudio(audio_->Textures().waveform, audio_->Textures().spectrum);
+        if (!postSay_.empty() && servers_->Servers().OnScreenLoad().post == servers_->Post() && !servers_->Post().empty()) {
+            state_.report.Say(postSay_ + ", drawn by the render process");
+            postSay_.clear();
+        }
+    }
     if (state_.show.post == postShown_) return;
     postShown_ = state_.show.post;
     std::vector<IsfFile> files;
-    for (const std::string& f : postShown_.empty() ? std::vector<std::string>{} : SplitIsfList(postShown_)) {
-        IsfFile file;
-        std::string error;
-        if (!LoadIsfFile(ResolveIsfPath(f), &file, &error)) {
-            state_.report.Say(error + " — keeping the post chain on screen");
-            return;
-        }
-        Watch(fs::path(file.path).parent_path().string());
-        files.push_back(std::move(file));
+    std::string error;
+    if (!LoadPostFiles(postShown_, &files, &error)) {
+        state_.report.Say(error + " — keeping the post chain on screen");
+        return;
+    }
+    for (const IsfFile& f : files) Watch(fs::path(f.path).parent_path().string());
+    if (postInServers_ && servers_) {   // the servers build it: a spare with the chain goes on screen when it is ready
+        std::vector<std::string> paths;
+        for (const IsfFile& f : files) paths.push_back(f.path);
+        servers_->SetPost(std::move(paths));
+        SetPostDecls(files);
+        postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
+        return;
     }
     if (!post_) {
         std::array<IsfHostContext, 2> own;
@@ -60,14 +70,27 @@ void LiveSession::UpdatePost() {
         if (!files.empty() && !post_->OwnContexts())
             state_.report.Say("sdfvj live: no context of its own for the post chain; its builds hold a frame");
     }
-    // The new chain's inputs join the show's parameters now (a preset's values for them apply).
+    SetPostDecls(files);   // the new chain's inputs join the show's parameters now (a preset's values for them apply)
+    postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
+    post_->Request(std::move(files), Scaled(fbw_), Scaled(fbh_));
+}
+
+bool LiveSession::LoadPostFiles(const std::string& list, std::vector<IsfFile>* files, std::string* error) const {
+    files->clear();
+    for (const std::string& f : list.empty() ? std::vector<std::string>{} : SplitIsfList(list)) {
+        IsfFile file;
+        if (!LoadIsfFile(ResolveIsfPath(f), &file, error)) return false;
+        files->push_back(std::move(file));
+    }
+    return true;
+}
+
+void LiveSession::SetPostDecls(const std::vector<IsfFile>& files) {
     postDecls_.clear();
     for (const IsfFile& f : files)
         for (const ParamDecl& d : IsfParams(f))
             if (std::none_of(postDecls_.begin(), postDecls_.end(), [&](const ParamDecl& x) { return x.name == d.name; }))
                 postDecls_.push_back(d);
-    postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
-    post_->Request(std::move(files), Scaled(fbw_), Scaled(fbh_));
 }
 
 // The header the show's parameters follow: the scene's inputs, then the post chain's.
@@ -82,6 +105,16 @@ SceneInfo LiveSession::SceneWithPost() const {
 // A saved .fs or .vs of the chain: rebuilt where no frame waits; a broken save is reported with
 // its file:line and the last good file of that stage stays.
 void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
+    const bool postSaved = std::any_of(changed.begin(), changed.end(), [](const std::string& f) {
+        return f.ends_with(".fs") || f.ends_with(".vs");
+    });
+    if (postInServers_ && servers_) {   // the servers rebuild (LiveServers::Update)
+        if (!postSaved || servers_->Post().empty()) return;   // the servers rebuild (LiveServers::Update)
+        std::vector<IsfFile> files;
+        std::string error;   // said by the servers' check, with the chain on screen kept
+        if (LoadPostFiles(postShown_, &files, &error)) SetPostDecls(files);   // a header's new inputs
+        return;
+    }
     if (!post_ || post_->Wanted().empty() || changed.empty()) return;
     std::vector<std::string> errors;
     if (post_->Reload(&errors)) postSay_ = "post reloaded";
@@ -147,11 +180,7 @@ bool LiveSession::DrawPost(unsigned texture, int w, int h, double now) {
     in.timeDelta = std::max(0.0, now - postLast_);
     postLast_ = now;
     in.frame = in_.frame;
-    const std::time_t clock = std::time(nullptr);
-    std::tm local{};
-    localtime_r(&clock, &local);
-    in.date = {(float)(local.tm_year + 1900), (float)(local.tm_mon + 1), (float)local.tm_mday,
-               (float)(local.tm_hour * 3600 + local.tm_min * 60 + local.tm_sec)};
+    in.date = IsfDateNow();
     in.params = in_.params;
     in.beat = in_.beat;   // the tempo the scene draws with (tap, clock, preset, audio, a leader)
     in.bpm = in_.bpm;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/live_app.h"
+#include "render/live_program.h"
 
 namespace sdfvj {
 
@@ -14,8 +15,17 @@ void LiveSession::StartServers() {
     servers_ = std::make_unique<LiveServers>(LiveProgram::TieredCompileDefault(), live_.LiteralTier());
     servers_->SetImporter(importer_);   // null: this thread imports each server's images
     std::string error;
+    postInServers_ = EnvSwitch("SDFVJ_POST_IN_SERVER", true);
+    std::vector<IsfFile> files;
+    if (postInServers_ && !state_.show.post.empty() && LoadPostFiles(state_.show.post, &files, &error)) {   // in the first build
+        std::vector<std::string> paths;
+        for (const IsfFile& f : files) paths.push_back(f.path);
+        servers_->SetPost(std::move(paths));
+    }
+    error.clear();   // a broken post file: said by UpdatePost
     if (servers_->Start(state_.wanted, Scaled(w), Scaled(h), &error))
         return;
+    postInServers_ = false;
     // Nothing on screen: the scene's fault (then it does not build here either, and the show waits
     // for the save that fixes it, drawn by a server) or the render process's (no GL of its own, say):
     // then this process draws, as without --render-process.

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 
+#include "isf/isf.h"
 #include "render/field_morph.h"
 #include "scene/scene.h"
 #include "shader/shader.h"
@@ -11,17 +13,28 @@ namespace sdfvj {
 
 namespace {
 
-// The load a server gets for a variant at a size: its effects as the show wants them.
-ServerLoad LoadFor(const VariantKey& key, int w, int h) { return ServerLoad{key.scenePath, false, key.effects, key.path, w, h}; }
 VariantKey KeyOf(const ServerLoad& load) { return VariantKey{load.scenePath, load.effects, load.path}; }
 
+bool EndsWith(const std::string& s, const char* tail) {
+    const size_t n = std::strlen(tail);
+    return s.size() >= n && s.compare(s.size() - n, n, tail) == 0;
+}
+
+// A scene's or a post effect's source (an ISF .fs, or the .vs beside one) among the files saved.
 bool ShaderSaved(const std::vector<std::string>& changed) {
     for (const std::string& f : changed)
-        if (f.size() > 5 && f.compare(f.size() - 5, 5, ".glsl") == 0) return true;
+        if (EndsWith(f, ".glsl") || EndsWith(f, ".fs") || EndsWith(f, ".vs")) return true;
     return false;
 }
 
 }  // namespace
+
+// The load a server gets for a variant at a size: its effects as the show wants them, the post chain.
+ServerLoad LiveServers::LoadFor(const VariantKey& key, int w, int h) const {
+    ServerLoad load{key.scenePath, false, key.effects, key.path, w, h};
+    load.post = post_;
+    return load;
+}
 
 // Frames come over on the GPU where both ends can (the server falls back, and says why), each one
 // drawn while the show waits: a frame shown is the frame of its inputs, as in-process drawing.
@@ -34,6 +47,11 @@ bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash,
     ShaderSource src;
     if (!LoadScene(key.scenePath, scene, error) || !AssembleProgram(*scene, key, &src, error)) return false;
     *hash = src.hash;
+    for (const std::string& f : post_) {   // a broken post file is said as file:line before any server is asked
+        IsfFile file;
+        if (!LoadIsfFile(f, &file, error)) return false;
+        *hash = (*hash ^ IsfFilesHash(f)) * 0x100000001b3ULL;
+    }
     if (lifted && !AssembleProgram(*scene, key, lifted, error, true)) *lifted = ShaderSource{};
     error->clear();
     return true;
@@ -151,6 +169,7 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
 
 void LiveServers::PrepareMorph(const VariantKey& to, int w, int h) {
     ServerLoad load{to.scenePath, false, UnionEffects(key_.effects, to.effects), to.path, w, h};
+    load.post = post_;
     load.morphFrom = key_.scenePath;
     std::string error;
     show_.Prepare(load, &error, ServerShow::Held::Morph);   // a failure is said by MorphState's caller

@@ -42,6 +42,13 @@ public:
     // size. Lines for the show's report go to *say (a build that failed, a server replaced, a
     // program on screen).
     void Update(const VariantKey& want, const std::vector<std::string>& changed, int w, int h, std::vector<std::string>* say);
+    // The post chain the servers draw each frame through (ServerLoad::post: resolved ISF paths; empty:
+    // none), from the next Update on: a change, or a save of one of its files, builds in a spare
+    // server as a scene save does, and one that does not build leaves the chain on screen.
+    void SetPost(std::vector<std::string> paths) { post_ = std::move(paths); }
+    const std::vector<std::string>& Post() const { return post_; }
+    bool PostOnScreen() const { return !show_.OnScreenLoad().post.empty(); }
+    void SetAudio(std::vector<float> wave, std::vector<float> spectrum) { show_.SetAudio(std::move(wave), std::move(spectrum)); }
     // This frame's image: the texture, and its size (the size it was built for, until a build at the
     // new size is on screen). 0 when there is none yet.
     unsigned Frame(const FrameInputs& in, int* w, int* h);
@@ -81,13 +88,16 @@ public:
 private:
     // Reads the scene and assembles the program's source (no GL): *hash, or *error as file:line;
     // with `lifted`, its literal tier's source too.
+    // The post chain's files are parsed too (no GL) and hashed with it.
     bool Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted = nullptr) const;
+    ServerLoad LoadFor(const VariantKey& key, int w, int h) const;
     void PrepareLiteralTier(std::vector<std::string>* say);
     void SayBuiltAhead(std::vector<std::string>* say);   // once, when a BuildAhead list is done   // the held lifted program, when it is time
     bool literalTier_ = false, wantPrepare_ = false, preparedSaid_ = false;
     uint64_t preparedHash_ = 0;   // the lifted source the held program was built from
     ServerShow show_;
     VariantKey key_;
+    std::vector<std::string> post_;
     ServerLoad wanted_;     // what the show asked for last (variant and size), built or not
     ServerLoad lastLoad_;   // the last program sent to a server: its scene and hash are building*_
     SceneInfo scene_, buildingScene_, previousScene_;

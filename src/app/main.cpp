@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "render/compile_process.h"
+#include "isf/isf_server_post.h"
 #include "render/render_process.h"
 #ifdef SDFVJ_HAS_LIVE
 #include "control/control.h"
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
     // stdin and stdout are the job socket, so nothing else may print to stdout here.
     if (argc == 2 && std::string(argv[1]) == "compile-server") return RunCompileServer(0, 1);
     // Hidden: a render process (render/render_process.h); fd 3 is its socket.
-    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3);
+    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3, MakeIsfServerPost);
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
     CLI::App app{
         "sdfvj — raymarch signed-distance-field scenes live from MIDI/OSC, or offline from a recorded take.\n\n"

@@ -120,6 +120,9 @@ struct IsfFrameInputs {
     std::span<const float> audioWaveform, audioSpectrum;
 };
 
+// DATE now, in local time: year, month, day, seconds in the day.
+std::array<float, 4> IsfDateNow();
+
 // The row an audio/audioFFT input reads: `values` as they are, or with MAX (maxSamples) below
 // their count, MAX texels each the mean of its share of the values (a spectrum's peak stays in
 // the texel covering its bin). The texture is that many texels wide (IMG_SIZE says so).

@@ -135,6 +135,8 @@ std::string LoadPayload(const ServerLoad& load, FrameTransport transport, bool q
     if (!load.sceneEffects) Put(&p, load.effects);
     Put<uint32_t>(&p, load.lifted ? 1 : 0);
     PutText(&p, load.morphFrom);
+    Put<uint32_t>(&p, (uint32_t)load.post.size());
+    for (const std::string& f : load.post) PutText(&p, f);
     return p;
 }
 }  // namespace
@@ -380,6 +382,16 @@ bool RenderProcess::SetLiterals(const std::vector<float>& values) {
     Put<uint32_t>(&p, (uint32_t)values.size());
     for (float v : values) Put(&p, v);
     return Send(Message(3, p));
+}
+
+bool RenderProcess::SetAudio(const std::vector<float>& wave, const std::vector<float>& spectrum) {
+    std::string p;
+    for (const std::vector<float>* v : {&wave, &spectrum}) {
+        const size_t n = std::min<size_t>(v->size(), kMaxAudioValues);
+        Put<uint32_t>(&p, (uint32_t)n);
+        p.append(reinterpret_cast<const char*>(v->data()), n * sizeof(float));
+    }
+    return Send(Message(6, p));
 }
 
 void RenderProcess::Read() {

@@ -32,13 +32,16 @@
 //                            tier (0/1), scene path,
 //                            u32 own effects (0: the scene's own; 1: an EffectSet's bytes follow),
 //                            u32 lifted (1: the scene's literals as uniforms, the literal tier),
-//                            u32 len, a scene path (a field morph from that scene; 0: none)
+//                            u32 len, a scene path (a field morph from that scene; 0: none),
+//                            u32 n, n x (u32 len, path): the post chain's files (ServerLoad::post)
 //                   2 frame: FrameInputs (f64 time, i32 frame, f32 beat, f32 bpm, Quality's bytes,
 //                            i32 effectsOff, f32 yaw, f32 pitch, u32 n, n x (u32 len, name, f32))
 //                   3 literals: u32 n, n x f32 (no answer)
 //                   4 build ahead: a load's payload; the program is built into the program cache
 //                            (program_cache.h) and nothing is drawn; only before a load, any number
 //                   5 time a draw: FrameInputs; drawn offscreen, timed, not handed over
+//                   6 audio: u32 n, n x f32 waveform, u32 m, m x f32 spectrum, for the post chain's
+//                            audio inputs from the next frame on (no answer)
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
@@ -75,8 +78,28 @@ struct ServerLoad {
     // A field morph (render/field_morph.h) from this scene to scenePath: one program of both fields,
     // each frame's inputs MorphParamValues (its `morph` input, 0..1, mixes the headers too).
     std::string morphFrom;
+    // The post chain (ISF files, resolved paths) each frame is drawn through before it is handed over,
+    // so that a post effect's build, first draw and new targets land in the server, not in the show
+    // (the show on NVIDIA held 28-41 ms at a bloom save in its own process: docs/performance.md,
+    // "Session 32"). Empty: the frame as the scene draws it.
+    std::vector<std::string> post;
     bool operator==(const ServerLoad&) const = default;
 };
+
+// What a server draws its frames through after the scene: the post chain of ServerLoad::post. The
+// render library knows no ISF; sdfvj's main (and a test's) gives RunRenderServer the ISF chain's
+// (isf/isf_server_post.h). The server's GL context is current in every call.
+class ServerPost {
+public:
+    virtual ~ServerPost() = default;
+    // Builds the chain of these files and draws it once at w x h (its first draw and its targets');
+    // false with the file:line of what failed.
+    virtual bool Load(const std::vector<std::string>& paths, unsigned input, int w, int h, std::string* error) = 0;
+    // The frame `input` (w x h) through the chain; returns the texture holding the result.
+    virtual unsigned Render(unsigned input, int w, int h, const FrameInputs& in, const std::vector<float>& wave,
+                            const std::vector<float>& spectrum) = 0;
+};
+using ServerPostFactory = std::unique_ptr<ServerPost> (*)();
 const char* FrameTransportName(FrameTransport t);
 
 class RenderProcess {
@@ -121,6 +144,8 @@ public:
     // The values of the lifted program's u_lit[i] (a Load with lifted: the scene's float literals
     // read from uniforms) for the frames from now on. Never blocks; ignored when the count differs.
     bool SetLiterals(const std::vector<float>& values);
+    // The sound the post chain's audio inputs read (wire type 6), from the next frame on. Never blocks.
+    bool SetAudio(const std::vector<float>& wave, const std::vector<float>& spectrum);
     // True once the server answered Load (or died: then ready->ok is false). Never blocks; with
     // a timeout > 0 it waits up to that long. On success the frame is importable: Texture().
     // With an importer (SetImporter), the GPU transport's images are imported on its thread: the
@@ -190,7 +215,8 @@ private:
 };
 
 // The child's main: a headless context of its own, then Load and frames from `fd` until it closes.
-// `sdfvj render-server` calls this with fd 3. Returns the exit code.
-int RunRenderServer(int fd);
+// `sdfvj render-server` calls this with fd 3. Returns the exit code. post: what makes a load's post
+// chain (null: a load with one fails, saying so).
+int RunRenderServer(int fd, ServerPostFactory post = nullptr);
 
 }  // namespace sdfvj

@@ -39,6 +39,7 @@ struct ServerTarget {
     uint64_t memorySize = 0;
     SharedImage shared;
     GLuint memoryObject = 0;
+    GLuint drawFbo = 0;   // tex attached: what a post chain's output is blitted into
     std::string note;
 
     bool ShareVulkan(int w, int h, std::string* why) {
@@ -102,15 +103,30 @@ struct ServerTarget {
         transport = FrameTransport::Shm;
         return true;
     }
-    // The frame in `fr` handed over; done on the GPU when this returns.
-    void HandOver(const FrameRenderer& fr) {
+    // The frame in `fr` handed over, or where a post chain drew it over the frame, its output
+    // (postRead: a framebuffer reading it, of the frame's size; RGBA8 or RGBA32F, so blitted, not
+    // copied); done on the GPU when this returns.
+    void HandOver(const FrameRenderer& fr, GLuint postRead = 0) {
+        if (transport != FrameTransport::Shm && postRead) {
+            if (!drawFbo) {
+                glGenFramebuffers(1, &drawFbo);
+                glBindFramebuffer(GL_DRAW_FRAMEBUFFER, drawFbo);
+                glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+            }
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, postRead);
+            glBindFramebuffer(GL_DRAW_FRAMEBUFFER, drawFbo);
+            glBlitFramebuffer(0, 0, fr.Width(), fr.Height(), 0, 0, fr.Width(), fr.Height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glFinish();
+            return;
+        }
         if (transport != FrameTransport::Shm) {
             glCopyImageSubData(fr.Texture(), GL_TEXTURE_2D, 0, 0, 0, 0, tex, GL_TEXTURE_2D, 0, 0, 0, 0, fr.Width(), fr.Height(), 1);
             glFinish();
             return;
         }
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, fr.Framebuffer());
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, postRead ? postRead : fr.Framebuffer());
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
         glReadPixels(0, 0, fr.Width(), fr.Height(), GL_RGBA, GL_UNSIGNED_BYTE, shm);   // waits for the frame
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -159,6 +175,7 @@ struct LoadMessage {
     EffectSet effects;
     std::string scenePath;
     std::string morphFrom;   // a field morph from this scene to scenePath ("": none)
+    std::vector<std::string> post;   // the post chain's files (ServerLoad::post)
 };
 
 bool ParseLoad(const std::string& payload, LoadMessage* m) {
@@ -169,6 +186,11 @@ bool ParseLoad(const std::string& payload, LoadMessage* m) {
         !Take(payload, &at, &m->hasEffects) || (m->hasEffects && !Take(payload, &at, &m->effects)) || !Take(payload, &at, &m->lifted) ||
         !TakeText(payload, &at, &m->morphFrom))
         return false;
+    uint32_t files = 0;
+    if (!Take(payload, &at, &files) || files > kMaxPostFiles) return false;
+    m->post.resize(files);
+    for (std::string& f : m->post)
+        if (!TakeText(payload, &at, &f)) return false;
     m->path = path == (uint32_t)RenderPath::Compute ? RenderPath::Compute : RenderPath::Fragment;
     return true;
 }
@@ -203,9 +225,22 @@ int FirstFrameStrips() {
     return strips;
 }
 
+// Wire type 6: the post chain's sound, each row at most kMaxAudioValues.
+bool ParseAudio(const std::string& payload, std::vector<float>* wave, std::vector<float>* spectrum) {
+    size_t at = 0;
+    for (std::vector<float>* v : {wave, spectrum}) {
+        uint32_t n = 0;
+        if (!Take(payload, &at, &n) || n > kMaxAudioValues || payload.size() - at < (size_t)n * sizeof(float)) return false;
+        v->resize(n);
+        std::memcpy(v->data(), payload.data() + at, (size_t)n * sizeof(float));
+        at += (size_t)n * sizeof(float);
+    }
+    return at == payload.size();
+}
+
 }  // namespace
 
-int RunRenderServer(int fd) {
+int RunRenderServer(int fd, ServerPostFactory makePost) {
     ::signal(SIGPIPE, SIG_IGN);
     HeadlessContext gl;
     std::string glError;
@@ -245,6 +280,18 @@ int RunRenderServer(int fd) {
         return mixed;
     };
     FrameRenderer fr, scratch;   // scratch: draws timed for the show (wire type 5)
+    std::unique_ptr<ServerPost> post;   // the load's post chain (ServerLoad::post); null: none
+    std::vector<float> wave, spectrum;   // its sound (wire type 6)
+    GLuint postRead = 0;                 // a framebuffer reading its output, attached each frame
+    auto drawPost = [&](const FrameInputs& in) -> GLuint {   // the frame through the chain: postRead reads it; 0 without one
+        if (!post) return 0;
+        const unsigned out = post->Render(fr.Texture(), fr.Width(), fr.Height(), in, wave, spectrum);
+        if (!postRead) glGenFramebuffers(1, &postRead);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, postRead);
+        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, out, 0);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        return postRead;
+    };
     // Two images on the GPU (vkmem): frame N into one while the show may still read frame N - 1 from
     // the other, so the show never waits for its own read before it asks for the next frame.
     // SDFVJ_SERVER_IMAGES=1: one image (every request then waits for the show's read: measured).
@@ -264,8 +311,9 @@ int RunRenderServer(int fd) {
             if (!DecodeInputs(payload, &in)) return 3;
             const auto t0 = Clock::now();
             fr.Draw(program, frameScene(in), in);
+            const GLuint read = drawPost(in);
             current = (current + 1) % images;
-            targets[current].HandOver(fr);
+            targets[current].HandOver(fr, read);
             std::string p;
             Put(&p, MsSince(t0));
             Put<uint32_t>(&p, (uint32_t)current);
@@ -284,6 +332,10 @@ int RunRenderServer(int fd) {
             std::string p;
             Put(&p, ms);
             if (!SendAll(fd, Message(5, p))) return 0;
+            continue;
+        }
+        if (header[0] == 6 && loaded) {   // the post chain's sound
+            if (!ParseAudio(payload, &wave, &spectrum)) return 3;
             continue;
         }
         if (header[0] == 3 && loaded) {   // the literal tier's numbers
@@ -349,6 +401,15 @@ int RunRenderServer(int fd) {
             fr.SetStrips(1);
             glFinish();
             frameMs = MsSince(t0);
+        }
+        if (ok && !m.post.empty()) {   // the post chain: built and drawn once here, part of the load's build
+            t0 = Clock::now();
+            post = makePost ? makePost() : nullptr;
+            if (!post) error = "this render server has no post chain (ServerPostFactory)";
+            ok = post && post->Load(m.post, fr.Texture(), w, h, &error);
+            buildMs += MsSince(t0);
+        }
+        if (ok) {
             t0 = Clock::now();
             std::string why, why2;
             if (transport != 0 && !target.ShareVulkan(w, h, &why) && !target.ExportDmaBuf(w, h, &why2))
@@ -361,7 +422,7 @@ int RunRenderServer(int fd) {
                 if (targets[1].ShareVulkan(w, h, &whySecond)) images = 2;
                 else target.note = "one shared image (a second one failed: " + whySecond + "): each frame waits for the show's read";
             }
-            if (ok) target.HandOver(fr);
+            if (ok) target.HandOver(fr, drawPost(in));
             shareMs = MsSince(t0);
         }
         std::string p;

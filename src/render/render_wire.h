@@ -22,6 +22,8 @@ inline double MsSince(Clock::time_point t0) { return std::chrono::duration<doubl
 
 constexpr uint64_t kModInvalid = 0x00ffffffffffffffULL;   // DRM_FORMAT_MOD_INVALID
 constexpr uint32_t kMaxPayload = 1u << 20;                 // a frame's inputs or a scene path: far less
+constexpr uint32_t kMaxAudioValues = 16384;                // each of the post chain's audio rows (wire type 6)
+constexpr uint32_t kMaxPostFiles = 16;                     // a load's post chain
 static_assert(std::is_trivially_copyable_v<Quality>, "Quality crosses the socket as bytes");
 static_assert(std::is_trivially_copyable_v<EffectSet>, "EffectSet crosses the socket as bytes (both ends are one binary)");
 

@@ -326,10 +326,15 @@ unsigned ServerShow::ReadFramebuffer() {
     return lastFrame_ ? lastFrame_->ReadFramebuffer() : 0;
 }
 
+void ServerShow::SendAudio(RenderProcess& p) const {
+    if (!onScreenLoad_.post.empty() && (!wave_.empty() || !spectrum_.empty())) p.SetAudio(wave_, spectrum_);
+}
+
 bool ServerShow::Frame(const FrameInputs& in, int timeoutMs) {
     lastInputs_ = in;
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;
+    if (!fresh_ && !p.Outstanding()) SendAudio(p);
     // A server just put on screen: its first frame is here already (pipelined), or drawn now.
     const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs) : p.DrawFrame(in, timeoutMs));
     fresh_ = false;
@@ -342,6 +347,7 @@ void ServerShow::AfterRead(const FrameInputs& in) {
     // What read the frame is fenced; the request waits for the read of the image it will be drawn
     // into (with two images, the frame before's: done by now).
     onScreen_->Read();
+    SendAudio(*onScreen_);
     if (!onScreen_->Request(in)) ++failedFrames_;
 }
 

@@ -61,6 +61,12 @@ public:
     // before (pipelined). False when there is none to show this frame (no server on screen, or it
     // failed: Texture() still holds the last frame delivered, if any).
     bool Frame(const FrameInputs& in, int timeoutMs = 1000);
+    // The sound the post chain of the server on screen reads (ServerLoad::post: its audio inputs),
+    // sent with each frame asked for from now on; empty rows: silence.
+    void SetAudio(std::vector<float> wave, std::vector<float> spectrum) {
+        wave_ = std::move(wave);
+        spectrum_ = std::move(spectrum);
+    }
     // Pipelined: the show has issued what reads Texture() (fenced: RenderProcess::Read); the server
     // may draw the next frame.
     void AfterRead(const FrameInputs& in);
@@ -187,6 +193,8 @@ private:
     bool onScreenQuick_ = false;
     bool fresh_ = false;   // the frame in onScreen_'s texture is collected and not yet shown
     FrameInputs lastInputs_;
+    std::vector<float> wave_, spectrum_;   // SetAudio
+    void SendAudio(RenderProcess& p) const;
     std::vector<RenderProcess::Ready> shown_;
     std::vector<bool> shownQuick_;
     std::string note_;

@@ -247,6 +247,44 @@ TEST_CASE("live render process: a broken save is said as file:line and the pictu
     CHECK(show.Running());
 }
 
+TEST_CASE("live render process: the post chain is drawn by the render processes, its save builds in a spare while the frames go on, a broken one is said as file:line") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-post");
+    const std::string root = CopyDataRoot(dir);
+    const std::string fs = root + "/shaders/isf/rgb_split.fs";
+    const std::string good = ReadAll(fs);
+    LiveShow show(dir, {"--scene", "midi", "--render-process", "--post", "rgb_split"}, root, kNoCache);
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("post: rgb_split, drawn by the render process", 1, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForValues({{"amount", 4.0f}}, kDeadline));   // the effect's input is a show parameter
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Log().find("post: rgb_split (built in") == std::string::npos);   // nothing built in the show's process
+
+    // A save of the effect (a program no cache has seen): a spare builds the scene and the chain while
+    // the frames go on, and the frames' longest gap is a fraction of that build (a ratio, not a time).
+    const size_t before = show.Frames().size() - 1;
+    SaveLikeAnEditor(fs, good + "\nfloat liveTestSave() { return 1.0; }\n");
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 1, 60));
+    const double compileMs = ReloadCompileMs(show.Log(), 0);
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    const double gapMs = 1000.0 * LongestGap(show.Frames(), before, show.Frames().size() - 1);
+    INFO("the spare's build with the chain: " << compileMs << " ms; longest gap between frames: " << gapMs << " ms\n" << show.Log());
+    REQUIRE(compileMs > 0);
+    CHECK(gapMs < 0.5 * compileMs);
+
+    // GLSL that does not compile: the server's error, at the effect's own line; the chain on screen stays.
+    const size_t mainAt = good.find("void main()");
+    REQUIRE(mainAt != std::string::npos);
+    const size_t line = 1 + (size_t)std::count(good.begin(), good.begin() + (long)mainAt, '\n');
+    SaveLikeAnEditor(fs, good.substr(0, mainAt) + "float broken() { return undeclaredThing; }\n" + good.substr(mainAt));
+    REQUIRE_LIVE(show, show.WaitForLog("rgb_split.fs:" + std::to_string(line) + ":", 1, 60));
+    // A header that does not parse: said by the show before any process is asked.
+    SaveLikeAnEditor(fs, "/*{\n \"INPUTS\": [ {\"NAME\": \"amount\", \"TYPE\": \"float\", \"DEFAULT\": }]\n}*/\nvoid main() { gl_FragColor = vec4(1.0); }\n");
+    REQUIRE_LIVE(show, show.WaitForLog("rgb_split.fs:2:", 1, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Log().find("shader reloaded (its render process", show.Log().find("shader reloaded (its render process") + 1) == std::string::npos);
+    CHECK(show.Running());
+}
+
 TEST_CASE("live render process: the variants an effect pad or a preset reaches are built ahead into the program cache, and a pad hit is a cache load") {
     // Off by default on llvmpipe (its compiles share the CPU with the frames), forced here; a program
     // cache of the test's own, Mesa's disk cache on (llvmpipe gives no program binary without it).

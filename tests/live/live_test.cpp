@@ -329,11 +329,16 @@ TEST_CASE("live screenshot: a show whose --seconds end before its first frame ru
 }
 
 TEST_CASE("live post: --post mirror filters the window's frame, and its input answers OSC like a scene's") {
-    // mirror's `mode` input (0 left onto right ... 3 top onto bottom) becomes a show parameter.
-    LiveRun run("post-mirror", {"--post", "mirror", "--param", "spin=0"}, false);
+    // mirror's `mode` input (0 left onto right ... 3 top onto bottom) becomes a show parameter. In this
+    // process, and with --render-process drawn by the render server over each frame (its parameters
+    // go with the frame's inputs).
+    const bool servers = GENERATE(false, true);
+    std::vector<std::string> args = {"--post", "mirror", "--param", "spin=0"};
+    if (servers) args.push_back("--render-process");
+    LiveRun run(servers ? "post-mirror-servers" : "post-mirror", args, false);
     INFO(ReadText(run.log));
     REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
-    REQUIRE(run.WaitForLog("post: mirror", 20));
+    REQUIRE(run.WaitForLog(servers ? "post: mirror, drawn by the render process" : "post: mirror", 20));
     REQUIRE(run.WaitForFirstFrame(20));
     std::this_thread::sleep_for(std::chrono::milliseconds(800));
     run.Osc("/sdfvj/param/mode", "f", "1.0");   // 0..1 over the input's range [0, 3]: 3, top onto bottom

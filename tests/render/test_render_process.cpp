@@ -23,6 +23,8 @@
 #include "gl_fixture.h"
 #include "render_process_fixture.h"
 #include "render/field_morph.h"
+#include "isf/isf.h"
+#include "isf/isf_server_post.h"
 #include "render/render_process.h"
 #include "render/server_show.h"
 #include "scene/scene.h"
@@ -448,7 +450,90 @@ TEST_CASE("render process: a field morph held by a server draws the first scene 
     CHECK(CompareImages(ReadTexture(show.Texture(), w, h), RenderScene("midi", a.effects, RenderPath::Fragment, w, h), 1).fractionOver == 0.0);
 }
 
+namespace {
+
+// `img` (top row first) through the ISF chain of `paths` in this process, as a server's post chain
+// draws a frame: the same inputs (time, the time since the frame before, the frame's parameters).
+std::vector<Image> ChainHere(const std::vector<std::string>& paths, const std::vector<Image>& frames, const std::vector<FrameInputs>& inputs) {
+    IsfChain chain;
+    std::string error;
+    INFO(error);
+    REQUIRE(chain.Load(paths, &error));
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, kW, kH);
+    std::vector<Image> out;
+    for (size_t i = 0; i < frames.size(); ++i) {
+        std::vector<uint8_t> rows(frames[i].rgba.size());   // GL's order: bottom row first
+        for (int y = 0; y < kH; ++y)
+            std::copy_n(frames[i].rgba.begin() + (long)(kH - 1 - y) * kW * 4, kW * 4, rows.begin() + (long)y * kW * 4);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+        IsfFrameInputs in;
+        in.time = inputs[i].time;
+        in.timeDelta = i == 0 ? 0.0 : inputs[i].time - inputs[i - 1].time;
+        in.frame = inputs[i].frame;
+        in.params = inputs[i].params;
+        out.push_back(ReadTexture(chain.Render(tex, kW, kH, in)));
+    }
+    glDeleteTextures(1, &tex);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("render process: a load with a post chain hands over each frame drawn through it, as this process draws it", "[render_process]") {
+    const FrameTransport t = GENERATE(FrameTransport::Shm, FrameTransport::VkMemory);
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    const std::vector<std::string> post = {ResolveIsfPath("bloom"), ResolveIsfPath("kaleidoscope")};
+    RenderProcess proc;
+    RequireGl();
+    REQUIRE(proc.Start(&error));
+    ServerLoad load{scene.path, true, {}, RenderPath::Compute, kW, kH};
+    load.post = post;
+    REQUIRE(proc.Load(load, t));
+    RenderProcess::Ready ready;
+    REQUIRE(proc.PollReady(&ready, 120000));
+    INFO(ready.text);
+    REQUIRE(ready.ok);
+    std::vector<FrameInputs> inputs;
+    std::vector<Image> got, plain;
+    for (double time : {1.0, 2.5}) {
+        inputs.push_back(Inputs(scene, time));
+        REQUIRE(proc.DrawFrame(inputs.back()));
+        got.push_back(ReadTexture(proc.Texture()));
+        plain.push_back(RenderScene("midi", scene.effects, RenderPath::Compute, kW, kH, time));
+    }
+    const std::vector<Image> want = ChainHere(post, plain, inputs);
+    for (size_t i = 0; i < got.size(); ++i) {
+        const ImageDiff d = CompareImages(got[i], want[i], 1);
+        INFO("frame " << i << " (" << FrameTransportName(ready.transport) << "): max channel difference " << d.maxAbs << ", mean " << d.meanAbs);
+        CHECK(d.fractionOver == 0.0);   // the same driver, programs and inputs: the same image, within rounding
+        CHECK(CompareImages(got[i], plain[i], 8).fractionOver > 0.2);   // and the chain is in it: not the scene's frame
+    }
+}
+
+TEST_CASE("render process: a post chain that does not build fails the load with its file and line", "[render_process]") {
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    RenderProcess proc;
+    RequireGl();
+    REQUIRE(proc.Start(&error));
+    ServerLoad load{scene.path, true, {}, RenderPath::Fragment, kW, kH};
+    load.post = {ResolveIsfPath("bloom"), std::string(SDFVJ_SOURCE_DIR) + "/tests/isf/files/syntax_error.fs"};
+    REQUIRE(proc.Load(load, FrameTransport::Shm));
+    RenderProcess::Ready ready;
+    REQUIRE(proc.PollReady(&ready, 120000));
+    INFO(ready.text);
+    CHECK_FALSE(ready.ok);
+    CHECK(ready.text.find("syntax_error.fs:") != std::string::npos);
+}
+
 int main(int argc, char** argv) {
-    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3);
+    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3, MakeIsfServerPost);
     return Catch::Session().run(argc, argv);
 }

@@ -18,6 +18,7 @@
 
 #include "gl_fixture.h"
 #include "render/import_thread.h"
+#include "isf/isf_server_post.h"
 #include "render/render_process.h"
 #include "render/server_show.h"
 #include "render_process_fixture.h"
@@ -211,6 +212,6 @@ TEST_CASE("render process gap: a new server's images are imported after the fram
 }
 
 int main(int argc, char** argv) {
-    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3);
+    if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3, MakeIsfServerPost);
     return Catch::Session().run(argc, argv);
 }
