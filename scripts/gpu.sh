@@ -26,6 +26,9 @@
 #                                 post (issue 12: a post effect's save, `bench post`), s31 (post + s29b);
 #                                 resize (a render-scale change's frame, `bench resize`), s33 (resize + post;
 #                                 many files: OUT=/tmp/o ... measure s33, then tar /tmp/o into $OUT);
+#                                 postservers (issue 12: a post effect's save drawn by the render
+#                                 processes, `bench reload --post`, against `bench post`'s in-show ways;
+#                                 many files as s33);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -397,6 +400,19 @@ case "${1:-}" in
     if [ "$part" = s33 ]; then
     # A post effect's first save with and without the first build's spare set, interleaved in one run
     # (`bench post`'s second way; each save's longest frame in order), as `measure post` runs it.
+    mkdir -p "$out/post"; OUT="$out/post" bash "$0" measure post
+    fi
+    if [ "$part" = postservers ]; then
+    # Issue 12: a post effect's save with the chain drawn by the render processes (`live --render-process`
+    # since session 34: the spare builds the scene and the chain, then goes on screen), against the
+    # chain in the show's process (`bench post`, as session 33 measured it), same effects and sizes.
+    for size in 1920x1080 3840x2160; do
+      for fx in bloom feedback_trails; do
+        timeout 120 bash "$0" remote bench reload --scene midi --size $size --path compute --modes render-process --post $fx \
+          --rounds 5 > "$out/servers_${fx}_$size.txt" 2>&1 || true
+        grep -h "^|\|median\|frames around" "$out/servers_${fx}_$size.txt" || tail -5 "$out/servers_${fx}_$size.txt"
+      done
+    done
     mkdir -p "$out/post"; OUT="$out/post" bash "$0" measure post
     fi
     if [ "$part" = scales ]; then

@@ -4,14 +4,38 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
 #include "app/bench_support.h"
+#include "isf/isf.h"
 
 namespace sdfvj {
 
 namespace {
 double Largest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
 }  // namespace
+
+BenchPostSaves::BenchPostSaves(const std::string& list, const std::filesystem::path& root, uint64_t runNonce) : nonce(runNonce) {
+    namespace fs = std::filesystem;
+    for (const std::string& f : list.empty() ? std::vector<std::string>{} : SplitIsfList(list)) {
+        const fs::path there = fs::path(ResolveIsfPath(f));
+        const fs::path here = root / "shaders" / "isf" / there.filename();
+        std::error_code ec;
+        if (!fs::exists(here)) fs::copy_file(there, here, ec);   // a missing file: the server says so at the load
+        paths.push_back(here.string());
+    }
+    if (paths.empty()) return;
+    std::ifstream in(paths.back(), std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    original = ss.str();
+}
+
+void BenchPostSaves::Save(int round) const {
+    SaveLikeAnEditor(paths.back(), original + "\nfloat benchReloadSave" + std::to_string(nonce) + "_" + std::to_string(round) + "() { return " +
+                                       std::to_string(round) + ".0; }\n");
+}
 
 RenderProcessRun::~RenderProcessRun() { present_.reset(); }   // the render context is current (the bench ends on it)
 
@@ -29,7 +53,7 @@ bool RenderProcessRun::Start(HeadlessContext& gl, const std::string& scenePath, 
         }
         servers_.SetImporter(importer_.get());
     }
-    if (!servers_.Start(ServerLoad{scenePath, true, {}, path, w_, h_}, error)) return false;
+    if (!servers_.Start(LoadOf(scenePath, path), error)) return false;
     if (!servers_.Texture()) {
         *error = "the render process gave no frame: " + servers_.Note();
         return false;
@@ -42,7 +66,7 @@ bool RenderProcessRun::Start(HeadlessContext& gl, const std::string& scenePath, 
 
 bool RenderProcessRun::Update(const std::vector<std::string>& changed, const std::string& scenePath, RenderPath path, std::string* error) {
     const auto t0 = Clock::now();
-    if (!changed.empty() && !servers_.Load(ServerLoad{scenePath, true, {}, path, w_, h_}, error)) return false;
+    if (!changed.empty() && !servers_.Load(LoadOf(scenePath, path), error)) return false;
     const bool swapped = servers_.Poll(error);
     pollMs_.push_back(MsSince(t0));
     if (!swapped) return false;

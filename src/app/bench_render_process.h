@@ -12,6 +12,8 @@
 // draws while this thread waits for the display.
 // Render thread only.
 #pragma once
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +22,17 @@
 #include "render/server_show.h"
 
 namespace sdfvj {
+
+// bench reload --post A,B: the servers' post chain, copied into the run's root (its shaders/isf)
+// where missing; each Save gives the last file a new function (a program no cache has seen) and
+// leaves the scene as it is.
+struct BenchPostSaves {
+    std::vector<std::string> paths;   // in the run's root; empty without --post
+    std::string original;             // the last file's text
+    uint64_t nonce = 0;               // new programs every run
+    BenchPostSaves(const std::string& list, const std::filesystem::path& root, uint64_t runNonce);
+    void Save(int round) const;
+};
 
 class RenderProcessRun : public HandOverRun {
 public:
@@ -56,6 +69,8 @@ public:
     // 22 (the two images alternate, so every frame attaches), not read through the one kept per image.
     void SetReattach(bool on) { reattach_ = on; }
     ServerShow& Show() { return servers_; }   // the way before, measured (SetRetireAtOnce)
+    // The post chain every load draws its frames through (ServerLoad::post). Before Start.
+    void SetPost(std::vector<std::string> paths) { post_ = std::move(paths); }
 
 private:
     // Declared before servers_: its servers are stopped (jobs abandoned) before the thread ends,
@@ -74,6 +89,12 @@ private:
     std::vector<double> firstAttachMs_, firstBlitMs_, firstRequestMs_;
     bool justSwapped_ = false;
     bool reattach_ = false;
+    std::vector<std::string> post_;
+    ServerLoad LoadOf(const std::string& scenePath, RenderPath path) const {
+        ServerLoad load{scenePath, true, {}, path, w_, h_};
+        load.post = post_;
+        return load;
+    }
 };
 
 }  // namespace sdfvj

@@ -112,4 +112,10 @@ std::string DriverCacheContents(const std::filesystem::path& scratch) {
     return out;
 }
 
+void SaveLikeAnEditor(const std::filesystem::path& file, const std::string& text) {
+    const std::filesystem::path tmp = file.string() + ".sdfvj-save~";
+    std::ofstream(tmp, std::ios::binary) << text;
+    std::filesystem::rename(tmp, file);
+}
+
 }  // namespace sdfvj

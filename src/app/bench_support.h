@@ -63,5 +63,7 @@ std::string SetDriverCaches(const std::string& mode, const std::filesystem::path
 // ("driver disk cache nv after the run: N files, B bytes"), or nothing.
 std::string DriverCacheContents(const std::filesystem::path& scratch);
 std::string SizeName(int w, int h);   // "1920x1080"
+// Writes like an editor: a temp file renamed over the original.
+void SaveLikeAnEditor(const std::filesystem::path& file, const std::string& text);
 
 }  // namespace sdfvj

@@ -43,13 +43,6 @@ namespace {
 
 int Fail(const std::string& what, int code = 2) { return ReloadBenchFail(what, code); }
 
-// Writes like an editor: a temp file renamed over the original.
-void SaveLikeAnEditor(const fs::path& file, const std::string& text) {
-    const fs::path tmp = file.string() + ".sdfvj-save~";
-    std::ofstream(tmp, std::ios::binary) << text;
-    fs::rename(tmp, file);
-}
-
 struct Round {
     double beginCall = 0, finishCall = 0;   // the optimized program's Begin and Finish on the render thread
     double longestBefore = 0;   // longest frame before the first swap (the program built or loaded elsewhere)
@@ -110,13 +103,18 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         return NudgeFirstConstant(original, delta, &nudged);
     };
     saveText(0);
+    const BenchPostSaves postSaves(o.post, root, nonce);   // --post
+    const std::vector<std::string>& post = postSaves.paths;
+    auto save = [&](int round) { return post.empty() ? SaveLikeAnEditor(sceneFile, saveText(round)) : postSaves.Save(round); };
     GLint binaryFormats = 0;
     glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &binaryFormats);
     std::printf("# sdfvj bench reload: %s at %dx%d on %s\n", scene.name.c_str(), w, h, gl.Description().c_str());
     std::printf("driver disk caches: %s; program binary formats: %d; program cache: %s\n", cacheLine.c_str(),
                 binaryFormats, ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off");
+    if (!post.empty()) std::printf("post chain (drawn by the render processes): %s\n", o.post.c_str());
     std::printf("each save: %s; frames paced at %s\n",
-                nudged ? retune ? "the scene's first constant retuned, its value only (the literal tier shows it; a new optimized "
+                !post.empty() ? "the post chain's last file gets a new function (a new program every run); the scene stays"
+                : nudged ? retune ? "the scene's first constant retuned, its value only (the literal tier shows it; a new optimized "
                                   "program every run)"
                                 : "the scene's first constant nudged (a new program every run)"
                        : "NO constant to nudge in this scene: a comment is appended (caches may serve it)",
@@ -200,6 +198,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                         "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process-retire-now, render-process-import-now, render-process-at-once, "
                         "render-process+NAME=VALUE or "
                         "render-process-shm");
+        if (!post.empty() && mode < 9) return Fail("--post: render-process modes only (`bench post` times the chain in the show's process)");
         ModeRun m;
         m.name = shownName;
         // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
@@ -236,13 +235,13 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         }
         bindMode(m);
         m.watcher = std::make_unique<FolderWatcher>();
-        for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render"}) m.watcher->Watch((root / d).string(), &error);
+        for (const char* d : {"shaders/lib", "shaders/scenes", "shaders/render", "shaders/isf"}) m.watcher->Watch((root / d).string(), &error);
         m.path = o.path == "compute" ? RenderPath::Compute : o.path == "fragment" ? RenderPath::Fragment
                                                                                   : ProbeRenderPath(scene, nullptr);
         // Each entry of --modes its own programs (by its place, not its mode: render-process+NAME=VALUE
         // shares render-process's number, and a program cache would serve it the other's builds).
         m.entry = (int)runs.size() + 1;
-        SaveLikeAnEditor(sceneFile, saveText(100 * m.entry));   // this mode's starting program: new as well
+        save(100 * m.entry);   // this mode's starting program: new as well
         m.watcher->Poll();
         m.live = std::make_unique<LiveProgram>();
         if (o.tiered != "auto") m.live->SetTiered(o.tiered == "on");
@@ -267,6 +266,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             auto* run = static_cast<RenderProcessRun*>(m.handover.get());
             run->SetReattach(reattach);
             run->Show().SetRetireAtOnce(retireNow);
+            run->SetPost(post);
         }
         if (m.handover) {
             if (!m.handover->Start(gl, sceneFile.string(), m.path, w, h, &error)) return Fail(error);
@@ -308,7 +308,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         Round r;
         LiveProgram& live = *m.live;
         bool swapped = false;
-        SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * m.entry + round) : original + "// round " + std::to_string(round) + "\n");
+        if (!post.empty()) postSaves.Save(100 * m.entry + round);
+        else SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * m.entry + round) : original + "// round " + std::to_string(round) + "\n");
         const auto saved = Clock::now();
         std::vector<double> recent;   // the last frames, for r.around
         while (MsSince(saved) < 120000) {

@@ -142,6 +142,7 @@ struct ReloadBenchOptions {
     bool firstFrame = false;                      // one launch's first frame instead of reloads
     std::string edit = "nudge";                   // nudge (a structural edit: compiles) | retune (numbers only: the literal tier)
                                                   // | toggle (effect pad hits, cmd_bench_toggle.cpp)
+    std::string post;                             // render-process modes: the servers' post chain; each save edits its last file
 };
 int RunReloadBench(const ReloadBenchOptions& o);
 // --edit toggle (cmd_bench_toggle.cpp): effect pad hits, cold against built ahead; after the

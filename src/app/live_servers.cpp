@@ -43,10 +43,12 @@ LiveServers::LiveServers(bool tiered, bool literalTier) : show_(FrameTransport::
 }
 LiveServers::~LiveServers() = default;
 
-bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted) const {
+bool LiveServers::Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted,
+                        uint64_t* sceneHash) const {
     ShaderSource src;
     if (!LoadScene(key.scenePath, scene, error) || !AssembleProgram(*scene, key, &src, error)) return false;
     *hash = src.hash;
+    if (sceneHash) *sceneHash = src.hash;
     for (const std::string& f : post_) {   // a broken post file is said as file:line before any server is asked
         IsfFile file;
         if (!LoadIsfFile(f, &file, error)) return false;
@@ -74,7 +76,9 @@ void LiveServers::PrepareLiteralTier(std::vector<std::string>* say) {
     wantPrepare_ = false;
     ShaderSource lifted;
     std::string error;
-    if (!AssembleProgram(scene_, key_, &lifted, &error, true) || lifted.literals.empty() || lifted.hash == preparedHash_) return;
+    if (!AssembleProgram(scene_, key_, &lifted, &error, true) || lifted.literals.empty() ||
+        (lifted.hash == preparedHash_ && show_.PreparedLoad().post == show_.OnScreenLoad().post))   // held already, with this chain
+        return;
     ServerLoad load = show_.OnScreenLoad();
     load.lifted = true;
     preparedHash_ = lifted.hash;
@@ -84,7 +88,7 @@ void LiveServers::PrepareLiteralTier(std::vector<std::string>* say) {
 
 bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error) {
     wanted_ = LoadFor(key, w, h);
-    if (!Check(key, &buildingScene_, &buildingHash_, error)) {
+    if (!Check(key, &buildingScene_, &buildingHash_, error, nullptr, &buildingSceneHash_)) {
         error_ = *error;
         return false;
     }
@@ -96,6 +100,7 @@ bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error)
     key_ = key;
     scene_ = buildingScene_;
     hash_ = buildingHash_;
+    sceneHash_ = buildingSceneHash_;
     wantPrepare_ = literalTier_;
     const RenderProcess::Ready& r = show_.Shown().back();
     std::fprintf(stderr, "sdfvj live: the scene is drawn by a render process (frames by %s%s%s; build %.0f ms, first use %.0f ms)\n",
@@ -114,6 +119,7 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
             key_ = KeyOf(lastLoad_);
             scene_ = buildingScene_;
             hash_ = buildingHash_;
+            sceneHash_ = buildingSceneHash_;
         }
         if (!sceneChanged_ && !wasQuick) show_.DropPrevious();   // after a quick tier: the one it replaced is gone already
         const RenderProcess::Ready& r = show_.Shown().back();
@@ -134,9 +140,9 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     if (load == wanted_ && !ShaderSaved(changed)) return;
     wanted_ = load;
     SceneInfo scene;
-    uint64_t hash = 0;
+    uint64_t hash = 0, sceneHash = 0;
     ShaderSource lifted;
-    if (!Check(want, &scene, &hash, &error, literalTier_ ? &lifted : nullptr)) {   // a broken header or include: said once, nothing built
+    if (!Check(want, &scene, &hash, &error, literalTier_ ? &lifted : nullptr, &sceneHash)) {   // a broken header or include: said once, nothing built
         if (error != error_) say->push_back(error);
         error_ = error;
         return;
@@ -160,8 +166,14 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     }
     buildingScene_ = std::move(scene);
     buildingHash_ = hash;
+    buildingSceneHash_ = sceneHash;
     lastLoad_ = load;
-    if (!show_.Load(load, &error)) {
+    // Only the post chain changed (its save, or another chain) in the variant and size on screen: the
+    // scene's program is the one on screen, so no quick tier of it.
+    ServerLoad sameScene = load;
+    sameScene.post = show_.OnScreenLoad().post;
+    const bool postOnly = OnScreen() && sceneHash == sceneHash_ && sameScene == show_.OnScreenLoad();
+    if (!show_.Load(load, &error, !postOnly)) {
         error_ = "sdfvj live: " + error;
         say->push_back(error_);
     }

@@ -89,7 +89,9 @@ private:
     // Reads the scene and assembles the program's source (no GL): *hash, or *error as file:line;
     // with `lifted`, its literal tier's source too.
     // The post chain's files are parsed too (no GL) and hashed with it.
-    bool Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted = nullptr) const;
+    // *sceneHash: the scene's program alone (without the chain).
+    bool Check(const VariantKey& key, SceneInfo* scene, uint64_t* hash, std::string* error, ShaderSource* lifted = nullptr,
+               uint64_t* sceneHash = nullptr) const;
     ServerLoad LoadFor(const VariantKey& key, int w, int h) const;
     void PrepareLiteralTier(std::vector<std::string>* say);
     void SayBuiltAhead(std::vector<std::string>* say);   // once, when a BuildAhead list is done   // the held lifted program, when it is time
@@ -104,6 +106,7 @@ private:
     bool sceneChanged_ = false;
     size_t aheadSaid_ = 0;   // BuiltAheadLoads() already reported
     uint64_t hash_ = 0, buildingHash_ = 0;
+    uint64_t sceneHash_ = 0, buildingSceneHash_ = 0;   // the scene's program alone, on screen and building
     std::string error_;
 };
 

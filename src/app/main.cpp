@@ -193,6 +193,11 @@ int main(int argc, char** argv) {
                           "does (prefetch), with and without a first use on the render context")
         ->check(CLI::IsMember({"nudge", "retune", "toggle"}))
         ->capture_default_str();
+    cmdReload->add_option("--post", reloadBench.post,
+                          "render-process modes only: the servers draw each frame through these ISF post effects (as live "
+                          "--render-process --post does), and each save gives the last of them a new function instead of "
+                          "editing the scene: what a post effect's save costs the show when the render processes build it")
+        ->type_name("A,B");
     cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();
     cmdReload->add_flag("--first-frame", reloadBench.firstFrame,
                         "time one launch instead: context -> first frame, with the program cache (run twice)");

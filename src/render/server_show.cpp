@@ -127,19 +127,19 @@ bool ServerShow::Start(const ServerLoad& load, std::string* error, int timeoutMs
     return true;
 }
 
-bool ServerShow::Load(const ServerLoad& load, std::string* error) {
+bool ServerShow::Load(const ServerLoad& load, std::string* error, bool quickTier) {
     error->clear();
     for (Candidate* c : {&next_, &quick_}) Retire(std::move(c->process));   // superseded before they were shown
     building_ = load;
     deferred_ = false;
-    if (tiered_ && inTurn_) {   // the quick tier alone first; the optimized build once it is on screen (Poll)
+    if (tiered_ && quickTier && inTurn_) {   // the quick tier alone first; the optimized build once it is on screen (Poll)
         if (!Send(quick_, load, error)) return false;
         deferred_ = true;
         FillSpares();
         return true;
     }
     if (!Send(next_, load, error)) return false;
-    if (tiered_ && !Send(quick_, load, error)) return false;
+    if (tiered_ && quickTier && !Send(quick_, load, error)) return false;
     FillSpares();
     return true;
 }

@@ -52,7 +52,9 @@ public:
     void SetTiersInTurn(bool inTurn) { inTurn_ = inTurn; }
     // A new program: a spare builds it while the one on screen goes on; a build still running for an
     // earlier Load is ended. Never blocks. False when no server could start.
-    bool Load(const ServerLoad& load, std::string* error);
+    // quickTier false: no quick tier for this load even when tiered (a post chain's save, say, whose
+    // scene program the program cache holds).
+    bool Load(const ServerLoad& load, std::string* error, bool quickTier = true);
     // Reaps ended servers; puts a finished build on screen; replaces a dead server on screen.
     // True when the server on screen changed. *error: why a build failed or a server was replaced
     // ("" when nothing went wrong); the one on screen stays.
@@ -126,6 +128,7 @@ public:
     const ServerLoad& OnScreenLoad() const { return onScreenLoad_; }
     bool OnScreenQuick() const { return onScreenQuick_; }
     bool Building() const { return next_.process != nullptr || quick_.process != nullptr || deferred_; }
+    bool BuildingQuick() const { return quick_.process != nullptr; }   // a quick tier builds (or waits to be shown)
     const ServerLoad& BuildingLoad() const { return building_; }
     FrameTransport Transport() const { return transport_; }
     // Every server that went on screen, its figures in its process: build, first use, first frame.

@@ -108,7 +108,7 @@ TEST_CASE("live render process: tiered, a save's quick tier and its optimized pr
     const std::string root = CopyDataRoot(dir);
     const std::string scene = root + "/shaders/scenes/midi.glsl";
     const std::string good = ReadAll(scene);
-    LiveShow show(dir, {"--scene", "midi", "--render-process"}, root, {{"SDFVJ_TIERED", "1"}});
+    LiveShow show(dir, {"--scene", "midi", "--render-process", "--post", "rgb_split"}, root, {{"SDFVJ_TIERED", "1"}});
     REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
     REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
     // The optimized program is on screen when no quick tier was said after the last one said.
@@ -126,6 +126,18 @@ TEST_CASE("live render process: tiered, a save's quick tier and its optimized pr
     std::this_thread::sleep_for(std::chrono::seconds(1));
     CHECK(optimizedOnScreen());   // a quick tier that came second was ended unseen, never shown over it
     REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+
+    // A save of the post effect alone: the scene's program is the one on screen, so one build, no quick tier.
+    const size_t saidBefore = show.Log().size();
+    const size_t reloads = CountInFile(show.log, "shader reloaded");
+    const std::string fs = root + "/shaders/isf/rgb_split.fs";
+    SaveLikeAnEditor(fs, ReadAll(fs) + "\nfloat liveTestSave() { return 1.0; }\n");
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded", reloads + 1, 60));
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    const std::string after = show.Log().substr(saidBefore);
+    INFO(after);
+    CHECK(CountInFile(show.log, "shader reloaded") == reloads + 1);
+    CHECK(after.find("quick tier") == std::string::npos);
     CHECK(show.Running());
 }
 

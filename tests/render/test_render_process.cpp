@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "app/effect_costs.h"
+#include "app/live_servers.h"
 #include "gl_fixture.h"
 #include "render_process_fixture.h"
 #include "render/field_morph.h"
@@ -514,6 +515,41 @@ TEST_CASE("render process: a load with a post chain hands over each frame drawn 
         CHECK(d.fractionOver == 0.0);   // the same driver, programs and inputs: the same image, within rounding
         CHECK(CompareImages(got[i], plain[i], 8).fractionOver > 0.2);   // and the chain is in it: not the scene's frame
     }
+}
+
+TEST_CASE("render process: live's servers rebuild for a post effect's save, with no quick tier when the scene's program is the one on screen", "[render_process]") {
+    RequireGl();
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sdfvj_post_servers_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string fs = (dir / "rgb_split.fs").string();
+    std::filesystem::copy_file(ResolveIsfPath("rgb_split"), fs, std::filesystem::copy_options::overwrite_existing);
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    const VariantKey key{scene.path, scene.effects, RenderPath::Fragment};
+    LiveServers servers(true, false);   // tiered, as on NVIDIA
+    servers.SetPost({fs});
+    INFO(error);
+    REQUIRE(servers.Start(key, kW, kH, &error));
+    CHECK(servers.PostOnScreen());
+    std::vector<std::string> say;
+    // The effect saved: one build, the optimized program only.
+    std::ofstream(fs, std::ios::app) << "\nfloat testSave() { return 1.0; }\n";
+    servers.Update(key, {fs}, kW, kH, &say);
+    CHECK(servers.Building());
+    CHECK_FALSE(servers.Servers().BuildingQuick());
+    // The scene's own variant changed as well: its quick tier builds beside it.
+    const VariantKey none{scene.path, EffectSet{}, RenderPath::Fragment};
+    servers.Update(none, {}, kW, kH, &say);
+    CHECK(servers.Servers().BuildingQuick());
+    // A header that does not parse: said as file:line, nothing built.
+    std::ofstream(fs) << "/*{ \"INPUTS\": [ }\n*/\nvoid main() { gl_FragColor = vec4(1.0); }\n";
+    say.clear();
+    servers.Update(none, {fs}, kW, kH, &say);
+    INFO((say.empty() ? std::string() : say.back()));
+    REQUIRE(!say.empty());
+    CHECK(say.back().find("rgb_split.fs:1:") != std::string::npos);
+    std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("render process: a post chain that does not build fails the load with its file and line", "[render_process]") {
