@@ -9,7 +9,7 @@
 #                 go to that file instead of the scene (what a post effect's reload costs the frames).
 #                 The modes are then the chain in contexts of its own (the default) against the chain
 #                 in the window's context (SDFVJ_POST_CONTEXTS=0), both in-process, and the chain drawn
-#                 by the render processes (--render-process, post-render-process).
+#                 by the render processes (--render-process with SDFVJ_POST_IN_SERVER=1, post-render-process).
 #
 # Each show runs in an Xvfb display with SDFVJ_ROOT at a temporary copy of shaders/, the drivers'
 # shader disk caches off (every save is a compile). Every 4 s the scene gets a new constant (a
@@ -51,7 +51,7 @@ run_mode() {   # $1: one of $modes
     local file=$root/shaders/scenes/$scene.glsl
     if [ -n "$post" ]; then file=$root/shaders/isf/$post.fs; extra+=(--post "$post"); fi
     cp "$file" "$root/original.glsl"
-    (DISPLAY=$display SDFVJ_ROOT=$root SDFVJ_POST_CONTEXTS=$contexts exec "$bin" live --scene "$scene" --size "$size" --path fragment --midi none \
+    (DISPLAY=$display SDFVJ_ROOT=$root SDFVJ_POST_CONTEXTS=$contexts SDFVJ_POST_IN_SERVER=1 exec "$bin" live --scene "$scene" --size "$size" --path fragment --midi none \
         --osc-port 0 --hide-overlay --log-params "$root/params.log" --seconds $((6 + 4 * saves)) "${extra[@]}") \
         >"$root/out.log" 2>&1 &
     local pid=$!

@@ -15,7 +15,7 @@ void LiveSession::StartServers() {
     servers_ = std::make_unique<LiveServers>(LiveProgram::TieredCompileDefault(), live_.LiteralTier());
     servers_->SetImporter(importer_);   // null: this thread imports each server's images
     std::string error;
-    postInServers_ = EnvSwitch("SDFVJ_POST_IN_SERVER", true);
+    postInServers_ = EnvSwitch("SDFVJ_POST_IN_SERVER", !softwareGl_);   // on llvmpipe the show's own contexts measured better (docs/isf.md)
     std::vector<IsfFile> files;
     if (postInServers_ && !state_.show.post.empty() && LoadPostFiles(state_.show.post, &files, &error)) {   // in the first build
         std::vector<std::string> paths;
@@ -25,7 +25,6 @@ void LiveSession::StartServers() {
     error.clear();   // a broken post file: said by UpdatePost
     if (servers_->Start(state_.wanted, Scaled(w), Scaled(h), &error))
         return;
-    postInServers_ = false;
     // Nothing on screen: the scene's fault (then it does not build here either, and the show waits
     // for the save that fixes it, drawn by a server) or the render process's (no GL of its own, say):
     // then this process draws, as without --render-process.
@@ -33,6 +32,7 @@ void LiveSession::StartServers() {
     live_.Wait();
     if (live_.Current()) {
         servers_.reset();
+        postInServers_ = false;   // the chain in this process too
         state_.report.Say("sdfvj live: no render process (" + error + "): the scene is drawn in this process");
     } else {
         state_.report.Say(error);

@@ -335,7 +335,7 @@ TEST_CASE("live post: --post mirror filters the window's frame, and its input an
     const bool servers = GENERATE(false, true);
     std::vector<std::string> args = {"--post", "mirror", "--param", "spin=0"};
     if (servers) args.push_back("--render-process");
-    LiveRun run(servers ? "post-mirror-servers" : "post-mirror", args, false);
+    LiveRun run(servers ? "post-mirror-servers" : "post-mirror", args, false, {{"SDFVJ_POST_IN_SERVER", servers ? "1" : "0"}});
     INFO(ReadText(run.log));
     REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
     REQUIRE(run.WaitForLog(servers ? "post: mirror, drawn by the render process" : "post: mirror", 20));
