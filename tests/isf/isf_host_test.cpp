@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <thread>
 #include <cstdlib>
 #include <cmath>
 #include <fstream>
@@ -85,7 +86,8 @@ struct Frames {
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
     }
     // Frames until a build finishes (at most 30 s); the longest frame meanwhile and their count.
-    IsfHost::Done UntilBuilt(double* longest = nullptr, int* count = nullptr, std::vector<Px>* seen = nullptr) {
+    // pauseMs: a pause after each frame (a bound on their count however long a busy machine builds).
+    IsfHost::Done UntilBuilt(double* longest = nullptr, int* count = nullptr, std::vector<Px>* seen = nullptr, int pauseMs = 0) {
         IsfHost::Done done;
         const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
         while (!host.Poll(&done)) {
@@ -95,6 +97,7 @@ struct Frames {
             if (longest) *longest = std::max(*longest, ms);
             if (count) ++*count;
             if (seen) seen->push_back(px);
+            if (pauseMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(pauseMs));
         }
         return done;
     }
@@ -268,7 +271,7 @@ TEST_CASE("isf host: a rebuilt effect keeps its PERSISTENT feedback", "[isf][gl]
         std::vector<std::string> errors;
         REQUIRE(host.Reload(&errors));
         int during = 0;
-        REQUIRE(f.UntilBuilt(nullptr, &during).adopted);
+        REQUIRE(f.UntilBuilt(nullptr, &during, nullptr, 5).adopted);   // paced: a build of 20 s is 4000 frames, short of saturating
         frames += during;
         REQUIRE(frames < 4500);
         f.Draw(&px);
