@@ -21,6 +21,8 @@ void LiveSession::StartServers() {
         std::vector<std::string> paths;
         for (const IsfFile& f : files) paths.push_back(f.path);
         servers_->SetPost(std::move(paths));
+        if (!o_.audio.empty())   // --audio (opened after this): the chain's first draws with the sound's sizes, silent
+            servers_->SetAudio(std::vector<float>(kAudioBins, 0.0f), std::vector<float>(kAudioBins, 0.0f));
     }
     error.clear();   // a broken post file: said by UpdatePost
     if (servers_->Start(state_.wanted, Scaled(w), Scaled(h), &error))

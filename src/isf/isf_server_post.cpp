@@ -13,13 +13,17 @@ namespace {
 
 class IsfServerPost final : public ServerPost {
 public:
-    bool Load(const std::vector<std::string>& paths, unsigned input, int w, int h, std::string* error) override {
+    bool Load(const std::vector<std::string>& paths, unsigned input, int w, int h, const std::vector<float>& wave,
+              const std::vector<float>& spectrum, std::string* error) override {
         if (!chain_.Load(paths, error)) return false;
         // Drawn twice at the size, so both textures of every double-buffered target have been drawn
-        // (on NVIDIA a texture's first draw costs about 1 ms per MB), then the feedback cleared: the
+        // (on NVIDIA a texture's first draw costs about 1 ms per MB), with the show's sound (llvmpipe
+        // compiles a program again for another audio texture size), then the feedback cleared: the
         // show's first frame starts from black, as a chain built in the show does.
         IsfFrameInputs in;
         for (const ParamDecl& d : chain_.Params()) in.params.emplace_back(d.name, d.defaultValue);
+        in.audioWaveform = wave;
+        in.audioSpectrum = spectrum;
         for (int i = 0; i < 2; ++i) chain_.Render(input, w, h, in);
         chain_.ClearBuffers();
         glFinish();

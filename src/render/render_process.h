@@ -41,7 +41,8 @@
 //                            (program_cache.h) and nothing is drawn; only before a load, any number
 //                   5 time a draw: FrameInputs; drawn offscreen, timed, not handed over
 //                   6 audio: u32 n, n x f32 waveform, u32 m, m x f32 spectrum, for the post chain's
-//                            audio inputs from the next frame on (no answer)
+//                            audio inputs from the next frame on (no answer); also before a load, whose
+//                            first draws of the chain then have it
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
@@ -92,9 +93,11 @@ struct ServerLoad {
 class ServerPost {
 public:
     virtual ~ServerPost() = default;
-    // Builds the chain of these files and draws it once at w x h (its first draw and its targets');
-    // false with the file:line of what failed.
-    virtual bool Load(const std::vector<std::string>& paths, unsigned input, int w, int h, std::string* error) = 0;
+    // Builds the chain of these files and draws it at w x h with this sound (its first draws, its
+    // targets', and on llvmpipe the code for the audio textures' sizes); false with the file:line of
+    // what failed.
+    virtual bool Load(const std::vector<std::string>& paths, unsigned input, int w, int h, const std::vector<float>& wave,
+                      const std::vector<float>& spectrum, std::string* error) = 0;
     // The frame `input` (w x h) through the chain; returns the texture holding the result.
     virtual unsigned Render(unsigned input, int w, int h, const FrameInputs& in, const std::vector<float>& wave,
                             const std::vector<float>& spectrum) = 0;

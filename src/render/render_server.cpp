@@ -334,7 +334,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             if (!SendAll(fd, Message(5, p))) return 0;
             continue;
         }
-        if (header[0] == 6 && loaded) {   // the post chain's sound
+        if (header[0] == 6) {   // the post chain's sound (before a load too: its first draws have it)
             if (!ParseAudio(payload, &wave, &spectrum)) return 3;
             continue;
         }
@@ -406,7 +406,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             t0 = Clock::now();
             post = makePost ? makePost() : nullptr;
             if (!post) error = "this render server has no post chain (ServerPostFactory)";
-            ok = post && post->Load(m.post, fr.Texture(), w, h, &error);
+            ok = post && post->Load(m.post, fr.Texture(), w, h, wave, spectrum, &error);
             buildMs += MsSince(t0);
         }
         if (ok) {

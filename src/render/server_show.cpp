@@ -105,6 +105,7 @@ bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) 
     c.asked = false;
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
         c.process = attempt == 0 ? TakeSpare(error) : Spawn(error);
+        if (c.process && !load.post.empty() && (!wave_.empty() || !spectrum_.empty())) c.process->SetAudio(wave_, spectrum_);   // its chain's first draws with it
         if (c.process && c.process->Load(load, transport_, c.quick)) return true;
         Retire(std::move(c.process));
     }

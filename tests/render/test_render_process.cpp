@@ -552,6 +552,36 @@ TEST_CASE("render process: live's servers rebuild for a post effect's save, with
     std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("render process: the post chain's audio inputs read the sound the show sends, silence before it", "[render_process]") {
+    // audio_view.fs draws its audioFFT input in red and its audio wave in green (0.5 + 0.5 s).
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    RenderProcess proc;
+    RequireGl();
+    REQUIRE(proc.Start(&error));
+    ServerLoad load{scene.path, true, {}, RenderPath::Fragment, kW, kH};
+    load.post = {std::string(SDFVJ_SOURCE_DIR) + "/tests/audio/files/audio_view.fs"};
+    REQUIRE(proc.Load(load, FrameTransport::Shm));
+    RenderProcess::Ready ready;
+    REQUIRE(proc.PollReady(&ready, 120000));
+    INFO(ready.text);
+    REQUIRE(ready.ok);
+    auto centre = [&](int channel) {
+        REQUIRE(proc.DrawFrame(Inputs(scene, 1.0)));
+        const Image img = ReadTexture(proc.Texture());
+        return (int)img.rgba[((size_t)(kH / 2) * kW + kW / 2) * 4 + (size_t)channel];
+    };
+    CHECK(centre(0) == 0);                    // silence: no spectrum,
+    CHECK(std::abs(centre(1) - 128) <= 1);    // the wave at rest
+    REQUIRE(proc.SetAudio(std::vector<float>(64, -0.5f), std::vector<float>(64, 0.75f)));
+    CHECK(std::abs(centre(0) - 191) <= 1);
+    CHECK(std::abs(centre(1) - 64) <= 1);
+    REQUIRE(proc.SetAudio(std::vector<float>(512, 0.5f), std::vector<float>(512, 0.25f)));   // another size
+    CHECK(std::abs(centre(0) - 64) <= 1);
+    CHECK(std::abs(centre(1) - 191) <= 1);
+}
+
 TEST_CASE("render process: a post chain that does not build fails the load with its file and line", "[render_process]") {
     SceneInfo scene;
     std::string error;
