@@ -110,6 +110,7 @@ std::string RenderProcessRun::Details() const {
                        (importer_ ? std::string("on a thread of their own") + (importOptions_.touch ? ", used once there" : "") +
                                         (importOptions_.freeThere ? ", freed there" : ", freed on the render thread")
                                   : std::string("and freed on the render thread")) +
+                       (servers_.StandbyUsed() > 0 ? "; " + std::to_string(servers_.StandbyUsed()) + " loads taken by a standby holding the program (only the chain built)" : "") +
                        "; each one on screen: compile + link / first use / first frame / hand-over set-up ms, the render thread's part of taking it ms" +
                        (importer_ ? " (+ the import thread's ms)" : "") + ":";
     char buf[200];

@@ -125,6 +125,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     // machine that gets busier or quieter moves every mode's figures alike.
     struct ModeRun {
         int mode = 0;
+        bool standby = false;   // render-process-standby: ServerShow::SetStandby
         int entry = 0;   // its place in --modes, from 1: what each save's nudge is made of
         std::string name;
         std::unique_ptr<CompileProcess> process;
@@ -184,7 +185,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         importOptions.afterFrame = modeName != "render-process-import-now" && !atOnce;
         const bool reattach = modeName == "render-process-reattach";
         const bool retireNow = modeName == "render-process-retire-now" || atOnce;
-        if (inTurn || importHere || reattach || retireNow || !importOptions.touch || !importOptions.freeThere ||
+        const bool standby = modeName == "render-process-standby";
+        if (inTurn || importHere || reattach || retireNow || standby || !importOptions.touch || !importOptions.freeThere ||
             !importOptions.afterFrame)
             modeName = "render-process";
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
@@ -195,7 +197,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (mode < 0)
             return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
                         "adopt-process, stage, render-process, render-process-sync, render-process-one-image, render-process-in-turn, "
-                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process-retire-now, render-process-import-now, render-process-at-once, "
+                        "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process-retire-now, render-process-import-now, render-process-at-once, render-process-standby, "
                         "render-process+NAME=VALUE or "
                         "render-process-shm");
         if (!post.empty() && mode < 9) return Fail("--post: render-process modes only (`bench post` times the chain in the show's process)");
@@ -266,6 +268,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             auto* run = static_cast<RenderProcessRun*>(m.handover.get());
             run->SetReattach(reattach);
             run->Show().SetRetireAtOnce(retireNow);
+            run->Show().SetStandby(standby);
+            m.standby = standby;
             run->SetPost(post);
         }
         if (m.handover) {
@@ -305,6 +309,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     }
 
     auto runRound = [&](ModeRun& m, int round) {
+        if (m.standby) {   // its spare holds the program on screen ready before the save, as in a show between saves
+            bool ignored = false;
+            auto& show = static_cast<RenderProcessRun*>(m.handover.get())->Show();
+            for (const auto t0 = Clock::now(); !show.StandbyReady() && MsSince(t0) < 60000;) frameOnce(m, &ignored);
+        }
         Round r;
         LiveProgram& live = *m.live;
         bool swapped = false;

@@ -123,18 +123,25 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         }
         if (!sceneChanged_ && !wasQuick) show_.DropPrevious();   // after a quick tier: the one it replaced is gone already
         const RenderProcess::Ready& r = show_.Shown().back();
-        char line[240];
+        char line[260];
         std::snprintf(line, sizeof line, "shader reloaded%s (its render process: build %.0f ms%s, first use %.0f ms, first frame %.0f ms)%s",
-                      show_.OnScreenQuick() ? ", quick tier" : "", r.buildMs, r.fromCache ? " from the program cache" : "", r.useMs,
+                      show_.OnScreenQuick() ? ", quick tier" : "", r.buildMs,
+                      r.fromStandby ? " (the program held ready by a standby)" : r.fromCache ? " from the program cache" : "", r.useMs,
                       r.firstFrameMs, show_.OnScreenQuick() ? "; the optimized program follows" : "");
         say->push_back(line);
         error_.clear();
         wantPrepare_ = literalTier_;
+        standbySaid_ = false;
     } else if (!error.empty()) {
         error_ = error;
         say->push_back(error);
     }
     if (literalTier_) PrepareLiteralTier(say);
+    if (show_.StandbyReady() && !standbySaid_) {   // once per program on screen
+        standbySaid_ = true;
+        std::fprintf(stderr, "sdfvj live: %s: a render process holds it ready (standby): a post effect's save or a new size builds only what changed\n",
+                     DisplayPath(key_.scenePath).c_str());
+    }
     SayBuiltAhead(say);
     const ServerLoad load = LoadFor(want, w, h);
     if (load == wanted_ && !ShaderSaved(changed)) return;

@@ -49,6 +49,9 @@ public:
     const std::vector<std::string>& Post() const { return post_; }
     bool PostOnScreen() const { return !show_.OnScreenLoad().post.empty(); }
     void SetAudio(std::vector<float> wave, std::vector<float> spectrum) { show_.SetAudio(std::move(wave), std::move(spectrum)); }
+    // A spare holding the program on screen ready (ServerShow::SetStandby): a post effect's save or a
+    // new render size then builds only the chain. Before Start.
+    void SetStandby(bool on) { show_.SetStandby(on); }
     // This frame's image: the texture, and its size (the size it was built for, until a build at the
     // new size is on screen). 0 when there is none yet.
     unsigned Frame(const FrameInputs& in, int* w, int* h);
@@ -95,7 +98,7 @@ private:
     ServerLoad LoadFor(const VariantKey& key, int w, int h) const;
     void PrepareLiteralTier(std::vector<std::string>* say);
     void SayBuiltAhead(std::vector<std::string>* say);   // once, when a BuildAhead list is done   // the held lifted program, when it is time
-    bool literalTier_ = false, wantPrepare_ = false, preparedSaid_ = false;
+    bool literalTier_ = false, wantPrepare_ = false, preparedSaid_ = false, standbySaid_ = false;
     uint64_t preparedHash_ = 0;   // the lifted source the held program was built from
     ServerShow show_;
     VariantKey key_;

@@ -282,20 +282,22 @@ bool RenderProcess::FinishImport(Ready* ready, int timeoutMs) {
 
 bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pending) {
     size_t at = 0;
-    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0;
+    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0, standby = 0;
     uint64_t modifier = 0, memorySize = 0;
     int32_t stride = 0, offset = 0;
     if (!Take(payload, &at, &ok) || !Take(payload, &at, &transport) || !Take(payload, &at, &ready->buildMs) ||
         !Take(payload, &at, &ready->useMs) || !Take(payload, &at, &ready->firstFrameMs) || !Take(payload, &at, &fourcc) ||
         !Take(payload, &at, &modifier) || !Take(payload, &at, &stride) || !Take(payload, &at, &offset) ||
         !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached) ||
-        !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2) || !Take(payload, &at, &ready->shareMs)) {
+        !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2) || !Take(payload, &at, &ready->shareMs) ||
+        !Take(payload, &at, &standby)) {
         ready->text = "the render process's answer is malformed";
         return false;
     }
     ready->transport = transport_ = transport == 2 ? FrameTransport::VkMemory : transport == 1 ? FrameTransport::DmaBuf : FrameTransport::Shm;
     ready->ok = ok != 0;
     ready->fromCache = cached != 0;
+    ready->fromStandby = standby != 0;
     if (!ready->ok) return false;
     if (fds_.empty()) {
         ready->text = "the render process sent no frame buffer";

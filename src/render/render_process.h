@@ -38,7 +38,9 @@
 //                            i32 effectsOff, f32 yaw, f32 pitch, u32 n, n x (u32 len, name, f32))
 //                   3 literals: u32 n, n x f32 (no answer)
 //                   4 build ahead: a load's payload; the program is built into the program cache
-//                            (program_cache.h) and nothing is drawn; only before a load, any number
+//                            (program_cache.h), used and drawn once offscreen; only before a load, any
+//                            number; the server keeps the last one's program, and a load of the same
+//                            source (same quick tier, path) takes it instead of building
 //                   5 time a draw: FrameInputs; drawn offscreen, timed, not handed over
 //                   6 audio: u32 n, n x f32 waveform, u32 m, m x f32 spectrum, for the post chain's
 //                            audio inputs from the next frame on (no answer); also before a load, whose
@@ -48,7 +50,8 @@
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
 //                            Vulkan memory or dma-buf); then u32 from the program cache (0/1),
 //                            u32 images (1, or 2: a second Vulkan image's fd rides along too),
-//                            f64 the hand-over's set-up ms (images made and exported, the first frame in)
+//                            f64 the hand-over's set-up ms (images made and exported, the first frame in),
+//                            u32 the program was the one a build ahead left in the server (0/1)
 //                   2 done:  f64 the server's draw + hand-over ms, u32 the image the frame is in
 //                   4 built: u32 ok, u32 it was in the program cache already, f64 ms, u32 len, the error
 //                   5 timed: f64 ms (a GL timer query; glFinish + wall clock on a software renderer; < 0 failed)
@@ -114,6 +117,7 @@ public:
         std::string text;                                  // the error, or a note (a transport refused)
         bool fromCache = false;                            // the program came from the program cache: nothing compiled
         double shareMs = 0;                                // in the server: the hand-over set up (images made, the first frame in)
+        bool fromStandby = false;                          // the program a build ahead left in that server: nothing built, nothing first used
         double importMs = 0;                               // here, the render thread: the answer read and its images imported (PollReady)
         double importThreadMs = -1;                        // on the import thread (SetImporter): its imports; -1: none there
     };

@@ -195,20 +195,30 @@ bool ParseLoad(const std::string& payload, LoadMessage* m) {
     return true;
 }
 
-// The scene read from its file, as the show would, and its program built (from the program cache
-// when it holds it; a compiled one is stored there). A field morph reads both scenes (*from too).
-bool BuildLoad(const LoadMessage& m, SceneInfo* scene, SceneInfo* from, Program* program, std::string* error) {
-    ShaderSource src;
+// The scene read from its file, as the show would, and its program's source (no GL). A field morph
+// reads both scenes (*from too).
+bool AssembleLoad(const LoadMessage& m, SceneInfo* scene, SceneInfo* from, ShaderSource* src, std::string* error) {
     if (!LoadScene(m.scenePath, scene, error)) return false;
     const VariantKey key{m.scenePath, m.hasEffects ? m.effects : scene->effects, m.path};
-    if (!m.morphFrom.empty()) {
-        if (!LoadScene(m.morphFrom, from, error) || !AssembleMorphProgram(*from, *scene, key, &src, error)) return false;
-        return program->Build(src, m.path, error);
-    }
-    if (!AssembleProgram(*scene, key, &src, error, m.lifted != 0)) return false;
-    if (m.quick) src.text = QuickTierText(src.text);
-    return program->Build(src, m.path, error);
+    if (!m.morphFrom.empty()) return LoadScene(m.morphFrom, from, error) && AssembleMorphProgram(*from, *scene, key, src, error);
+    if (!AssembleProgram(*scene, key, src, error, m.lifted != 0)) return false;
+    if (m.quick) src->text = QuickTierText(src->text);
+    return true;
 }
+
+// A program a build ahead (wire type 4) left built, used and drawn in this server's context: a
+// load of the same source (the scene's file unchanged since) takes it instead of building it (the
+// show's standby server: ServerShow::SetStandby).
+struct KeptProgram {
+    std::unique_ptr<Program> program;
+    SceneInfo scene, from;
+    uint64_t hash = 0;
+    RenderPath path = RenderPath::Fragment;
+    uint32_t quick = 0;
+    bool Matches(const ShaderSource& src, const LoadMessage& m) const {
+        return program && src.hash == hash && m.path == path && m.quick == quick;
+    }
+};
 
 // SDFVJ_SERVER_STRIPS=N (1-64): a server's first frame of a program (and a draw ahead) in N strips
 // with a wait after each, so the show's frames, drawn meanwhile on the same GPU, are not queued
@@ -267,7 +277,8 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         if (nice > 0) setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), nice);
     }
     SceneInfo scene;
-    Program program;
+    auto program = std::make_unique<Program>();
+    KeptProgram kept;   // the last build ahead's program
     SceneInfo from;      // a field morph's first scene
     bool morph = false;  // the program is a field morph: each frame's header is the two scenes' mixed by its `morph` input
     SceneInfo mixed;     // its header this frame
@@ -310,7 +321,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             FrameInputs in;
             if (!DecodeInputs(payload, &in)) return 3;
             const auto t0 = Clock::now();
-            fr.Draw(program, frameScene(in), in);
+            fr.Draw(*program, frameScene(in), in);
             const GLuint read = drawPost(in);
             current = (current + 1) % images;
             targets[current].HandOver(fr, read);
@@ -326,7 +337,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             std::string ignored;
             double ms = -1;
             if (scratch.Resize(fr.Width(), fr.Height(), &ignored)) {
-                scratch.Draw(program, frameScene(in), in, true);   // a GL timer query, or glFinish + wall clock on llvmpipe
+                scratch.Draw(*program, frameScene(in), in, true);   // a GL timer query, or glFinish + wall clock on llvmpipe
                 ms = scratch.LastGpuMs();
             }
             std::string p;
@@ -346,7 +357,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             values.resize(n);
             for (float& v : values)
                 if (!Take(payload, &at, &v)) return 3;
-            if (values.size() == program.Literals().size()) program.SetLiterals(values);
+            if (values.size() == program->Literals().size()) program->SetLiterals(values);
             continue;
         }
         if ((header[0] != 1 && header[0] != 4) || loaded) return 3;   // out of turn: the show is not ours
@@ -360,31 +371,38 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         bool ok = glOk;
         if (!glOk) error = glError;
         if (header[0] == 4) {   // built ahead into the program cache, nothing drawn; the next message may be anything
-            Program ahead;
-            SceneInfo aheadScene;
+            KeptProgram ahead;   // kept for a load of the same program
+            ahead.program = std::make_unique<Program>();
             const auto t0 = Clock::now();
-            SceneInfo aheadFrom;
-            if (ok) ok = BuildLoad(m, &aheadScene, &aheadFrom, &ahead, &error);
+            ShaderSource src;
+            if (ok) ok = AssembleLoad(m, &ahead.scene, &ahead.from, &src, &error) && ahead.program->Build(src, m.path, &error);
             if (ok) {   // used and drawn once, as a load is: what the driver finishes there lands in its own disk cache
-                PrimeProgram(ahead.Id(), rp, false);
+                PrimeProgram(ahead.program->Id(), rp, false);
                 FrameRenderer target;
                 FrameInputs in;
-                for (const ParamDecl& d : aheadScene.params) in.params.emplace_back(d.name, d.defaultValue);
+                for (const ParamDecl& d : ahead.scene.params) in.params.emplace_back(d.name, d.defaultValue);
                 target.SetStrips(FirstFrameStrips());
-                if (target.Resize(w, h, &error)) target.Draw(ahead, aheadScene, in);
+                if (target.Resize(w, h, &error)) target.Draw(*ahead.program, ahead.scene, in);
                 error.clear();
                 glFinish();
+                ahead.hash = src.hash, ahead.path = m.path, ahead.quick = m.quick;
             }
             std::string p;
             Put<uint32_t>(&p, ok ? 1 : 0);
-            Put<uint32_t>(&p, ok && ahead.FromCache() ? 1 : 0);
+            Put<uint32_t>(&p, ok && ahead.program->FromCache() ? 1 : 0);
+            kept = ok && m.morphFrom.empty() ? std::move(ahead) : KeptProgram{};
             Put(&p, MsSince(t0));
             PutText(&p, error);
             if (!SendAll(fd, Message(4, p))) return 0;
             continue;
         }
         auto t0 = Clock::now();
-        if (ok) ok = BuildLoad(m, &scene, &from, &program, &error);
+        ShaderSource src;
+        if (ok) ok = AssembleLoad(m, &scene, &from, &src, &error);
+        const bool standby = ok && kept.Matches(src, m);   // built, used and drawn here already
+        if (standby) program = std::move(kept.program);
+        else if (ok) ok = program->Build(src, m.path, &error);
+        kept = KeptProgram{};   // a server loads once
         morph = ok && !m.morphFrom.empty();
         buildMs = MsSince(t0);
         FrameInputs in;
@@ -392,12 +410,12 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         if (ok) ok = fr.Resize(w, h, &error);
         if (ok) {
             t0 = Clock::now();
-            PrimeProgram(program.Id(), rp, false);   // the driver's first use, here
+            if (!standby) PrimeProgram(program->Id(), rp, false);   // the driver's first use, here
             glFinish();
             useMs = MsSince(t0);
             t0 = Clock::now();
             fr.SetStrips(FirstFrameStrips());
-            fr.Draw(program, frameScene(in), in);
+            fr.Draw(*program, frameScene(in), in);
             fr.SetStrips(1);
             glFinish();
             frameMs = MsSince(t0);
@@ -437,9 +455,10 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         Put<int32_t>(&p, target.offset);
         Put<uint64_t>(&p, target.memorySize);
         PutText(&p, ok ? target.note : error);
-        Put<uint32_t>(&p, ok && program.FromCache() ? 1 : 0);
+        Put<uint32_t>(&p, ok && program->FromCache() ? 1 : 0);
         Put<uint32_t>(&p, (uint32_t)images);
         Put(&p, shareMs);
+        Put<uint32_t>(&p, standby ? 1 : 0);
         if (!SendAll(fd, Message(1, p), ok ? target.fd : -1, ok && images == 2 ? targets[1].fd : -1)) return 0;
         if (!ok) return 1;
         for (ServerTarget& t : targets)

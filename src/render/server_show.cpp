@@ -16,6 +16,7 @@ ServerShow::~ServerShow() {
     previous_.reset();
     for (HeldServer& h : held_) h.c.process.reset();
     ahead_.reset();
+    standby_.reset();
     next_.process.reset();
     quick_.process.reset();
     {
@@ -104,7 +105,7 @@ void ServerShow::FrameDone() {
 bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) {
     c.asked = false;
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
-        c.process = attempt == 0 ? TakeSpare(error) : Spawn(error);
+        c.process = attempt == 0 ? TakeFor(c, load, error) : Spawn(error);
         if (c.process && !load.post.empty() && (!wave_.empty() || !spectrum_.empty())) c.process->SetAudio(wave_, spectrum_);   // its chain's first draws with it
         if (c.process && c.process->Load(load, transport_, c.quick)) return true;
         Retire(std::move(c.process));
@@ -275,6 +276,48 @@ void ServerShow::StepBuildAhead() {
     if (!aheadAsked_) Retire(std::move(ahead_));
 }
 
+namespace {
+// The same program, whatever the size and the post chain.
+bool SameProgram(const ServerLoad& a, const ServerLoad& b) {
+    return a.scenePath == b.scenePath && a.sceneEffects == b.sceneEffects && (a.sceneEffects || a.effects == b.effects) && a.path == b.path &&
+           a.lifted == b.lifted && a.morphFrom == b.morphFrom;
+}
+}  // namespace
+
+std::unique_ptr<RenderProcess> ServerShow::TakeFor(const Candidate& c, const ServerLoad& load, std::string* error) {
+    if (!c.quick && standbyReady_ && standby_ && standby_->Usable() && SameProgram(standbyLoad_, load)) {
+        standbyReady_ = false;
+        ++standbyUsed_;
+        return std::move(standby_);
+    }
+    return TakeSpare(error);
+}
+
+void ServerShow::StepStandby() {
+    if (!standbyOn_) return;
+    if (standby_ && standbyAsked_) {
+        RenderProcess::BuiltAhead built;
+        if (!standby_->PollBuiltAhead(&built, 0)) return;
+        standbyAsked_ = false;
+        standbyReady_ = built.ok;
+    }
+    if (standby_ && (!standby_->Usable() || !standbyReady_)) {   // died, or its build failed
+        standbyReady_ = false;
+        Retire(std::move(standby_));
+    }
+    if (!onScreen_ || onScreenQuick_ || Building() || aheadAsked_) return;   // a save's build first
+    if (standby_ && SameProgram(standbyLoad_, onScreenLoad_)) return;
+    Retire(std::move(standby_));
+    standbyReady_ = false;
+    std::string ignored;
+    standby_ = TakeSpare(&ignored);
+    FillSpares();
+    if (!standby_) return;
+    standbyLoad_ = onScreenLoad_;
+    standbyAsked_ = standby_->BuildAhead(standbyLoad_);
+    if (!standbyAsked_) Retire(std::move(standby_));
+}
+
 bool ServerShow::Poll(std::string* error) {
     error->clear();
     EndRetired();   // a show that does not call FrameDone: those the last frame retired end now
@@ -282,6 +325,7 @@ bool ServerShow::Poll(std::string* error) {
         if (retired_[i]->TryReap()) retired_.erase(retired_.begin() + (long)i);
         else ++i;
     StepBuildAhead();
+    StepStandby();
     const bool died = onScreen_ && !onScreen_->Usable();
     if ((died || (!onScreen_ && lastFrame_)) && !Building() && render_wire::Clock::now() >= retryAt_) {
         // Died or stopped answering (or its replacement did): its last frame stays on screen while

@@ -78,6 +78,15 @@ public:
     // gap before the next frame rather than beside this one. A show that never calls this ends
     // retired servers in its next Poll and imports at once.
     void FrameDone();
+    // A standby (issue 12): once a program is on screen and nothing builds, a spare builds the same
+    // program ahead (RenderProcess::BuildAhead: built, used and drawn once in that process) and waits.
+    // A load of that program (the same scene, variant and path: another size, another post chain, a
+    // replacement for a server that died) goes to it and builds nothing; its build time is then the
+    // post chain's and the first frame's. A scene save whose source changed goes to it as to any
+    // spare. Off by default (it holds a second copy of the program and, on llvmpipe, compiles it again).
+    void SetStandby(bool on) { standbyOn_ = on; }
+    bool StandbyReady() const { return standbyReady_; }
+    int StandbyUsed() const { return standbyUsed_; }
     // The way before (bench reload --modes render-process-retire-now): servers retired end at once,
     // in the frame that retired them.
     void SetRetireAtOnce(bool on) { retireAfterFrame_ = !on; }
@@ -155,6 +164,12 @@ private:
     void EndRetired();   // Stop() the ones retired since the last call
     bool Send(Candidate& c, const ServerLoad& load, std::string* error);
     void StepBuildAhead();
+    void StepStandby();
+    std::unique_ptr<RenderProcess> TakeFor(const Candidate& c, const ServerLoad& load, std::string* error);
+    bool standbyOn_ = false, standbyAsked_ = false, standbyReady_ = false;
+    int standbyUsed_ = 0;
+    std::unique_ptr<RenderProcess> standby_;
+    ServerLoad standbyLoad_;
 
     FrameTransport transport_;
     bool pipelined_, tiered_;

@@ -299,6 +299,26 @@ TEST_CASE("live render process: the post chain is drawn by the render processes,
     CHECK(show.Running());
 }
 
+TEST_CASE("live render process: with a standby holding the program on screen, a post effect's save builds only the chain") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-standby");
+    const std::string root = CopyDataRoot(dir);
+    const std::string fs = root + "/shaders/isf/rgb_split.fs";
+    // Both on by default on a GPU only, forced here.
+    LiveShow show(dir, {"--scene", "midi", "--render-process", "--post", "rgb_split"}, root,
+                  {{"MESA_SHADER_CACHE_DISABLE", "true"}, {"SDFVJ_POST_IN_SERVER", "1"}, {"SDFVJ_STANDBY", "1"}});
+    REQUIRE_LIVE(show, show.WaitForLog("post: rgb_split, drawn by the render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("a render process holds it ready (standby)", 1, 60));
+    const size_t before = show.Frames().size() - 1;
+    SaveLikeAnEditor(fs, ReadAll(fs) + "\nfloat liveTestSave() { return 1.0; }\n");
+    REQUIRE_LIVE(show, show.WaitForLog("(the program held ready by a standby)", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    INFO(show.Log());
+    CHECK(show.Frames().size() - before > 10);
+    // The standby was used: another one follows for the program on screen.
+    REQUIRE_LIVE(show, show.WaitForLog("a render process holds it ready (standby)", 2, 60));
+    CHECK(show.Running());
+}
+
 TEST_CASE("live render process: the variants an effect pad or a preset reaches are built ahead into the program cache, and a pad hit is a cache load") {
     // Off by default on llvmpipe (its compiles share the CPU with the frames), forced here; a program
     // cache of the test's own, Mesa's disk cache on (llvmpipe gives no program binary without it).

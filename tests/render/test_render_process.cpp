@@ -552,6 +552,52 @@ TEST_CASE("render process: live's servers rebuild for a post effect's save, with
     std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("render process: a standby holds the program on screen, so a load of it with a post chain or at another size builds nothing", "[render_process]") {
+    ServerShow show(FrameTransport::VkMemory, false, false);
+    show.SetStandby(true);
+    const SceneInfo scene = StartShow(&show, "midi");
+    const RenderProcess::Ready first = show.Shown().back();
+    CHECK_FALSE(first.fromStandby);
+    std::string error;
+    auto untilStandby = [&] {
+        for (int i = 0; i < 60000 && !show.StandbyReady(); ++i) {
+            show.Poll(&error);
+            ::usleep(2000);
+        }
+        return show.StandbyReady();
+    };
+    REQUIRE(untilStandby());   // a spare built, used and drew the program on screen, and waits
+    // A post chain over the same program: the standby takes it, and only the chain is new there.
+    ServerLoad load = show.OnScreenLoad();
+    load.post = {ResolveIsfPath("rgb_split")};
+    REQUIRE(show.Load(load, &error));
+    REQUIRE(PollUntilChange(&show, &error));
+    const RenderProcess::Ready taken = show.Shown().back();
+    INFO("first load: build " << first.buildMs << " ms, first use " << first.useMs << " ms; through the standby: build " << taken.buildMs
+                              << " ms (the chain), first use " << taken.useMs << " ms");
+    CHECK(taken.fromStandby);
+    CHECK(show.StandbyUsed() == 1);
+    CHECK(taken.useMs < 0.5 * first.useMs + 1.0);   // nothing first used (a ratio, not a time)
+    const FrameInputs in = Inputs(scene, 1.0);
+    REQUIRE(show.Frame(in));
+    const Image want = ChainHere(load.post, {RenderScene("midi", scene.effects, RenderPath::Fragment, kW, kH, 1.0)}, {in})[0];
+    CHECK(CompareImages(ReadTexture(show.Texture()), want, 1).fractionOver == 0.0);   // the same frame as built from scratch
+    // Another standby follows for the program on screen; another size takes it too.
+    REQUIRE(untilStandby());
+    load.width = kW / 2;
+    load.height = kH / 2;
+    REQUIRE(show.Load(load, &error));
+    REQUIRE(PollUntilChange(&show, &error));
+    CHECK(show.Shown().back().fromStandby);
+    CHECK(show.StandbyUsed() == 2);
+    // Another variant is another program: a spare builds it.
+    REQUIRE(untilStandby());
+    REQUIRE(show.Load(ServerLoad{scene.path, false, EffectSet{}, RenderPath::Fragment, kW, kH}, &error));
+    REQUIRE(PollUntilChange(&show, &error));
+    CHECK_FALSE(show.Shown().back().fromStandby);
+    CHECK(show.StandbyUsed() == 2);
+}
+
 TEST_CASE("render process: the post chain's audio inputs read the sound the show sends, silence before it", "[render_process]") {
     // audio_view.fs draws its audioFFT input in red and its audio wave in green (0.5 + 0.5 s).
     SceneInfo scene;
