@@ -27,7 +27,7 @@
 #                                 resize (a render-scale change's frame, `bench resize`), s33 (resize + post;
 #                                 many files: OUT=/tmp/o ... measure s33, then tar /tmp/o into $OUT);
 #                                 postservers (issue 12: a post effect's save drawn by the render
-#                                 processes, `bench reload --post`, against `bench post`'s in-show ways;
+#                                 processes, `bench reload --post`, without and with a standby;
 #                                 many files as s33);
 #                                 pending = adopt + field + cone.
 #
@@ -404,16 +404,15 @@ case "${1:-}" in
     fi
     if [ "$part" = postservers ]; then
     # Issue 12: a post effect's save with the chain drawn by the render processes (`live --render-process`
-    # since session 34: the spare builds the scene and the chain, then goes on screen), against the
-    # chain in the show's process (`bench post`, as session 33 measured it), same effects and sizes.
-    for size in 1920x1080 3840x2160; do
-      for fx in bloom feedback_trails; do
-        timeout 120 bash "$0" remote bench reload --scene midi --size $size --path compute --modes render-process --post $fx \
-          --rounds 5 > "$out/servers_${fx}_$size.txt" 2>&1 || true
-        grep -h "^|\|median\|frames around" "$out/servers_${fx}_$size.txt" || tail -5 "$out/servers_${fx}_$size.txt"
-      done
+    # since session 34: a spare builds the scene and the chain, then goes on screen), and with a standby
+    # holding the scene's program ready (only the chain built), interleaved. `measure post` is the same
+    # effects' save with the chain in the show's process (session 33's figures), a call of its own.
+    for args in "3840x2160 bloom" "3840x2160 feedback_trails" "1920x1080 bloom"; do
+      read -r size fx <<< "$args"
+      timeout 180 bash "$0" remote bench reload --scene midi --size $size --path compute --modes render-process,render-process-standby --post $fx \
+        --rounds 4 > "$out/servers_${fx}_$size.txt" 2>&1 || true
+      grep -h "^##\|^|\|median\|standby" "$out/servers_${fx}_$size.txt" | cut -c1-300 || tail -5 "$out/servers_${fx}_$size.txt"
     done
-    mkdir -p "$out/post"; OUT="$out/post" bash "$0" measure post
     fi
     if [ "$part" = scales ]; then
     # The frame budget's resolution term (issue 13): every scene's default at render scales 0.25..1
