@@ -334,7 +334,7 @@ TEST_CASE("live post: --post mirror filters the window's frame, and its input an
     // go with the frame's inputs).
     const bool servers = GENERATE(false, true);
     std::vector<std::string> args = {"--post", "mirror", "--param", "spin=0"};
-    if (servers) args.push_back("--render-process");
+    if (servers) args.insert(args.end(), {"--render-process", "--seconds", "5"});   // its first frame comes later (1.8 s under ASan)
     LiveRun run(servers ? "post-mirror-servers" : "post-mirror", args, false, {{"SDFVJ_POST_IN_SERVER", servers ? "1" : "0"}});
     INFO(ReadText(run.log));
     REQUIRE(run.WaitForLog("OSC: listening on UDP port " + std::to_string(run.oscPort), 20));
