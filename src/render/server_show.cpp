@@ -37,7 +37,7 @@ std::unique_ptr<RenderProcess> ServerShow::Spawn(std::string* error) {
     return p;
 }
 
-std::unique_ptr<RenderProcess> ServerShow::TakeSpare(std::string* error) {
+std::unique_ptr<RenderProcess> ServerShow::TakeSpare(std::string* error, bool spawn) {
     for (;;) {
         std::unique_ptr<RenderProcess> p;
         {
@@ -49,7 +49,7 @@ std::unique_ptr<RenderProcess> ServerShow::TakeSpare(std::string* error) {
         if (p->Usable()) return p;
         Retire(std::move(p));   // a spare that died while it waited
     }
-    return Spawn(error);
+    return spawn ? Spawn(error) : nullptr;
 }
 
 // Spares open their contexts and warm their compilers now, off the next load's path; the spawner
@@ -310,7 +310,7 @@ void ServerShow::StepStandby() {
     Retire(std::move(standby_));
     standbyReady_ = false;
     std::string ignored;
-    standby_ = TakeSpare(&ignored);
+    standby_ = TakeSpare(&ignored, false);   // a spare the spawner made, or none yet: never a spawn in a frame
     FillSpares();
     if (!standby_) return;
     standbyLoad_ = onScreenLoad_;

@@ -156,7 +156,7 @@ private:
         bool asked = false;   // pipelined: its first frame was asked for; it goes on screen when that arrives
     };
     std::unique_ptr<RenderProcess> Spawn(std::string* error);
-    std::unique_ptr<RenderProcess> TakeSpare(std::string* error);
+    std::unique_ptr<RenderProcess> TakeSpare(std::string* error, bool spawn = true);   // spawn: one now when none is ready
     void FillSpares();
     bool Promote(Candidate& c, std::string* error);   // true when c went on screen
     void PutOnScreen(std::unique_ptr<RenderProcess> p, const ServerLoad& load, bool quick);
