@@ -292,6 +292,7 @@ private:
     // The chain's files resolved and parsed (no GL); false with the file:line of the first that is not.
     bool LoadPostFiles(const std::string& list, std::vector<IsfFile>* files, std::string* error) const;
     void SetPostDecls(const std::vector<IsfFile>& files);
+    void SetServersPost(const std::vector<IsfFile>& files);   // LiveServers::SetPost of their paths
     std::vector<ParamDecl> postDecls_;
     FrameRenderer postInput_;   // a crossfade's mix, when a post chain filters it
     double postLast_ = 0.0;

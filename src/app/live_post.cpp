@@ -53,9 +53,7 @@ void LiveSession::UpdatePost() {
     }
     for (const IsfFile& f : files) Watch(fs::path(f.path).parent_path().string());
     if (postInServers_ && servers_) {   // the servers build it: a spare with the chain goes on screen when it is ready
-        std::vector<std::string> paths;
-        for (const IsfFile& f : files) paths.push_back(f.path);
-        servers_->SetPost(std::move(paths));
+        SetServersPost(files);
         SetPostDecls(files);
         postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
         return;
@@ -85,6 +83,12 @@ bool LiveSession::LoadPostFiles(const std::string& list, std::vector<IsfFile>* f
     return true;
 }
 
+void LiveSession::SetServersPost(const std::vector<IsfFile>& files) {
+    std::vector<std::string> paths;
+    for (const IsfFile& f : files) paths.push_back(f.path);
+    servers_->SetPost(std::move(paths));
+}
+
 void LiveSession::SetPostDecls(const std::vector<IsfFile>& files) {
     postDecls_.clear();
     for (const IsfFile& f : files)
@@ -105,14 +109,11 @@ SceneInfo LiveSession::SceneWithPost() const {
 // A saved .fs or .vs of the chain: rebuilt where no frame waits; a broken save is reported with
 // its file:line and the last good file of that stage stays.
 void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
-    const bool postSaved = std::any_of(changed.begin(), changed.end(), [](const std::string& f) {
-        return f.ends_with(".fs") || f.ends_with(".vs");
-    });
-    if (postInServers_ && servers_) {   // the servers rebuild (LiveServers::Update)
-        if (!postSaved || servers_->Post().empty()) return;   // the servers rebuild (LiveServers::Update)
+    if (postInServers_ && servers_) {   // the servers rebuild (LiveServers::Update); here only a header's new inputs
+        if (servers_->Post().empty() || std::none_of(changed.begin(), changed.end(), IsIsfSource)) return;
         std::vector<IsfFile> files;
         std::string error;   // said by the servers' check, with the chain on screen kept
-        if (LoadPostFiles(postShown_, &files, &error)) SetPostDecls(files);   // a header's new inputs
+        if (LoadPostFiles(postShown_, &files, &error)) SetPostDecls(files);
         return;
     }
     if (!post_ || post_->Wanted().empty() || changed.empty()) return;

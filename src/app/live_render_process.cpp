@@ -21,9 +21,7 @@ void LiveSession::StartServers() {
     postInServers_ = EnvSwitch("SDFVJ_POST_IN_SERVER", !softwareGl_);   // on llvmpipe the show's own contexts measured better (docs/isf.md)
     std::vector<IsfFile> files;
     if (postInServers_ && !state_.show.post.empty() && LoadPostFiles(state_.show.post, &files, &error)) {   // in the first build
-        std::vector<std::string> paths;
-        for (const IsfFile& f : files) paths.push_back(f.path);
-        servers_->SetPost(std::move(paths));
+        SetServersPost(files);
         if (!o_.audio.empty())   // --audio (opened after this): the chain's first draws with the sound's sizes, silent
             servers_->SetAudio(std::vector<float>(kAudioBins, 0.0f), std::vector<float>(kAudioBins, 0.0f));
     }

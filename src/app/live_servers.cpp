@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 
 #include "isf/isf.h"
 #include "render/field_morph.h"
@@ -15,15 +14,10 @@ namespace {
 
 VariantKey KeyOf(const ServerLoad& load) { return VariantKey{load.scenePath, load.effects, load.path}; }
 
-bool EndsWith(const std::string& s, const char* tail) {
-    const size_t n = std::strlen(tail);
-    return s.size() >= n && s.compare(s.size() - n, n, tail) == 0;
-}
-
 // A scene's or a post effect's source (an ISF .fs, or the .vs beside one) among the files saved.
 bool ShaderSaved(const std::vector<std::string>& changed) {
     for (const std::string& f : changed)
-        if (EndsWith(f, ".glsl") || EndsWith(f, ".fs") || EndsWith(f, ".vs")) return true;
+        if (f.ends_with(".glsl") || IsIsfSource(f)) return true;
     return false;
 }
 

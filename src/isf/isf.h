@@ -83,6 +83,8 @@ bool ParseIsfText(const std::string& text, const std::string& path, IsfFile* out
 bool LoadIsfFile(const std::string& path, IsfFile* out, std::string* error);
 // True for names ending in .fs (ISF fragment shaders), case-insensitive.
 bool IsIsfPath(const std::string& path);
+// An ISF effect's source: its .fs (IsIsfPath) or the .vs beside one (what a save of an effect changes).
+bool IsIsfSource(const std::string& path);
 
 // The inputs as scene parameters, addressed by mappings, OSC, presets and --param like any scene
 // input: float -> name, bool/event -> name (0/1), long -> name (int, MIN..MAX of VALUES),

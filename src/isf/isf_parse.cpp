@@ -32,11 +32,19 @@ const char* IsfInputTypeName(IsfInputType t) {
     return "?";
 }
 
-bool IsIsfPath(const std::string& path) {
-    if (path.size() < 3) return false;
-    std::string ext = path.substr(path.size() - 3);
+namespace {
+std::string LowerTail3(const std::string& path) {   // ".fs" of "a/B.FS"
+    std::string ext = path.size() < 3 ? std::string() : path.substr(path.size() - 3);
     for (char& c : ext) c = char(std::tolower((unsigned char)c));
-    return ext == ".fs";
+    return ext;
+}
+}  // namespace
+
+bool IsIsfPath(const std::string& path) { return LowerTail3(path) == ".fs"; }
+
+bool IsIsfSource(const std::string& path) {
+    const std::string ext = LowerTail3(path);
+    return ext == ".fs" || ext == ".vs";
 }
 
 namespace {

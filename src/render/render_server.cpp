@@ -211,7 +211,6 @@ bool AssembleLoad(const LoadMessage& m, SceneInfo* scene, SceneInfo* from, Shade
 // show's standby server: ServerShow::SetStandby).
 struct KeptProgram {
     std::unique_ptr<Program> program;
-    SceneInfo scene, from;
     uint64_t hash = 0;
     RenderPath path = RenderPath::Fragment;
     uint32_t quick = 0;
@@ -375,14 +374,15 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             ahead.program = std::make_unique<Program>();
             const auto t0 = Clock::now();
             ShaderSource src;
-            if (ok) ok = AssembleLoad(m, &ahead.scene, &ahead.from, &src, &error) && ahead.program->Build(src, m.path, &error);
+            SceneInfo aheadScene, aheadFrom;
+            if (ok) ok = AssembleLoad(m, &aheadScene, &aheadFrom, &src, &error) && ahead.program->Build(src, m.path, &error);
             if (ok) {   // used and drawn once, as a load is: what the driver finishes there lands in its own disk cache
                 PrimeProgram(ahead.program->Id(), rp, false);
                 FrameRenderer target;
                 FrameInputs in;
-                for (const ParamDecl& d : ahead.scene.params) in.params.emplace_back(d.name, d.defaultValue);
+                for (const ParamDecl& d : aheadScene.params) in.params.emplace_back(d.name, d.defaultValue);
                 target.SetStrips(FirstFrameStrips());
-                if (target.Resize(w, h, &error)) target.Draw(*ahead.program, ahead.scene, in);
+                if (target.Resize(w, h, &error)) target.Draw(*ahead.program, aheadScene, in);
                 error.clear();
                 glFinish();
                 ahead.hash = src.hash, ahead.path = m.path, ahead.quick = m.quick;

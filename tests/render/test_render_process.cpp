@@ -35,13 +35,16 @@ using namespace sdfvj::test;
 
 namespace {
 
+// post: the load's post chain (ServerLoad::post).
 RenderProcess::Ready StartAndLoad(RenderProcess* proc, const std::string& scenePath, RenderPath path, FrameTransport t,
-                                  const std::vector<std::string>& env = {}) {
+                                  const std::vector<std::string>& env = {}, const std::vector<std::string>& post = {}) {
     RequireGl();
     std::string error;
     INFO(error);
     REQUIRE(proc->Start(&error, "/proc/self/exe", env));
-    REQUIRE(proc->Load(ServerLoad{scenePath, true, {}, path, kW, kH}, t));
+    ServerLoad load{scenePath, true, {}, path, kW, kH};
+    load.post = post;
+    REQUIRE(proc->Load(load, t));
     RenderProcess::Ready ready;
     REQUIRE(proc->PollReady(&ready, 120000));
     return ready;
@@ -491,13 +494,7 @@ TEST_CASE("render process: a load with a post chain hands over each frame drawn 
     REQUIRE(FindScene("midi", &scene, &error));
     const std::vector<std::string> post = {ResolveIsfPath("bloom"), ResolveIsfPath("kaleidoscope")};
     RenderProcess proc;
-    RequireGl();
-    REQUIRE(proc.Start(&error));
-    ServerLoad load{scene.path, true, {}, RenderPath::Compute, kW, kH};
-    load.post = post;
-    REQUIRE(proc.Load(load, t));
-    RenderProcess::Ready ready;
-    REQUIRE(proc.PollReady(&ready, 120000));
+    const RenderProcess::Ready ready = StartAndLoad(&proc, scene.path, RenderPath::Compute, t, {}, post);
     INFO(ready.text);
     REQUIRE(ready.ok);
     std::vector<FrameInputs> inputs;
@@ -604,13 +601,8 @@ TEST_CASE("render process: the post chain's audio inputs read the sound the show
     std::string error;
     REQUIRE(FindScene("midi", &scene, &error));
     RenderProcess proc;
-    RequireGl();
-    REQUIRE(proc.Start(&error));
-    ServerLoad load{scene.path, true, {}, RenderPath::Fragment, kW, kH};
-    load.post = {std::string(SDFVJ_SOURCE_DIR) + "/tests/audio/files/audio_view.fs"};
-    REQUIRE(proc.Load(load, FrameTransport::Shm));
-    RenderProcess::Ready ready;
-    REQUIRE(proc.PollReady(&ready, 120000));
+    const RenderProcess::Ready ready = StartAndLoad(&proc, scene.path, RenderPath::Fragment, FrameTransport::Shm, {},
+                                                    {std::string(SDFVJ_SOURCE_DIR) + "/tests/audio/files/audio_view.fs"});
     INFO(ready.text);
     REQUIRE(ready.ok);
     auto centre = [&](int channel) {
@@ -633,13 +625,8 @@ TEST_CASE("render process: a post chain that does not build fails the load with 
     std::string error;
     REQUIRE(FindScene("midi", &scene, &error));
     RenderProcess proc;
-    RequireGl();
-    REQUIRE(proc.Start(&error));
-    ServerLoad load{scene.path, true, {}, RenderPath::Fragment, kW, kH};
-    load.post = {ResolveIsfPath("bloom"), std::string(SDFVJ_SOURCE_DIR) + "/tests/isf/files/syntax_error.fs"};
-    REQUIRE(proc.Load(load, FrameTransport::Shm));
-    RenderProcess::Ready ready;
-    REQUIRE(proc.PollReady(&ready, 120000));
+    const RenderProcess::Ready ready = StartAndLoad(&proc, scene.path, RenderPath::Fragment, FrameTransport::Shm, {},
+                                                    {ResolveIsfPath("bloom"), std::string(SDFVJ_SOURCE_DIR) + "/tests/isf/files/syntax_error.fs"});
     INFO(ready.text);
     CHECK_FALSE(ready.ok);
     CHECK(ready.text.find("syntax_error.fs:") != std::string::npos);
