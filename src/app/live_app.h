@@ -285,10 +285,14 @@ private:
     std::function<std::array<IsfHostContext, 2>()> postContexts_;
     std::string postShown_, postSay_;
     bool HasPost() const { return post_ && !post_->Chain().Empty(); }
+    // This process's chain draws over the frame: it has one, and the server on screen drew none.
+    bool ShowDrawsPost() const { return HasPost() && !(servers_ && servers_->PostOnScreen()); }
     // --render-process: the post chain is drawn by the render servers over each frame (LiveServers::
     // SetPost), so its builds, first draws and new targets land in their processes; this process
     // only reads the files' headers. SDFVJ_POST_IN_SERVER=0: in this process, as before session 34.
     bool postInServers_ = false;
+    bool postHere_ = true;   // the chain asked for is this process's (PostInServers false)
+    bool PostInServers(const std::vector<IsfFile>& files) const;
     // The chain's files resolved and parsed (no GL); false with the file:line of the first that is not.
     bool LoadPostFiles(const std::string& list, std::vector<IsfFile>* files, std::string* error) const;
     void SetPostDecls(const std::vector<IsfFile>& files);

@@ -38,10 +38,16 @@ void LiveSession::UpdatePost() {
     }
     if (postInServers_ && servers_) {
         if (audio_) servers_->SetAudio(audio_->Textures().waveform, audio_->Textures().spectrum);
-        if (!postSay_.empty() && servers_->Servers().OnScreenLoad().post == servers_->Post() && !servers_->Post().empty()) {
+        const bool serversShowIt = servers_->Servers().OnScreenLoad().post == servers_->Post();
+        if (!postHere_ && !postSay_.empty() && serversShowIt && !servers_->Post().empty()) {
             state_.report.Say(postSay_ + ", drawn by the render process");
             postSay_.clear();
         }
+        // A chain with feedback built here (HandOverPostHere) goes on screen with the first server
+        // frame without one; the servers' chain is on screen until then. The other way, this process's
+        // chain draws until a server with the servers' chain is on screen, then goes.
+        if (postHere_ && HasPost() && !post_->Busy() && !servers_->Post().empty()) servers_->SetPost({});
+        if (!postHere_ && serversShowIt && post_ && !post_->Wanted().empty()) post_->Request({}, Scaled(fbw_), Scaled(fbh_));
     }
     if (state_.show.post == postShown_) return;
     postShown_ = state_.show.post;
@@ -52,7 +58,8 @@ void LiveSession::UpdatePost() {
         return;
     }
     for (const IsfFile& f : files) Watch(fs::path(f.path).parent_path().string());
-    if (postInServers_ && servers_) {   // the servers build it: a spare with the chain goes on screen when it is ready
+    postHere_ = !PostInServers(files);
+    if (!postHere_) {   // the servers build it: a spare with the chain goes on screen when it is ready
         SetServersPost(files);
         SetPostDecls(files);
         postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
@@ -70,7 +77,18 @@ void LiveSession::UpdatePost() {
     }
     SetPostDecls(files);   // the new chain's inputs join the show's parameters now (a preset's values for them apply)
     postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
+    if (postInServers_ && servers_ && !files.empty())
+        state_.report.Say("post: " + postShown_ + " has feedback (a PERSISTENT target): drawn in this process, where it outlives the render processes' swaps");
     post_->Request(std::move(files), Scaled(fbw_), Scaled(fbh_));
+}
+
+// --render-process: a chain without feedback is drawn by the servers. One with a PERSISTENT target
+// stays in this process, where its feedback outlives a scene's save: each server builds its chain
+// afresh, so the trails would start again from black whenever another server goes on screen.
+bool LiveSession::PostInServers(const std::vector<IsfFile>& files) const {
+    return postInServers_ && servers_ && std::none_of(files.begin(), files.end(), [](const IsfFile& f) {
+               return std::any_of(f.passes.begin(), f.passes.end(), [](const IsfPass& p) { return p.persistent; });
+           });
 }
 
 bool LiveSession::LoadPostFiles(const std::string& list, std::vector<IsfFile>* files, std::string* error) const {
@@ -109,7 +127,7 @@ SceneInfo LiveSession::SceneWithPost() const {
 // A saved .fs or .vs of the chain: rebuilt where no frame waits; a broken save is reported with
 // its file:line and the last good file of that stage stays.
 void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
-    if (postInServers_ && servers_) {   // the servers rebuild (LiveServers::Update); here only a header's new inputs
+    if (!postHere_ && servers_) {   // the servers rebuild (LiveServers::Update); here only a header's new inputs
         if (servers_->Post().empty() || std::none_of(changed.begin(), changed.end(), IsIsfSource)) return;
         std::vector<IsfFile> files;
         std::string error;   // said by the servers' check, with the chain on screen kept
@@ -173,7 +191,7 @@ void LiveSession::PresentRenderer(int rw, int rh, double now) {
 
 // Runs the chain over `texture` (w x h) and draws its output to the window; false without one.
 bool LiveSession::DrawPost(unsigned texture, int w, int h, double now) {
-    if (!HasPost()) return false;
+    if (!ShowDrawsPost()) return false;
     std::string error;
     if (!crossfade_.Init(&error)) return false;
     IsfFrameInputs in;

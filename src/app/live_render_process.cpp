@@ -20,7 +20,7 @@ void LiveSession::StartServers() {
     std::string error;
     postInServers_ = EnvSwitch("SDFVJ_POST_IN_SERVER", !softwareGl_);   // on llvmpipe the show's own contexts measured better (docs/isf.md)
     std::vector<IsfFile> files;
-    if (postInServers_ && !state_.show.post.empty() && LoadPostFiles(state_.show.post, &files, &error)) {   // in the first build
+    if (postInServers_ && !state_.show.post.empty() && LoadPostFiles(state_.show.post, &files, &error) && PostInServers(files)) {   // in the first build
         SetServersPost(files);
         if (!o_.audio.empty())   // --audio (opened after this): the chain's first draws with the sound's sizes, silent
             servers_->SetAudio(std::vector<float>(kAudioBins, 0.0f), std::vector<float>(kAudioBins, 0.0f));
@@ -75,7 +75,7 @@ void LiveSession::DrawServerScene(double now, int rw, int rh) {
         old.params = fade_.params;
         if (const unsigned before = servers_->PreviousFrame(old)) {
             std::string error;
-            const bool post = HasPost() && postInput_.Resize(rw, rh, &error);
+            const bool post = ShowDrawsPost() && postInput_.Resize(rw, rh, &error);
             crossfade_.Draw(before, texture, Ease(fade_.easing, t), post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);
             if (post) DrawPost(postInput_.Texture(), rw, rh, now);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -370,3 +370,44 @@ TEST_CASE("live render process: the variants an effect pad or a preset reaches a
     REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
     CHECK(show.Running());
 }
+
+TEST_CASE("live render process: a post chain with feedback stays in the show's process, so a scene's save keeps its trails, and a preset moves the chain between there and the servers") {
+    // Each server builds its chain afresh, so trails drawn there would start again from black at every
+    // swap: a chain with a PERSISTENT target is drawn in the show's process, one without by the servers.
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-feedback");
+    const std::string root = CopyDataRoot(dir);
+    std::ofstream(root + "/presets/split.json") << R"({"scene": "midi", "post": "rgb_split"})";
+    std::ofstream(root + "/presets/trails.json") << R"({"scene": "midi", "post": "feedback_trails"})";
+    const std::string scene = root + "/shaders/scenes/midi.glsl";
+    LiveShow show(dir, {"--preset", "trails", "--render-process"}, root,   // --post would stand over the presets' chains
+                  {{"MESA_SHADER_CACHE_DISABLE", "true"}, {"SDFVJ_POST_IN_SERVER", "1"}, {"SDFVJ_TIERED", "0"}});
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("post: feedback_trails has feedback (a PERSISTENT target): drawn in this process", 1, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForLog("post: feedback_trails (built in", 1, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForValues({{"decay", 0.9f}}, kDeadline));   // the effect's input is a show parameter
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+
+    // A structural save of the scene: another server goes on screen, the chain here (and its trails) stays.
+    SaveLikeAnEditor(scene, MidiWithGlow(ReadAll(scene)));
+    REQUIRE_LIVE(show, show.WaitForValues({{"glow", 0.25f}, {"decay", 0.9f}}, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(CountInFile(show.log, "post: feedback_trails (built in") == 1);   // not built again
+    CHECK(show.Log().find("drawn by the render process") == std::string::npos);
+
+    // A preset with a chain without feedback: the servers draw it; this process's chain draws until then.
+    REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "split"}, dir + "/oscsend.log", 10) == 0);
+    REQUIRE_LIVE(show, show.WaitForLog("post: rgb_split, drawn by the render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"amount", 4.0f}}, kDeadline));
+    size_t before = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(before, 10, kDeadline));
+    // And back: built here first, then the servers drop theirs.
+    const size_t reloads = CountInFile(show.log, "shader reloaded");
+    REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "trails"}, dir + "/oscsend.log", 10) == 0);
+    REQUIRE_LIVE(show, show.WaitForLog("post: feedback_trails (built in", 2, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("shader reloaded", reloads + 1, 60));   // a spare without the chain
+    before = show.Frames().size();
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(before, 10, kDeadline));
+    INFO(show.Log());
+    CHECK(show.Running());
+}
