@@ -407,8 +407,10 @@ case "${1:-}" in
     # since session 34: a spare builds the scene and the chain, then goes on screen), and with a standby
     # holding the scene's program ready (only the chain built), interleaved. `measure post` is the same
     # effects' save with the chain in the show's process (session 33's figures), a call of its own.
-    for args in "3840x2160 bloom" "3840x2160 feedback_trails" "1920x1080 bloom"; do
-      read -r size fx <<< "$args"
+    # POSTSERVERS="SIZE:EFFECT ..." picks the rows (live keeps a chain with feedback in its own process
+    # since session 35, so feedback_trails there is the bench's alone).
+    for args in ${POSTSERVERS:-3840x2160:bloom 3840x2160:feedback_trails 1920x1080:bloom}; do
+      size=${args%%:*}; fx=${args#*:}
       timeout 180 bash "$0" remote bench reload --scene midi --size $size --path compute --modes render-process,render-process-standby --post $fx \
         --rounds 4 > "$out/servers_${fx}_$size.txt" 2>&1 || true
       grep -h "^##\|^|\|median\|standby" "$out/servers_${fx}_$size.txt" | cut -c1-300 || tail -5 "$out/servers_${fx}_$size.txt"

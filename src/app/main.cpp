@@ -260,7 +260,8 @@ int main(int argc, char** argv) {
                       "in-process, each drawn by a process of its own; the variants pads and presets reach are built "
                       "ahead into the program cache by another (a pad hit on an H200: 0.3-0.5 s, no frame held); "
                       "\"measure costs\" is timed by the process on screen (docs/performance.md, \"Session 18\"). On a GPU the "
-                      "--post chain is drawn there too (a post effect's save builds in a spare), and a spare holds the "
+                      "--post chain is drawn there too (a post effect's save builds in a spare; a chain with feedback stays here, "
+                      "where its trails outlive every swap), and a spare holds the "
                       "program on screen ready, so a post save or a new size builds only what changed "
                       "(SDFVJ_POST_IN_SERVER, SDFVJ_STANDBY=1|0; docs/isf.md)");
     cmdLive->add_option("--budget-floor", live.budgetFloor, "never below, e.g. scale=0.5,steps=64,shadow_steps=16,ao=2");
