@@ -24,7 +24,7 @@ void LiveSession::UpdatePost() {
         if (post_->Poll(&done)) {
             const char* keep = done.adopted ? "" : " — keeping the post chain on screen";
             for (const std::string& e : done.errors) state_.report.Say(e + keep);
-            postDecls_ = post_->Chain().Params();
+            if (postHere_) postDecls_ = post_->Chain().Params();   // else the servers' chain's: the one here was let go
             if (done.adopted) {
                 for (const std::string& line : post_->Chain().Notices()) state_.report.Say(line);
                 if (!postSay_.empty()) {

@@ -399,8 +399,10 @@ TEST_CASE("live render process: a post chain with feedback stays in the show's p
     REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "split"}, dir + "/oscsend.log", 10) == 0);
     REQUIRE_LIVE(show, show.WaitForLog("post: rgb_split, drawn by the render process", 1, 60));
     REQUIRE_LIVE(show, show.WaitForValues({{"amount", 4.0f}}, kDeadline));
+    std::this_thread::sleep_for(std::chrono::seconds(1));   // the chain here let go meanwhile
     size_t before = show.Frames().size();
     REQUIRE_LIVE(show, show.WaitForFramesAfter(before, 10, kDeadline));
+    CHECK(show.LastFrame().find("amount=") != std::string::npos);   // the servers' chain's inputs stay the show's
     // And back: built here first, then the servers drop theirs.
     const size_t reloads = CountInFile(show.log, "shader reloaded");
     REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "trails"}, dir + "/oscsend.log", 10) == 0);
