@@ -3,7 +3,7 @@
 #
 #   scripts/soak.sh [--quick] [--minutes N] [--bin PATH] [--driver PATH] [--keep]
 #                   [--only osc|midi|saves] [--rss-limit-mb N] [--rss-late-limit-mb N] [--gap-limit-ms N] [--seed N]
-#                   [--render-process] [--live-arg ARG ...]
+#                   [--render-process] [--post CHAIN] [--live-arg ARG ...]
 #
 #   --quick        at most 45 s in all (CI, `ctest -L soak`): a 15 s storm
 #   --minutes N    length of the storm (default 10)
@@ -13,10 +13,13 @@
 #   --keep         keep the work folder (it is always kept when the soak fails)
 #   --only KIND    one source alone (osc, midi or saves), to tell which one causes a finding
 #   --render-process  the show runs `live --render-process`: every save builds in a render process
+#   --post CHAIN   the show's post chain (default bloom,feedback_trails). A chain with feedback stays
+#                  in the show's process under --render-process; `--post bloom` with
+#                  SDFVJ_POST_IN_SERVER=1 has the render processes build and draw it (and its saves)
 #   --live-arg ARG one more argument for `sdfvj live` (repeatable), e.g. the frame budget moving
 #                  the render scale under the storm: --live-arg --frame-budget --live-arg 20
 #
-# It runs `sdfvj live --preset demo --post bloom,feedback_trails --audio system:capture_1` at 320x180 in an Xvfb display on Mesa llvmpipe, with
+# It runs `sdfvj live --preset demo --post bloom,feedback_trails (--post) --audio system:capture_1` at 320x180 in an Xvfb display on Mesa llvmpipe, with
 # SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
 # never touched), --log-params, --record take.mid, an OSC port liblo picks free, and a private
 # JACK dummy server (JACK_DEFAULT_SERVER=sdfvj-soak-$$). soak_driver then floods it with hostile
@@ -35,7 +38,7 @@
 set -u
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
-quick=0 minutes=10 bin="" driver="" keep=0 only="" rssLimit="" rssLateLimit="" gapLimit=250 seed=$$ liveExtra=()
+quick=0 minutes=10 bin="" driver="" keep=0 only="" rssLimit="" rssLateLimit="" gapLimit=250 seed=$$ liveExtra=() post=bloom,feedback_trails
 while [ $# -gt 0 ]; do
     case $1 in
     --quick) quick=1 ;;
@@ -49,6 +52,7 @@ while [ $# -gt 0 ]; do
     --gap-limit-ms) gapLimit=${2:?}; shift ;;
     --seed) seed=${2:?}; shift ;;
     --render-process) liveExtra+=(--render-process) ;;
+    --post) post=${2:?--post needs a chain, e.g. bloom}; shift ;;
     --live-arg) liveExtra+=("${2?--live-arg needs an argument}"); shift ;;
     -h|--help) sed -n '2,/^set -u/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "soak: unknown argument '$1' (see --help)"; exit 2 ;;
@@ -168,7 +172,7 @@ export ASAN_OPTIONS UBSAN_OPTIONS LSAN_OPTIONS
 export SDFVJ_ROOT=$work/root
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
 echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no)), storm ${storm} s, display $display, JACK $JACK_DEFAULT_SERVER, work $work"
-(cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --post bloom,feedback_trails --audio system:capture_1 --size 320x180 --path fragment --midi soak-controller \
+(cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --post "$post" --audio system:capture_1 --size 320x180 --path fragment --midi soak-controller \
     --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds" "${liveExtra[@]}") \
     >"$work/live.out" 2>"$work/live.err" </dev/null &
 LIVE_PID=$!
