@@ -131,8 +131,19 @@ void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
         if (servers_->Post().empty() || std::none_of(changed.begin(), changed.end(), IsIsfSource)) return;
         std::vector<IsfFile> files;
         std::string error;   // said by the servers' check, with the chain on screen kept
-        if (LoadPostFiles(postShown_, &files, &error)) SetPostDecls(files);
+        if (LoadPostFiles(postShown_, &files, &error)) {
+            SetPostDecls(files);
+            if (!PostInServers(files)) postShown_.clear();   // it has feedback now: UpdatePost moves it here
+        }
         return;
+    }
+    if (postInServers_ && servers_ && std::any_of(changed.begin(), changed.end(), IsIsfSource)) {
+        std::vector<IsfFile> files;
+        std::string error;
+        if (LoadPostFiles(postShown_, &files, &error) && !files.empty() && PostInServers(files)) {
+            postShown_.clear();   // its feedback is gone: UpdatePost hands it to the servers
+            return;
+        }
     }
     if (!post_ || post_->Wanted().empty() || changed.empty()) return;
     std::vector<std::string> errors;

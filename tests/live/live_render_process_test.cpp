@@ -403,6 +403,19 @@ TEST_CASE("live render process: a post chain with feedback stays in the show's p
     size_t before = show.Frames().size();
     REQUIRE_LIVE(show, show.WaitForFramesAfter(before, 10, kDeadline));
     CHECK(show.LastFrame().find("amount=") != std::string::npos);   // the servers' chain's inputs stay the show's
+    // A save that gives the effect feedback moves it here, and one that takes it away moves it back.
+    const std::string fs = root + "/shaders/isf/rgb_split.fs";
+    const std::string split = ReadAll(fs);
+    const size_t inputsEnd = split.find("    ]\n}*/");
+    REQUIRE(inputsEnd != std::string::npos);
+    SaveLikeAnEditor(fs, split.substr(0, inputsEnd) + "    ],\n    \"PASSES\": [{\"TARGET\": \"held\", \"PERSISTENT\": true}, {}]\n}*/\n"
+                             "void main() { gl_FragColor = PASSINDEX == 0 ? IMG_THIS_PIXEL(inputImage) : IMG_THIS_PIXEL(held); }\n");
+    REQUIRE_LIVE(show, show.WaitForLog("post: rgb_split has feedback (a PERSISTENT target): drawn in this process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForLog("post: rgb_split (built in", 1, 60));
+    const size_t said = CountInFile(show.log, "post: rgb_split, drawn by the render process");
+    SaveLikeAnEditor(fs, split);
+    REQUIRE_LIVE(show, show.WaitForLog("post: rgb_split, drawn by the render process", said + 1, 60));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
     // And back: built here first, then the servers drop theirs.
     const size_t reloads = CountInFile(show.log, "shader reloaded");
     REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "trails"}, dir + "/oscsend.log", 10) == 0);
