@@ -43,8 +43,7 @@ void LiveSession::UpdatePost() {
             state_.report.Say(postSay_ + ", drawn by the render process");
             postSay_.clear();
         }
-        // A chain with feedback built here (HandOverPostHere) goes on screen with the first server
-        // frame without one; the servers' chain is on screen until then. The other way, this process's
+        // A chain with feedback built here goes on screen with the first server frame without one; the servers' chain is on screen until then. The other way, this process's
         // chain draws until a server with the servers' chain is on screen, then goes.
         if (postHere_ && HasPost() && !post_->Busy() && !servers_->Post().empty()) servers_->SetPost({});
         if (!postHere_ && serversShowIt && post_ && !post_->Wanted().empty()) post_->Request({}, Scaled(fbw_), Scaled(fbh_));
@@ -127,24 +126,18 @@ SceneInfo LiveSession::SceneWithPost() const {
 // A saved .fs or .vs of the chain: rebuilt where no frame waits; a broken save is reported with
 // its file:line and the last good file of that stage stays.
 void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
-    if (!postHere_ && servers_) {   // the servers rebuild (LiveServers::Update); here only a header's new inputs
-        if (servers_->Post().empty() || std::none_of(changed.begin(), changed.end(), IsIsfSource)) return;
-        std::vector<IsfFile> files;
-        std::string error;   // said by the servers' check, with the chain on screen kept
-        if (LoadPostFiles(postShown_, &files, &error)) {
-            SetPostDecls(files);
-            if (!PostInServers(files)) postShown_.clear();   // it has feedback now: UpdatePost moves it here
-        }
-        return;
-    }
     if (postInServers_ && servers_ && std::any_of(changed.begin(), changed.end(), IsIsfSource)) {
         std::vector<IsfFile> files;
-        std::string error;
-        if (LoadPostFiles(postShown_, &files, &error) && !files.empty() && PostInServers(files)) {
-            postShown_.clear();   // its feedback is gone: UpdatePost hands it to the servers
-            return;
+        std::string error;   // said by the servers' check or this process's reload, with the chain on screen kept
+        if (LoadPostFiles(postShown_, &files, &error)) {
+            if (!postHere_) SetPostDecls(files);   // a header's new inputs; the servers rebuild (LiveServers::Update)
+            if (!files.empty() && PostInServers(files) == postHere_) {   // feedback came or went
+                postShown_.clear();   // UpdatePost moves the chain
+                return;
+            }
         }
     }
+    if (!postHere_) return;
     if (!post_ || post_->Wanted().empty() || changed.empty()) return;
     std::vector<std::string> errors;
     if (post_->Reload(&errors)) postSay_ = "post reloaded";
