@@ -149,7 +149,7 @@ void LiveSession::ReloadPost(const std::vector<std::string>& changed) {
 // scene and the chain at each size the budget's moves reach (BudgetScalesAhead, as many as are kept),
 // so that a move later takes kept targets instead of allocating them in a frame already late; again
 // when the window has held a new size for a second (a drag makes many). The kept targets are cleared
-// when taken again (IsfEffect's feedback starts afresh at a new size anyway).
+// when taken again, but for a PERSISTENT target's, which take its content at the size left, scaled.
 void LiveSession::DrawScalesAhead(double now) {
     if (!scalesAheadOn_ || (fbw_ == aheadW_ && fbh_ == aheadH_)) return;
     if (aheadW_ > 0) {   // the window changed size since: wait until the new size holds

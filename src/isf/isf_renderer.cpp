@@ -47,8 +47,9 @@ struct Buffer {
     }
     // (Re)creates both textures cleared to transparent black when size or format changed (taken
     // from the kept sizes, or from `pool`, where they have them). With `keep` > 0 the size left is
-    // kept (at most `keep` sizes).
-    void Ensure(int width, int height, bool floatTarget, IsfTexturePool* pool, size_t keep) {
+    // kept (at most `keep` sizes). `carry` (a PERSISTENT target): the last content, scaled to the new
+    // size, so feedback (trails) goes on through a render-scale move instead of starting from black.
+    void Ensure(int width, int height, bool floatTarget, IsfTexturePool* pool, size_t keep, bool carry) {
         if (tex[0] && w == width && h == height && isFloat == floatTarget) {
             if (!fbo[0]) {   // drawn first in another context (IsfEffect::ReleaseContextObjects)
                 glCreateFramebuffers(2, fbo);
@@ -58,7 +59,11 @@ struct Buffer {
         }
         glDeleteFramebuffers(2, fbo);
         fbo[0] = fbo[1] = 0;
-        const Kept next = SwapKeptSize(kept, keep, Kept{{tex[0], tex[1]}, tex[0] ? w : 0, h, isFloat}, width, height, floatTarget, DeleteKept);
+        const unsigned last = carry ? tex[front] : 0;
+        const int lastW = w, lastH = h;
+        std::vector<Kept> released;   // deleted once `last` is copied
+        const Kept next = SwapKeptSize(kept, keep, Kept{{tex[0], tex[1]}, tex[0] ? w : 0, h, isFloat}, width, height, floatTarget,
+                                       [&](Kept& k) { released.push_back(k); });
         tex[0] = next.tex[0], tex[1] = next.tex[1];
         glCreateFramebuffers(2, fbo);
         const float zero[4] = {0, 0, 0, 0};
@@ -72,6 +77,14 @@ struct Buffer {
             glClearTexImage(tex[i], 0, GL_RGBA, GL_FLOAT, zero);
             glNamedFramebufferTexture(fbo[i], GL_COLOR_ATTACHMENT0, tex[i], 0);
         }
+        if (last) {   // into the front texture, which the next pass reads
+            unsigned read = 0;
+            glCreateFramebuffers(1, &read);
+            glNamedFramebufferTexture(read, GL_COLOR_ATTACHMENT0, last, 0);
+            glBlitNamedFramebuffer(read, fbo[0], 0, 0, lastW, lastH, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+            glDeleteFramebuffers(1, &read);
+        }
+        for (Kept& k : released) DeleteKept(k);
         w = width;
         h = height;
         isFloat = floatTarget;
@@ -401,7 +414,7 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
         };
         const int pw = side(pass.widthExpr, w), ph = side(pass.heightExpr, h);
         Buffer& b = s.buffers[pass.target];
-        b.Ensure(pw, ph, pass.floatTarget, s.pool, s.keepSizes);
+        b.Ensure(pw, ph, pass.floatTarget, s.pool, s.keepSizes, pass.persistent);
         glBindFramebuffer(GL_FRAMEBUFFER, b.fbo[b.front ^ 1]);
         glViewport(0, 0, pw, ph);
 

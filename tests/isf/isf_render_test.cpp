@@ -208,6 +208,39 @@ TEST_CASE("isf render: a PERSISTENT FLOAT buffer accumulates across frames, with
     // A non-persistent target starts each frame from what the pass writes: already covered by multipass.
 }
 
+// `live`'s render scale (--frame-budget, the resolution slider) moves the chain between sizes: a
+// PERSISTENT target's feedback goes on at the new size, scaled, instead of starting from black.
+TEST_CASE("isf render: a PERSISTENT buffer's content goes on through a size change, scaled, kept sizes or not", "[isf][gl]") {
+    RequireGl();
+    const int keep = GENERATE(0, 1);
+    INFO("kept sizes " << keep);
+    IsfEffect e;
+    e.SetKeptSizes(keep);
+    LoadOrFail(e, TestFile("persistent.fs"));
+    IsfFrameInputs in;
+    unsigned out = 0;
+    for (int i = 0; i < 10; ++i) out = e.Render(0, 16, 16, in);
+    CHECK(Near(ReadBack(out, 16, 16).At(3, 3, 0), 159, 1));   // 10 * 0.0625 * 255
+    out = e.Render(0, 8, 8, in);                               // 11 steps, not 1 (16 from black)
+    const Img small = ReadBack(out, 8, 8);
+    CHECK(Near(small.At(0, 0, 0), 175, 1));
+    CHECK(Near(small.At(7, 7, 0), 175, 1));
+    out = e.Render(0, 16, 16, in);                             // back: 12 steps, a kept size's old content or not
+    CHECK(Near(ReadBack(out, 16, 16).At(15, 0, 0), 191, 1));
+    // The trails through a move: a lit input pixel's trail survives at the new size.
+    IsfEffect trails;
+    LoadOrFail(trails, ShippedEffect("feedback_trails"));
+    const unsigned white = MakeTexture(32, 32, [](int, int) { return std::array<uint8_t, 4>{255, 255, 255, 255}; });
+    const unsigned black = MakeTexture(16, 16, [](int, int) { return std::array<uint8_t, 4>{0, 0, 0, 255}; });
+    IsfFrameInputs t;
+    t.params = {{"decay", 0.9f}, {"zoom", 1.0f}};
+    trails.Render(white, 32, 32, t);
+    const Img faded = ReadBack(trails.Render(black, 16, 16, t), 16, 16);   // the scene went dark, at half the size
+    CHECK(Near(faded.At(8, 8, 0), 230, 2));                                // 0.9 * 255: the trail, not black
+    DeleteTexture(white);
+    DeleteTexture(black);
+}
+
 TEST_CASE("isf render: IMPORTED images keep their orientation", "[isf][gl]") {
     RequireGl();
     const std::string dir = TempDir();
