@@ -206,8 +206,7 @@ bool ParseFrameRange(const std::string& text, int frames, int* first, int* last,
 // then draw the frames before it too, not only step the parameters.
 bool HasFeedback(IsfChain& chain) {
     for (size_t i = 0; i < chain.Size(); ++i)
-        for (const IsfPass& pass : chain.Stage(i).File().passes)
-            if (pass.persistent) return true;
+        if (IsfHasFeedback(chain.Stage(i).File())) return true;
     return false;
 }
 

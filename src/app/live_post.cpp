@@ -85,9 +85,7 @@ void LiveSession::UpdatePost() {
 // stays in this process, where its feedback outlives a scene's save: each server builds its chain
 // afresh, so the trails would start again from black whenever another server goes on screen.
 bool LiveSession::PostInServers(const std::vector<IsfFile>& files) const {
-    return postInServers_ && servers_ && std::none_of(files.begin(), files.end(), [](const IsfFile& f) {
-               return std::any_of(f.passes.begin(), f.passes.end(), [](const IsfPass& p) { return p.persistent; });
-           });
+    return postInServers_ && servers_ && std::none_of(files.begin(), files.end(), IsfHasFeedback);
 }
 
 bool LiveSession::LoadPostFiles(const std::string& list, std::vector<IsfFile>* files, std::string* error) const {

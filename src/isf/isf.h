@@ -85,6 +85,8 @@ bool LoadIsfFile(const std::string& path, IsfFile* out, std::string* error);
 bool IsIsfPath(const std::string& path);
 // An ISF effect's source: its .fs (IsIsfPath) or the .vs beside one (what a save of an effect changes).
 bool IsIsfSource(const std::string& path);
+// A pass of the file keeps its image across frames (PERSISTENT: feedback, such as trails).
+bool IsfHasFeedback(const IsfFile& file);
 
 // The inputs as scene parameters, addressed by mappings, OSC, presets and --param like any scene
 // input: float -> name, bool/event -> name (0/1), long -> name (int, MIN..MAX of VALUES),

@@ -42,6 +42,10 @@ std::string LowerTail3(const std::string& path) {   // ".fs" of "a/B.FS"
 
 bool IsIsfPath(const std::string& path) { return LowerTail3(path) == ".fs"; }
 
+bool IsfHasFeedback(const IsfFile& file) {
+    return std::any_of(file.passes.begin(), file.passes.end(), [](const IsfPass& p) { return p.persistent; });
+}
+
 bool IsIsfSource(const std::string& path) {
     const std::string ext = LowerTail3(path);
     return ext == ".fs" || ext == ".vs";
