@@ -20,6 +20,33 @@ int ReloadBenchFail(const std::string& what, int code) {
     return code;
 }
 
+const char* ReloadModeHow(int mode, bool process) {
+    if (mode >= 9)
+        return "in a render process of its own (sdfvj render-server, started ahead as a spare), which compiles, uses "
+               "and draws it while the one on screen draws; every frame then drawn there and handed over "
+               "(compile column: its compile + link, first use and first frame)";
+    if (mode == 8 && !process)
+        return "on a new stage's thread (its own shared context), which draws its first frame there while the "
+               "stage on screen draws; every frame then drawn by that stage's thread, presented here (stage, "
+               "no compile process: the driver gives no binaries)";
+    if (mode == 8)
+        return "in a compile process, its binary loaded, used once and drawn by a new stage (a thread with a shared context) "
+               "while the stage on screen draws; every frame then drawn by that stage's thread, presented here (stage; "
+               "compile column: the new stage's load + first use + first frame)";
+    if (mode == 7)
+        return process ? "in a compile process, then again from the same text on the render thread for the driver's disk cache to serve (process-source)"
+                       : "by the driver (the compile process did not start)";
+    if (mode == 6 && process)
+        return "in a compile process, its binary loaded and used on a new shared context per save, the program then drawn on that context (adopt-process)";
+    if (mode >= 5) return "on a new shared context per save, the program then drawn on that context (adopt)";
+    if (process && mode == 4)
+        return "in a compile process (sdfvj compile-server); a loader thread loads its binary and uses it once before the hand-over";
+    if (process) return "in a compile process (sdfvj compile-server), handing over a program binary";
+    if (mode == 2) return "on a worker thread with its own context, handing over a program binary";
+    if (mode == 1) return "on a worker thread with a shared context";
+    return PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)" : "on the render thread";
+}
+
 namespace {
 
 // SDFVJ_GL_DEBUG=1: the driver's debug messages (recompiles "based on GL state", say) to stderr.

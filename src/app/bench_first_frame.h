@@ -12,6 +12,9 @@ namespace sdfvj {
 // Prints "sdfvj bench reload: what" to stderr and returns code (the bench's exit code).
 int ReloadBenchFail(const std::string& what, int code = 2);
 
+// How `bench reload`'s mode number `mode` builds a save (process: through a compile process), for its headings.
+const char* ReloadModeHow(int mode, bool process);
+
 // One launch's first frame of `scene` at w x h, printed; cacheLine says how the drivers' caches are set.
 int ReloadFirstFrame(const ReloadBenchOptions& o, const SceneInfo& scene, int w, int h, const std::string& cacheLine);
 

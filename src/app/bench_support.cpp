@@ -1,6 +1,7 @@
 // Warm-up, drift check and CSV shared by the benches (bench_support.h).
 #include "app/bench_support.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -74,6 +75,11 @@ bool BenchCsv::Write(const std::string& file, std::string* error) const {
 void PaceFrame(double frameMs, double fps) {
     if (fps > 0 && frameMs < 1000.0 / fps)
         std::this_thread::sleep_for(std::chrono::microseconds((int64_t)((1000.0 / fps - frameMs) * 1000)));
+}
+
+int RefreshesMissed(double frameMs, double fps) {
+    if (fps <= 0 || !(frameMs > 0)) return 0;
+    return std::max(0, (int)std::ceil(frameMs * fps / 1000.0 - 1e-9) - 1);
 }
 
 std::string SetDriverCaches(const std::string& mode, const std::filesystem::path& scratch, bool oneLaunch) {

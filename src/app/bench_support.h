@@ -37,6 +37,9 @@ struct Drift {
 };
 // Sleeps out the rest of a display frame at `fps` after a frame that took `frameMs` (fps <= 0: none).
 void PaceFrame(double frameMs, double fps);
+// Display refreshes at `fps` that showed the frame before again because this one took `frameMs`:
+// ceil(frameMs * fps / 1000) - 1, at least 0 (0 when fps <= 0: not paced).
+int RefreshesMissed(double frameMs, double fps);
 // Median of `frames` timed draws (timeOnce returns one frame's ms).
 double TimeMedian(const std::function<double()>& timeOnce, int frames);
 

@@ -55,6 +55,7 @@ struct Round {
     double loadMs = 0;         // ... its load + first use there
     std::vector<double> around;   // the 3 frames before the swap to the optimized program, its own, the 3 after
     double longestAfter = 0;      // the longest frame in the 300 ms after that swap (what it replaced is retired then)
+    int missed = 0;               // display refreshes missed from the save to 300 ms after the swap (paced frames)
 };
 
 }  // namespace
@@ -140,6 +141,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         FrameInputs in;
         RenderPath path = RenderPath::Fragment;
         double steadyMedian = 0;
+        int steadyMissed = 0;   // refreshes missed in the last 20 of the 30 steady frames
         std::vector<Round> rounds;
         std::vector<int> failedRounds;
         std::string note;
@@ -282,6 +284,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
 
     // One frame as `live` runs it: the reload step, the draw, the pixels done; then paced.
     double updateMs = 0;
+    int missed = 0;   // refreshes a paced display showed the frame before again (RefreshesMissed)
     std::string adoptError;
     auto frameOnce = [&](ModeRun& m, bool* swapped) {
         const auto t0 = Clock::now();
@@ -297,6 +300,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         glFinish();
         if (m.handover) m.handover->FrameDone();
         const double ms = MsSince(t0);
+        missed += RefreshesMissed(ms, o.fps);
         PaceFrame(ms, o.fps);
         return ms;
     };
@@ -304,8 +308,13 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         bindMode(m);
         std::vector<double> steady;
         bool swapped = false;
-        for (int i = 0; i < 30; ++i) steady.push_back(frameOnce(m, &swapped));
+        int missedBefore = missed;
+        for (int i = 0; i < 30; ++i) {
+            if (i == 10) missedBefore = missed;   // the first frames take the programs' first use
+            steady.push_back(frameOnce(m, &swapped));
+        }
         m.steadyMedian = MedianMs(steady);
+        m.steadyMissed = missed - missedBefore;
     }
 
     auto runRound = [&](ModeRun& m, int round) {
@@ -320,6 +329,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         if (!post.empty()) postSaves.Save(100 * m.entry + round);
         else SaveLikeAnEditor(sceneFile, nudged ? saveText(100 * m.entry + round) : original + "// round " + std::to_string(round) + "\n");
         const auto saved = Clock::now();
+        const int missedBefore = missed;
         std::vector<double> recent;   // the last frames, for r.around
         while (MsSince(saved) < 120000) {
             const double ms = frameOnce(m, &swapped);
@@ -382,6 +392,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                 r.longestAfter = std::max(r.longestAfter, ms);
             }
         }
+        r.missed = missed - missedBefore;
         // A round that timed out leaves no build behind for the next mode's globals.
         if (live.Pending()) live.Wait();
         return r;
@@ -400,30 +411,11 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             else m.failedRounds.push_back(round);
         }
 
-    struct Summary { std::string mode; double first, optimized, longest, ratio, steady, after; };
+    struct Summary { std::string mode; double first, optimized, longest, ratio, steady, after, missed; };
     std::vector<Summary> summary;
     for (ModeRun& m : runs) {
         LiveProgram& live = *m.live;
-        const char* how = m.mode >= 9 ? "in a render process of its own (sdfvj render-server, started ahead as a spare), which compiles, uses "
-                                        "and draws it while the one on screen draws; every frame then drawn there and handed over "
-                                        "(compile column: its compile + link, first use and first frame)"
-                          : m.mode == 8 && !m.process ? "on a new stage's thread (its own shared context), which draws its first frame there while the "
-                                                     "stage on screen draws; every frame then drawn by that stage's thread, presented here (stage, "
-                                                     "no compile process: the driver gives no binaries)"
-                          : m.mode == 8 ? "in a compile process, its binary loaded, used once and drawn by a new stage (a thread with a shared context) "
-                                        "while the stage on screen draws; every frame then drawn by that stage's thread, presented here (stage; "
-                                        "compile column: the new stage's load + first use + first frame)"
-                          : m.mode == 7 && m.process ? "in a compile process, then again from the same text on the render thread for the driver's disk cache to serve (process-source)"
-                          : m.mode == 7 ? "by the driver (the compile process did not start)"
-                          : m.mode == 6 && m.process ? "in a compile process, its binary loaded and used on a new shared context per save, the program then drawn on that context (adopt-process)"
-                          : m.mode >= 5 ? "on a new shared context per save, the program then drawn on that context (adopt)"
-                          : m.process && m.mode == 4
-                              ? "in a compile process (sdfvj compile-server); a loader thread loads its binary and uses it once before the hand-over"
-                          : m.process ? "in a compile process (sdfvj compile-server), handing over a program binary"
-                          : m.mode == 2 ? "on a worker thread with its own context, handing over a program binary"
-                          : m.mode == 1 ? "on a worker thread with a shared context"
-                          : PendingProgram::ParallelCompileAvailable() ? "by the driver (GL_KHR_parallel_shader_compile)"
-                                                                       : "on the render thread";
+        const char* how = ReloadModeHow(m.mode, m.process != nullptr);
         if (!m.note.empty()) std::printf("\n%s\n", m.note.c_str());
         std::printf("\n## %s: %s, %s path, compile %s; tiered: %s%s\n", m.name.c_str(), scene.name.c_str(), RenderPathName(m.path),
                     how, live.Tiered() ? "yes (quick tier first)" : "no",
@@ -463,6 +455,12 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         std::printf("median: save -> first tier %.1f ms, -> optimized %.1f ms; longest frame during a reload %.1f ms "
                     "= %.1fx the steady median %.2f ms (target <= 2x); compile %.1f ms\n",
                     MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(compile));
+        std::vector<double> miss;   // what a display at --fps shows: a frame past its refresh shows the one before again
+        for (const Round& r : m.rounds) miss.push_back(r.missed);
+        if (o.fps > 0) {
+            std::printf("display refreshes missed at %.0f Hz from a save to 300 ms after its swap: median %.0f, most %.0f "
+                        "(%d in the last 20 steady frames)\n", o.fps, MedianMs(miss), *std::max_element(miss.begin(), miss.end()), m.steadyMissed);
+        }
         std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds; "
                     "the longest frame began %.1f ms after the save (%.2f of the way to the first swap), medians of rounds\n",
                     MedianMs(before), MedianMs(at), MedianMs(atShare));
@@ -478,16 +476,16 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     MedianMs(around[5]), MedianMs(around[6]), MedianMs(after),
                     m.steadyMedian > 0 ? MedianMs(after) / m.steadyMedian : 0.0);
         if (m.handover && !m.handover->Details().empty()) std::printf("%s\n", m.handover->Details().c_str());
-        summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(after)});
+        summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(after), MedianMs(miss)});
     }
     if (o.driverCache == "fresh") std::printf("%s", DriverCacheContents(root / "driver-cache").c_str());
     if (summary.size() > 1) {
         std::printf("\n## modes side by side (rounds interleaved; medians)\n| mode | save -> first tier ms | save -> optimized ms | "
-                    "longest frame ms | x steady median | steady median ms | longest with the 300 ms after the swap ms | x steady |\n"
-                    "|---|---:|---:|---:|---:|---:|---:|---:|\n");
+                    "longest frame ms | x steady median | steady median ms | longest with the 300 ms after the swap ms | x steady | "
+                    "display refreshes missed a save |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
         for (const Summary& s : summary)
-            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.1f | %.1f |\n", s.mode.c_str(), s.first, s.optimized, s.longest, s.ratio,
-                        s.steady, s.after, s.steady > 0 ? s.after / s.steady : 0.0);
+            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.1f | %.1f | %s |\n", s.mode.c_str(), s.first, s.optimized, s.longest, s.ratio,
+                        s.steady, s.after, s.steady > 0 ? s.after / s.steady : 0.0, o.fps > 0 ? std::to_string((int)s.missed).c_str() : "-");
     }
     return 0;
 }
