@@ -413,7 +413,7 @@ case "${1:-}" in
       size=${args%%:*}; fx=${args#*:}
       timeout 180 bash "$0" remote bench reload --scene midi --size $size --path compute --modes render-process,render-process-standby --post $fx \
         --rounds 4 > "$out/servers_${fx}_$size.txt" 2>&1 || true
-      grep -h "^##\|^|\|median\|standby" "$out/servers_${fx}_$size.txt" | cut -c1-300 || tail -5 "$out/servers_${fx}_$size.txt"
+      grep -h "^##\|^|\|median\|standby\|missed" "$out/servers_${fx}_$size.txt" | cut -c1-300 || tail -5 "$out/servers_${fx}_$size.txt"
     done
     fi
     if [ "$part" = scales ]; then

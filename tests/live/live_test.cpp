@@ -214,6 +214,31 @@ TEST_CASE("live without a display exits 2 with one clear line") {
     CHECK(out.find("no display") != std::string::npos);
 }
 
+TEST_CASE("live command line: a negative or non-finite --seconds or --frame-budget and a --budget-floor without a budget or that does not parse exit 2 with what was expected") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "bad-numbers");
+    // Checked before the window opens: no display is needed, and none is given, so a check that
+    // let one through would fail on "no display" instead.
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"--seconds=-1"}, "--seconds -1, expected 0 (run until closed) or more seconds"},
+        {{"--seconds=nan"}, "--seconds nan, expected"},
+        {{"--frame-budget=-5"}, "--frame-budget -5, expected milliseconds above 0"},
+        {{"--frame-budget=inf"}, "--frame-budget inf, expected"},
+        {{"--budget-floor", "scale=0.5"}, "--budget-floor scale=0.5 without --frame-budget MS"},
+        {{"--frame-budget", "8", "--budget-floor", "bogus"}, "'bogus' is not NAME=NUMBER"},
+        {{"--frame-budget", "8", "--budget-floor", "scale=9"}, "'scale=9' unknown or out of range"},
+    };
+    for (const auto& [extra, expected] : cases) {
+        std::vector<std::string> argv = {SDFVJ_BIN, "live", "--scene", "midi"};
+        argv.insert(argv.end(), extra.begin(), extra.end());
+        int rc = Run(argv, dir + "/live.log", 20, {{"DISPLAY", "", true}, {"WAYLAND_DISPLAY", "", true}, {"JACK_NO_START_SERVER", "1"}});
+        const std::string out = ReadText(dir + "/live.log");
+        INFO(extra.front() << ": " << out);
+        CHECK(rc == 2);
+        CHECK(out.find(expected) != std::string::npos);
+        CHECK(out.find("no display") == std::string::npos);
+    }
+}
+
 TEST_CASE("live with a display that does not answer asks again for 3 s then exits 2 with GLFW's reason") {
     const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "dead-display");
     int n = 90;   // a display number with no X server behind it
