@@ -429,35 +429,23 @@ void LiveSession::Watch(const std::string& dir) {
     else state_.report.Say("sdfvj live: " + error);
 }
 
-// The command line's numbers that no CLI check covers (a typo there stops the launch with exit 2; the
-// show's own input, once it runs, never does): --seconds and --frame-budget finite and not negative,
-// --budget-floor only with a budget, and one that parses.
-bool CheckLiveNumbers(const LiveOptions& o, std::string* error) {
-    auto num = [](double v) { char b[32]; std::snprintf(b, sizeof b, "%g", v); return std::string(b); };
-    if (!std::isfinite(o.seconds) || o.seconds < 0) {
-        *error = "--seconds " + num(o.seconds) + ", expected 0 (run until closed) or more seconds";
+// --budget-floor only with a budget, and one that parses: a typo stops the launch with exit 2 (the
+// show's own input, once it runs, never does; --seconds and --frame-budget are checked by the parser).
+bool CheckBudgetFloor(const LiveOptions& o, std::string* error) {
+    if (o.budgetFloor.empty()) return true;
+    if (o.frameBudgetMs <= 0) {
+        *error = "--budget-floor " + o.budgetFloor + " without --frame-budget MS, expected both (the floor bounds the budget's choices)";
         return false;
     }
-    if (!std::isfinite(o.frameBudgetMs) || o.frameBudgetMs < 0) {
-        *error = "--frame-budget " + num(o.frameBudgetMs) + ", expected milliseconds above 0 (16.7 for 60 Hz; 0: off)";
-        return false;
-    }
-    if (!o.budgetFloor.empty()) {
-        BudgetFloor floor;
-        if (o.frameBudgetMs <= 0) {
-            *error = "--budget-floor " + o.budgetFloor + " without --frame-budget MS, expected both (the floor bounds the budget's choices)";
-            return false;
-        }
-        if (!ParseBudgetFloor(o.budgetFloor, &floor, error)) return false;
-    }
-    return true;
+    BudgetFloor floor;
+    return ParseBudgetFloor(o.budgetFloor, &floor, error);
 }
 
 int RunLive(const LiveOptions& o) {
     std::string error;
     int w = 0, h = 0;
     LiveState state;
-    if (!CheckLiveNumbers(o, &error) || !ParseSize(o.size, &w, &h, &error) || !OpenLiveState(o.show, o.mapping, &state, &error)) {
+    if (!CheckBudgetFloor(o, &error) || !ParseSize(o.size, &w, &h, &error) || !OpenLiveState(o.show, o.mapping, &state, &error)) {
         std::fprintf(stderr, "sdfvj live: %s\n", error.c_str());
         return 2;
     }

@@ -1,5 +1,6 @@
 // sdfvj: a live SDF raymarching visualizer. This file only parses the command line; each command
 // lives in cmd_*.cpp. Exit codes: 0 ok, 1 failed while running, 2 bad usage / nothing to run on.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -19,6 +20,21 @@ namespace {
 
 // Options shared by render, live: scene, preset, effects, quality.
 bool noProgramCache = false;   // --no-program-cache on render, live and bench reload
+
+// A finite number of at least `lo` (above it when `strict`), for options a typo would otherwise turn into
+// a table of zeros or a wait of -1 s; CLI11's PositiveNumber lets "nan" through.
+CLI::Validator FiniteFrom(double lo, bool strict) {
+    char what[32];
+    std::snprintf(what, sizeof what, "%s %g", strict ? ">" : ">=", lo);
+    return CLI::Validator(
+        [lo, strict, desc = std::string(what)](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            const bool ok = !text.empty() && end && *end == '\0' && std::isfinite(v) && (strict ? v > lo : v >= lo);
+            return ok ? std::string() : "'" + text + "', expected a finite number " + desc;
+        },
+        what);
+}
 
 void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
     cmd->add_flag("--no-program-cache", noProgramCache,
@@ -67,7 +83,7 @@ int main(int argc, char** argv) {
     auto* cmdRender = app.add_subcommand("render", "render frames headless (EGL, no display) to PNGs or a video");
     AddShowOptions(cmdRender, &render.show);
     cmdRender->add_option("--size", render.size, "frame size WxH")->capture_default_str();
-    auto* framesOpt = cmdRender->add_option("--frames", render.frames, "frames to render (default: 1, or the whole take)");
+    auto* framesOpt = cmdRender->add_option("--frames", render.frames, "frames to render (default: 1, or the whole take)")->check(FiniteFrom(1, false));
     cmdRender->add_option("--fps", render.fps, "frames per second of the fixed clock (time = frame / fps)")->capture_default_str();
     cmdRender->add_option("--out", render.out, "folder for frame_00000.png, ...")->capture_default_str();
     cmdRender->add_option("--replay", render.replay, "a Standard MIDI File whose events drive the parameters");
@@ -90,8 +106,8 @@ int main(int argc, char** argv) {
     cmdBench->add_option("--sizes", bench.sizes, "sizes")->capture_default_str()->delimiter(',');
     cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: these four); show = soft shadows, AO, specular, PBR and one reflection bounce; show_ssaa = show with 4 samples a pixel sharing each surface's shading; show_ssaa_exact = each sample shaded; show_direct = show with direct_reflections (the reflected surface lit without its shadow ray or AO, its march at most 48 steps); where a frame goes: march = the cone pre-pass and the primary march alone (the depth view), normals = those and the normals (the normals view)")->delimiter(',');
     cmdBench->add_option("--paths", bench.paths, "render paths")->capture_default_str()->delimiter(',');
-    cmdBench->add_option("--frames", bench.frames, "timed frames per cell (median)")->capture_default_str();
-    cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->capture_default_str();
+    cmdBench->add_option("--frames", bench.frames, "timed frames per cell (median)")->check(FiniteFrom(1, false))->capture_default_str();
+    cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->check(FiniteFrom(0, false))->capture_default_str();
     cmdBench->add_option("--markdown", bench.markdown, "also write the table to this file");
     cmdBench->add_option("--csv", bench.csv, "also write the table as CSV: scene,lighting,size,path,ms,gpu");
 
@@ -100,8 +116,8 @@ int main(int argc, char** argv) {
     cmdEffects->add_option("--scene", effectsBench.scene, "scene")->capture_default_str();
     cmdEffects->add_option("--size", effectsBench.size, "frame size")->capture_default_str();
     cmdEffects->add_option("--path", effectsBench.path, "auto, compute or fragment")->capture_default_str();
-    cmdEffects->add_option("--frames", effectsBench.frames, "timed rotations (median)")->capture_default_str();
-    cmdEffects->add_option("--warmup", effectsBench.warmup, "untimed rotations first")->capture_default_str();
+    cmdEffects->add_option("--frames", effectsBench.frames, "timed rotations (median)")->check(FiniteFrom(1, false))->capture_default_str();
+    cmdEffects->add_option("--warmup", effectsBench.warmup, "untimed rotations first")->check(FiniteFrom(0, false))->capture_default_str();
     cmdEffects->add_option("--markdown", effectsBench.markdown, "also write the table to this file");
     cmdEffects->add_option("--csv", effectsBench.csv, "also write the table as CSV: scene,lighting,size,path,ms,gpu,effect,variant");
     SsaaBenchOptions ssaaBench;
@@ -127,8 +143,8 @@ int main(int argc, char** argv) {
     cmdAccuracy->add_option("--ref-size", accuracyBench.refSize, "size of the CPU double reference (geometry is compared there; default --size)");
     cmdAccuracy->add_option("--path", accuracyBench.path, "auto, compute or fragment")->capture_default_str();
     cmdAccuracy->add_option("--sweep", accuracyBench.sweep, "full (every knob, render scales too), tiny (a handful, for tests) scale (the default at render scales 0.25..1 and 2x2 supersampled, against the supersampled truth: the frame budget's resolution term) or looks (the default and the look rows, penumbra and AO samples, with their distance from the scene's look)")->capture_default_str();
-    cmdAccuracy->add_option("--frames", accuracyBench.frames, "timed frames per setting (median)")->capture_default_str();
-    cmdAccuracy->add_option("--warmup", accuracyBench.warmup, "untimed frames first")->capture_default_str();
+    cmdAccuracy->add_option("--frames", accuracyBench.frames, "timed frames per setting (median)")->check(FiniteFrom(1, false))->capture_default_str();
+    cmdAccuracy->add_option("--warmup", accuracyBench.warmup, "untimed frames first")->check(FiniteFrom(0, false))->capture_default_str();
     cmdAccuracy->add_option("--time", accuracyBench.time, "scene time in seconds")->capture_default_str();
     cmdAccuracy->add_option("--param", accuracyBench.params, "scene parameter NAME=VALUE (repeatable, clamped)");
     cmdAccuracy->add_option("--threads", accuracyBench.threads, "CPU reference threads (0: all cores)")->capture_default_str();
@@ -139,16 +155,16 @@ int main(int argc, char** argv) {
     auto* cmdSpirv = cmdBench->add_subcommand("spirv", "a scene's compute program built from GLSL and from SPIR-V (glslangValidator), "
                                                        "every step to its first use timed, the drivers' disk caches off");
     cmdSpirv->add_option("--scene", spirvBench.scene, "scene")->capture_default_str();
-    cmdSpirv->add_option("--rounds", spirvBench.rounds, "builds of each form, interleaved (median)")->capture_default_str();
+    cmdSpirv->add_option("--rounds", spirvBench.rounds, "builds of each form, interleaved (median)")->check(FiniteFrom(1, false))->capture_default_str();
     cmdSpirv->add_option("--glslang", spirvBench.glslang, "glslangValidator (default: beside sdfvj, then /usr/bin)");
     PostBenchOptions postBench;
     auto* cmdPost = cmdBench->add_subcommand("post", "a post effect's save: save -> screen and the longest frame meanwhile, the chain "
                                                      "in contexts of its own (as live draws it) against the window's context");
     cmdPost->add_option("--effects", postBench.effects, "ISF effects, comma-separated (names in shaders/isf or .fs paths)")->capture_default_str();
     cmdPost->add_option("--size", postBench.size, "frame size")->capture_default_str();
-    cmdPost->add_option("--rounds", postBench.rounds, "saves to time per way (interleaved)")->capture_default_str();
-    cmdPost->add_option("--frames", postBench.frames, "steady frames per way (10 interleaved blocks)")->capture_default_str();
-    cmdPost->add_option("--fps", postBench.fps, "pace frames like a display during saves (0: flat out)")->capture_default_str();
+    cmdPost->add_option("--rounds", postBench.rounds, "saves to time per way (interleaved)")->check(FiniteFrom(1, false))->capture_default_str();
+    cmdPost->add_option("--frames", postBench.frames, "steady frames per way (10 interleaved blocks)")->check(FiniteFrom(1, false))->capture_default_str();
+    cmdPost->add_option("--fps", postBench.fps, "pace frames like a display during saves (0: flat out)")->check(FiniteFrom(0, false))->capture_default_str();
     cmdPost->add_option("--csv", postBench.csv, "also write the rows as CSV: scene,lighting,size,path,ms,gpu + chain_in, save_to_screen_ms, longest_ms, swap_frame_ms, rounds");
     ResizeBenchOptions resizeBench;
     auto* cmdResize = cmdBench->add_subcommand("resize", "a change of the render scale (the resolution slider, --frame-budget): the frame "
@@ -159,8 +175,8 @@ int main(int argc, char** argv) {
     cmdResize->add_option("--scales", resizeBench.scales, "render scales visited in turn, the first the start (0.25..2)")->capture_default_str();
     cmdResize->add_option("--post", resizeBench.post, "an ISF chain over the scene, as live --post")->capture_default_str();
     cmdResize->add_option("--keep", resizeBench.keep, "other sizes the first way keeps")->capture_default_str();
-    cmdResize->add_option("--rounds", resizeBench.rounds, "visits of every scale per way (interleaved)")->capture_default_str();
-    cmdResize->add_option("--fps", resizeBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();
+    cmdResize->add_option("--rounds", resizeBench.rounds, "visits of every scale per way (interleaved)")->check(FiniteFrom(1, false))->capture_default_str();
+    cmdResize->add_option("--fps", resizeBench.fps, "pace frames like a display (0: flat out)")->check(FiniteFrom(0, false))->capture_default_str();
     cmdResize->add_option("--csv", resizeBench.csv, "also write the rows as CSV: scene,lighting,size,path,ms,gpu + way, scale, first_change_ms, later_change_ms, after_ms");
     ReloadBenchOptions reloadBench;
     auto* cmdReload = cmdBench->add_subcommand("reload", "hot reload: save -> new program on screen, longest frame meanwhile");
@@ -198,14 +214,14 @@ int main(int argc, char** argv) {
                           "--render-process --post does), and each save gives the last of them a new function instead of "
                           "editing the scene: what a post effect's save costs the show when the render processes build it")
         ->type_name("A,B");
-    cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->capture_default_str();
+    cmdReload->add_option("--fps", reloadBench.fps, "pace frames like a display (0: flat out)")->check(FiniteFrom(0, false))->capture_default_str();
     cmdReload->add_flag("--first-frame", reloadBench.firstFrame,
                         "time one launch instead: context -> first frame, with the program cache (run twice)");
     cmdReload->add_flag("--no-program-cache", noProgramCache, "compile every program; neither read nor write the program cache");
 #ifdef SDFVJ_HAS_LIVE
     double inputSeconds = 60;
     auto* cmdInput = cmdBench->add_subcommand("input", "event-to-frame latency and a 10,000 msg/s flood (OSC + MIDI)");
-    cmdInput->add_option("--seconds", inputSeconds, "flood duration")->capture_default_str();
+    cmdInput->add_option("--seconds", inputSeconds, "flood duration")->check(FiniteFrom(0, true))->capture_default_str();
 #endif
 
     app.add_subcommand("list", "list scenes, presets and MIDI ports");
@@ -230,7 +246,7 @@ int main(int argc, char** argv) {
     cmdLive->add_option("--post", live.show.post,
                         "ISF post effects over the frame (as for render; else the preset's \"post\"); their inputs "
                         "are parameters for OSC, mappings and the overlay; saved .fs files reload");
-    cmdLive->add_option("--seconds", live.seconds, "quit after this many seconds (0: run until closed)");
+    cmdLive->add_option("--seconds", live.seconds, "quit after this many seconds (0: run until closed)")->check(FiniteFrom(0, false));
     cmdLive->add_option("--screenshot", live.screenshot,
                         "write the last frame to this PNG on exit (with --seconds, a show that has drawn no frame yet "
                         "runs on until it has, at most 30 s more)");
@@ -246,7 +262,8 @@ int main(int argc, char** argv) {
     cmdLive->add_option("--forward", live.forward,
                         "HOST:PORT[,HOST:PORT...]: re-send as OSC every parameter, preset and effect the show applies to "
                         "follower nodes (other `sdfvj live`), and the whole state once a second (docs/sync.md)");
-    cmdLive->add_option("--frame-budget", live.frameBudgetMs, "keep frames under MS: about once a second the best setting of the accuracy sweep's front that fits (docs/performance.md)");
+    cmdLive->add_option("--frame-budget", live.frameBudgetMs, "keep frames under MS: about once a second the best setting of the accuracy sweep's front that fits (docs/performance.md; 0: off)")
+        ->check(FiniteFrom(0, false));
     cmdLive->add_flag("--warm-ahead", live.warmAhead,
                       "sound check: every variant an effect pad or a preset reaches is built ahead AND drawn once as it "
                       "arrives, so the next hit shows it in one frame. On NVIDIA that first draw freezes the picture "
@@ -288,7 +305,7 @@ int main(int argc, char** argv) {
                      "byte-identical.");
     cmdLearn->add_option("--param", learnParam, "parameter to map")->required();
     cmdLearn->add_option("--mapping", learnMapping, "mapping file to add the entry to (all or nothing)")->capture_default_str();
-    cmdLearn->add_option("--timeout", learnTimeout, "seconds to wait")->capture_default_str();
+    cmdLearn->add_option("--timeout", learnTimeout, "seconds to wait")->check(FiniteFrom(0, true))->capture_default_str();
 #endif
 
     try {

@@ -214,15 +214,15 @@ TEST_CASE("live without a display exits 2 with one clear line") {
     CHECK(out.find("no display") != std::string::npos);
 }
 
-TEST_CASE("live command line: a negative or non-finite --seconds or --frame-budget and a --budget-floor without a budget or that does not parse exit 2 with what was expected") {
+TEST_CASE("command line: a negative or non-finite --seconds or --frame-budget, --frames 0, a --budget-floor without a budget or that does not parse exit 2 with what was expected") {
     const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "bad-numbers");
     // Checked before the window opens: no display is needed, and none is given, so a check that
     // let one through would fail on "no display" instead.
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-        {{"--seconds=-1"}, "--seconds -1, expected 0 (run until closed) or more seconds"},
-        {{"--seconds=nan"}, "--seconds nan, expected"},
-        {{"--frame-budget=-5"}, "--frame-budget -5, expected milliseconds above 0"},
-        {{"--frame-budget=inf"}, "--frame-budget inf, expected"},
+        {{"--seconds=-1"}, "--seconds: '-1', expected a finite number >= 0"},
+        {{"--seconds=nan"}, "--seconds: 'nan', expected a finite number >= 0"},
+        {{"--frame-budget=-5"}, "--frame-budget: '-5', expected a finite number >= 0"},
+        {{"--frame-budget=inf"}, "--frame-budget: 'inf', expected a finite number >= 0"},
         {{"--budget-floor", "scale=0.5"}, "--budget-floor scale=0.5 without --frame-budget MS"},
         {{"--frame-budget", "8", "--budget-floor", "bogus"}, "'bogus' is not NAME=NUMBER"},
         {{"--frame-budget", "8", "--budget-floor", "scale=9"}, "'scale=9' unknown or out of range"},
@@ -236,6 +236,18 @@ TEST_CASE("live command line: a negative or non-finite --seconds or --frame-budg
         CHECK(rc == 2);
         CHECK(out.find(expected) != std::string::npos);
         CHECK(out.find("no display") == std::string::npos);
+    }
+    // The benches and learn: a table of zeros for --frames 0, a wait of -1 s, before.
+    for (const auto& [argv, expected] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+             {{SDFVJ_BIN, "bench", "--scenes", "midi", "--frames", "0"}, "--frames: '0', expected a finite number >= 1"},
+             {{SDFVJ_BIN, "bench", "accuracy", "--warmup=-1"}, "--warmup: '-1', expected a finite number >= 0"},
+             {{SDFVJ_BIN, "bench", "reload", "--fps=nan"}, "--fps: 'nan', expected a finite number >= 0"},
+             {{SDFVJ_BIN, "learn", "--param", "scale", "--timeout=-1"}, "--timeout: '-1', expected a finite number > 0"}}) {
+        int rc = Run(argv, dir + "/cli.log", 20, {{"JACK_NO_START_SERVER", "1"}});
+        const std::string out = ReadText(dir + "/cli.log");
+        INFO(argv[1] << ": " << out);
+        CHECK(rc == 2);
+        CHECK(out.find(expected) != std::string::npos);
     }
 }
 
