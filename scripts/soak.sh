@@ -252,6 +252,12 @@ gaps=$(awk '$1 >= 1.0 { if (n++) printf "%.0f %.2f\n", ($1 - p) * 1000, p; p = $
     awk '$1 > 100 { over++ } NR <= 5 { printf "%s%d ms @%ss", sep, $1, $2; sep = ", " } END { printf "; %d gaps over 100 ms", over }')
 liveTime=$(tail -n 2 "$work/params.log" | head -n 1 | awk '{ print $1 }')
 [ "${maxGap:-0}" -le "$gapLimit" ] || fail "a ${maxGap} ms gap between frames at live time ${gapAt} s (limit ${gapLimit} ms)"
+# With --render-process a late server's frame is not waited for: the loop goes on showing its last
+# image, and says so ("render process late: ... up to N ms"). What the audience sees is that image
+# standing still, so it has the gap's limit too.
+lateMax=$(grep -a -o 'render process late: .* up to [0-9]* ms' "$work/live.err" | awk '{ v = $(NF - 1) + 0; if (v > m) m = v } END { printf "%d", m }')
+lateLines=$(grep -a -c '^render process late' "$work/live.err" || true)
+[ "${lateMax:-0}" -le "$gapLimit" ] || fail "a render process's image stood still for ${lateMax} ms (said as 'render process late'; limit ${gapLimit} ms)"
 
 finalSeen=$(echo "$lastLine" | awk -v want=$finalValue '{ for (i = 2; i <= NF; ++i) if ($i ~ /^twist=/) {
     v = substr($i, 7) + 0; d = v - want; if (d < 0) d = -d; print (d < 1e-3 ? "yes" : "no (" v ")"); exit } print "no (no twist)" }')
@@ -331,6 +337,7 @@ echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo "NO (noticed at 
 echo "frames          ${frames:-0} logged after the first second, live clock reached ${liveTime:-?} s"
 echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms); longest: $gaps"
 [ -n "$around" ] && echo "around the longest gaps, what sdfvj printed (live time, s):" && echo "$around"
+echo "late images     ${lateLines:-0} 'render process late' lines, the longest ${lateMax:-0} ms (limit ${gapLimit} ms; --render-process only)"
 echo "machine load    $loadStart at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end (1/5/15 min; $(nproc) cores)"
 echo "VmRSS           first frame $((rssFirst / 1024)) MB, baseline $((rssStart / 1024)) MB, end $((rssEnd / 1024)) MB, peak $((rssPeak / 1024)) MB; growth ${rssGrowth} MB (limit ${rssLimit} MB), ${rssLate} MB over the second half (median of its last minute against the middle one; $([ $quick = 1 ] && echo "not checked in --quick" || echo "limit ${rssLateLimit} MB"))"
 echo "VmRSS timeline  $(awk -v n="$storm" 'BEGIN { step = n / 8 < 1 ? 1 : int(n / 8) } $1 % step == 0 { printf "%s%ds %dMB", sep, $1, $2 / 1024; sep = ", " }' "$work/rss.log" 2>/dev/null)"

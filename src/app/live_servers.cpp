@@ -1,6 +1,7 @@
 #include "app/live_servers.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 
 #include "isf/isf.h"
@@ -105,6 +106,16 @@ bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error)
 
 void LiveServers::Update(const VariantKey& want, const std::vector<std::string>& changed, int w, int h, std::vector<std::string>* say) {
     std::string error;
+    // Said once the late frame came (or its server went), at most once a second: the counts add up meanwhile.
+    const auto now = std::chrono::steady_clock::now();
+    if (show_.LateFrames() > 0 && !show_.StillLate() && now - lateSaidAt_ >= std::chrono::seconds(1)) {
+        lateSaidAt_ = now;
+        char line[200];
+        std::snprintf(line, sizeof line, "render process late: its last image was shown again %d time%s, up to %.0f ms after a frame was asked for",
+                      show_.LateFrames(), show_.LateFrames() == 1 ? "" : "s", show_.LongestLateMs());
+        say->push_back(line);
+        show_.ResetLate();
+    }
     const bool wasQuick = show_.OnScreenQuick();
     if (show_.Poll(&error)) {   // a build went on screen (or a replacement of the same program)
         if (show_.OnScreenLoad() == lastLoad_) {
@@ -231,7 +242,11 @@ void LiveServers::SayBuiltAhead(std::vector<std::string>* say) {
 }
 
 unsigned LiveServers::Frame(const FrameInputs& in, int* w, int* h) {
-    show_.Frame(in);
+    // A server's frame later than three of its draws (at least 50 ms) is not waited for: the last
+    // image is shown again and the loop goes on (the overlay, the input, the post chain in this
+    // process), collecting it at a later frame; silent for a second, the server is replaced.
+    const int lateMs = (int)std::clamp(3.0 * show_.LastServerMs(), 50.0, (double)kServerDeadMs);
+    show_.Frame(in, lateMs, kServerDeadMs);
     *w = show_.OnScreenLoad().width;
     *h = show_.OnScreenLoad().height;
     return show_.Texture();

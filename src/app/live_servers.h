@@ -14,6 +14,7 @@
 // server held for it (PrepareMorph), as in-process.
 // Render thread only.
 #pragma once
+#include <chrono>
 #include <memory>
 #include <string>
 #include <utility>
@@ -54,6 +55,8 @@ public:
     void SetStandby(bool on) { show_.SetStandby(on); }
     // This frame's image: the texture, and its size (the size it was built for, until a build at the
     // new size is on screen). 0 when there is none yet.
+    // How long a server on screen may stay silent before it is replaced (a late frame is not waited for: Frame).
+    static constexpr int kServerDeadMs = 1000;
     unsigned Frame(const FrameInputs& in, int* w, int* h);
     unsigned FrameReadFramebuffer() { return show_.ReadFramebuffer(); }   // one reading Frame()'s texture, kept per image
     void AfterRead(const FrameInputs& in) { show_.AfterRead(in); }
@@ -89,6 +92,7 @@ public:
     const ServerShow& Servers() const { return show_; }
 
 private:
+    std::chrono::steady_clock::time_point lateSaidAt_{};   // the last "render process late" line
     // Reads the scene and assembles the program's source (no GL): *hash, or *error as file:line;
     // with `lifted`, its literal tier's source too.
     // The post chain's files are parsed too (no GL) and hashed with it.

@@ -413,8 +413,11 @@ bool RenderProcess::Request(const FrameInputs& in) {
     }
     if (!Send(Message(2, EncodeInputs(in)))) return false;
     outstanding_ = true;
+    requestedAt_ = Clock::now();
     return true;
 }
+
+double RenderProcess::OutstandingMs() const { return outstanding_ ? MsSince(requestedAt_) : 0.0; }
 
 double RenderProcess::TimeDraw(const FrameInputs& in, int timeoutMs) {
     if (outstanding_ || !texture_ || !Send(Message(5, EncodeInputs(in)))) return -1;
@@ -441,19 +444,25 @@ bool RenderProcess::Arrived() {
     return Take(inbox_, &at, &type) && Take(inbox_, &at, &n) && inbox_.size() - at >= n;
 }
 
-bool RenderProcess::Collect(int timeoutMs) {
+bool RenderProcess::Collect(int timeoutMs, int deadMs) {
     if (!outstanding_) return false;
-    outstanding_ = false;
     const auto t0 = Clock::now();
     uint32_t type = 0;
     std::string payload;
     while (!TakeMessage(&type, &payload)) {
         const int left = timeoutMs - (int)MsSince(t0);
         if (left <= 0 || !Receive(left)) {
-            if (left <= 0) MarkDead();   // a server that stops answering is not waited for again
+            if (left > 0 || !Usable()) {   // gone
+                outstanding_ = false;
+                return false;
+            }
+            if (MsSince(requestedAt_) < std::max(deadMs, timeoutMs)) return false;   // late: still asked for
+            outstanding_ = false;
+            MarkDead();   // a server that stops answering is not waited for again
             return false;
         }
     }
+    outstanding_ = false;
     size_t at = 0;
     uint32_t image = 0;
     if (type != 2 || !Take(payload, &at, &lastServerMs_) || !Take(payload, &at, &image) ||

@@ -60,6 +60,7 @@
 #include <sys/types.h>
 
 #include <cstdint>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -163,7 +164,7 @@ public:
     bool Importing() const { return importing_ != nullptr; }   // its images are on the import thread
     // One frame: sends the inputs, waits for the server (up to timeoutMs), makes the frame this
     // process's Texture(). False when the server died or timed out: the caller keeps what it had.
-    bool DrawFrame(const FrameInputs& in, int timeoutMs = 5000) { return Request(in) && Collect(timeoutMs); }
+    bool DrawFrame(const FrameInputs& in, int timeoutMs = 5000, int deadMs = -1) { return Request(in) && Collect(timeoutMs, deadMs); }
     // The same in two halves, for a frame loop that lets the server draw while it waits for the
     // display (the frame shown is then one behind the inputs): Request sends the inputs and returns;
     // Collect waits for that frame. Texture() must not be read by the GPU while the server may
@@ -171,8 +172,11 @@ public:
     // image the server writes next (with two images, that of the frame before: long done).
     bool Request(const FrameInputs& in);
     void Read();
-    bool Collect(int timeoutMs = 5000);
+    // deadMs > timeoutMs: a frame not here after timeoutMs stays asked for (Outstanding(); Collect
+    // again later) until deadMs have passed since its Request, when the server is taken for dead.
+    bool Collect(int timeoutMs = 5000, int deadMs = -1);
     bool Outstanding() const { return outstanding_; }
+    double OutstandingMs() const;   // how long the frame asked for has been awaited (0: none is)
     // The program drawn once more with `in`, offscreen in the server, timed there (the overlay's
     // "measure costs"); waits for the answer. -1 when it failed (or a frame is outstanding).
     double TimeDraw(const FrameInputs& in, int timeoutMs = 5000);
@@ -216,6 +220,7 @@ private:
     size_t shmBytes_ = 0;
     double lastServerMs_ = 0;
     bool outstanding_ = false;
+    std::chrono::steady_clock::time_point requestedAt_{};   // when the outstanding frame was asked for
     ImportThread* importer_ = nullptr;
     std::shared_ptr<ImportThread::Job> importing_;   // the images being imported there
     Ready importingReady_;                           // the answer they came with

@@ -192,6 +192,7 @@ void ServerShow::PutOnScreen(std::unique_ptr<RenderProcess> p, const ServerLoad&
     onScreen_ = std::move(p);
     onScreenLoad_ = load;
     onScreenQuick_ = quick;
+    lateNow_ = false;
 }
 
 bool ServerShow::Prepare(const ServerLoad& load, std::string* error, Held slot) {
@@ -375,15 +376,21 @@ void ServerShow::SendAudio(RenderProcess& p) const {
     if (!onScreenLoad_.post.empty() && (!wave_.empty() || !spectrum_.empty())) p.SetAudio(wave_, spectrum_);
 }
 
-bool ServerShow::Frame(const FrameInputs& in, int timeoutMs) {
+bool ServerShow::Frame(const FrameInputs& in, int timeoutMs, int deadMs) {
     lastInputs_ = in;
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;
     if (!fresh_ && !p.Outstanding()) SendAudio(p);
     // A server just put on screen: its first frame is here already (pipelined), or drawn now.
-    const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs) : p.DrawFrame(in, timeoutMs));
+    const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs, deadMs) : p.DrawFrame(in, timeoutMs, deadMs));
     fresh_ = false;
-    if (!ok) ++failedFrames_;   // the last frame stays on screen
+    lateNow_ = !ok && p.Outstanding();
+    if (lateNow_) {   // late, still asked for: the last frame is shown again
+        ++lateFrames_;
+        longestLateMs_ = std::max(longestLateMs_, p.OutstandingMs());
+    } else if (!ok) {
+        ++failedFrames_;   // the last frame stays on screen
+    }
     return ok;
 }
 
@@ -392,6 +399,7 @@ void ServerShow::AfterRead(const FrameInputs& in) {
     // What read the frame is fenced; the request waits for the read of the image it will be drawn
     // into (with two images, the frame before's: done by now).
     onScreen_->Read();
+    if (onScreen_->Outstanding()) return;   // a late frame is still coming: asked for once
     SendAudio(*onScreen_);
     if (!onScreen_->Request(in)) ++failedFrames_;
 }

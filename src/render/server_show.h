@@ -62,7 +62,16 @@ public:
     // This frame's image into Texture(): drawn now (synchronous) or the one asked for a frame
     // before (pipelined). False when there is none to show this frame (no server on screen, or it
     // failed: Texture() still holds the last frame delivered, if any).
-    bool Frame(const FrameInputs& in, int timeoutMs = 1000);
+    // Pipelined with deadMs > timeoutMs: a frame still not here after timeoutMs is late, not lost:
+    // Texture() keeps the last frame, the request stays, the next Frame collects it (LateFrames());
+    // only deadMs after its request is the server taken for dead (and replaced by Poll).
+    bool Frame(const FrameInputs& in, int timeoutMs = 1000, int deadMs = -1);
+    // Frames shown again because the server on screen had not delivered the next in time (Frame's
+    // timeoutMs), and the longest such wait so far, ms since the request; read and reset by the caller.
+    int LateFrames() const { return lateFrames_; }
+    double LongestLateMs() const { return longestLateMs_; }
+    void ResetLate() { lateFrames_ = 0, longestLateMs_ = 0; }
+    bool StillLate() const { return lateNow_; }   // the last Frame was late and nothing has come since
     // The sound the post chain of the server on screen reads (ServerLoad::post: its audio inputs),
     // sent with each frame asked for from now on; empty rows: silence.
     void SetAudio(std::vector<float> wave, std::vector<float> spectrum) {
@@ -217,6 +226,9 @@ private:
     std::vector<bool> shownQuick_;
     std::string note_;
     int failedFrames_ = 0, replaced_ = 0;
+    int lateFrames_ = 0;
+    double longestLateMs_ = 0;
+    bool lateNow_ = false;
     std::chrono::steady_clock::time_point retryAt_{};   // a server on screen that died: replaced no sooner
     int retryS_ = 1;
 };

@@ -6,10 +6,12 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <sstream>
 #include <dirent.h>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "live_show.h"
@@ -256,6 +258,35 @@ TEST_CASE("live render process: a broken save is said as file:line and the pictu
     REQUIRE_LIVE(show, show.WaitForLog("the render server on screen ended", 1, kDeadline));
     REQUIRE_LIVE(show, show.WaitForLog("shader reloaded (its render process", 1, 60));
     REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
+    CHECK(show.Running());
+}
+
+TEST_CASE("live render process: a render process that stops answering for 0.8 s does not stop the frames, its last image stays and is said late, and the same process goes on") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-late");
+    LiveShow show(dir, {"--scene", "midi", "--render-process"});
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(0, 30, kDeadline));
+
+    // Every render process stopped (SIGSTOP: alive, silent) for 0.8 s, under the 1 s after which one
+    // on screen is taken for dead. The show used to wait for the frame it had asked for all that
+    // time; now it shows the last image again and its loop (overlay, input, --log-params) goes on.
+    const std::vector<pid_t> servers = Children(show.pid);
+    INFO("render processes: " << servers.size());
+    REQUIRE(servers.size() >= 1);
+    const size_t before = show.Frames().size();
+    for (pid_t p : servers) kill(p, SIGSTOP);
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    for (pid_t p : servers) kill(p, SIGCONT);
+    REQUIRE_LIVE(show, show.WaitForLog("render process late: its last image was shown again", 1, kDeadline));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(before, 60, kDeadline));
+    const std::vector<Frame> frames = show.Frames();
+    size_t during = 0;   // frames logged while the processes were stopped (0.8 s from the first after `before`)
+    for (size_t i = before; i < frames.size() && frames[i].first < frames[before].first + 0.8; ++i) ++during;
+    const double gap = LongestGap(frames, before, frames.size() - 1);
+    INFO("frames in the 0.8 s stop: " << during << ", longest gap after it began " << gap << " s");
+    CHECK(gap < 0.5);      // was >= 0.8 s: the show waited for the stopped process
+    CHECK(during >= 3);    // the loop went on (at >= 50 ms a frame while the image was late)
+    CHECK(show.Log().find("the render server on screen ended") == std::string::npos);   // not replaced: it answered in time
     CHECK(show.Running());
 }
 
