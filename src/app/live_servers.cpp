@@ -6,6 +6,7 @@
 
 #include "isf/isf.h"
 #include "render/field_morph.h"
+#include "render/live_program.h"
 #include "scene/scene.h"
 #include "shader/shader.h"
 
@@ -245,7 +246,9 @@ unsigned LiveServers::Frame(const FrameInputs& in, int* w, int* h) {
     // A server's frame later than three of its draws (at least 50 ms) is not waited for: the last
     // image is shown again and the loop goes on (the overlay, the input, the post chain in this
     // process), collecting it at a later frame; silent for a second, the server is replaced.
-    const int lateMs = (int)std::clamp(3.0 * show_.LastServerMs(), 50.0, (double)kServerDeadMs);
+    // SDFVJ_SERVER_LATE=0: wait for every frame up to the second, as before (measured: docs/reliability.md).
+    static const bool notWaited = EnvSwitch("SDFVJ_SERVER_LATE", true);
+    const int lateMs = notWaited ? (int)std::clamp(3.0 * show_.LastServerMs(), 50.0, (double)kServerDeadMs) : kServerDeadMs;
     show_.Frame(in, lateMs, kServerDeadMs);
     *w = show_.OnScreenLoad().width;
     *h = show_.OnScreenLoad().height;
