@@ -177,6 +177,9 @@ public:
     bool Collect(int timeoutMs = 5000, int deadMs = -1);
     bool Outstanding() const { return outstanding_; }
     double OutstandingMs() const;   // how long the frame asked for has been awaited (0: none is)
+    // Texture() stays whole while the server draws the next frame: two images by turns, or shared
+    // memory copied in at Collect. One GPU image (a dma-buf, or SDFVJ_SERVER_IMAGES=1) is written in place.
+    bool LastFrameStable() const { return images_ > 1 || transport_ == FrameTransport::Shm; }
     // The program drawn once more with `in`, offscreen in the server, timed there (the overlay's
     // "measure costs"); waits for the answer. -1 when it failed (or a frame is outstanding).
     double TimeDraw(const FrameInputs& in, int timeoutMs = 5000);

@@ -381,6 +381,7 @@ bool ServerShow::Frame(const FrameInputs& in, int timeoutMs, int deadMs) {
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;
     if (!fresh_ && !p.Outstanding()) SendAudio(p);
+    if (!p.LastFrameStable()) timeoutMs = std::max(timeoutMs, deadMs);   // its one image is being written: not shown again
     // A server just put on screen: its first frame is here already (pipelined), or drawn now.
     const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs, deadMs) : p.DrawFrame(in, timeoutMs, deadMs));
     fresh_ = false;
