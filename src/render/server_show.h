@@ -62,8 +62,8 @@ public:
     // This frame's image into Texture(): drawn now (synchronous) or the one asked for a frame
     // before (pipelined). False when there is none to show this frame (no server on screen, or it
     // failed: Texture() still holds the last frame delivered, if any).
-    // Pipelined with deadMs > timeoutMs: a frame still not here after timeoutMs is late, not lost:
-    // Texture() keeps the last frame, the request stays, the next Frame collects it (LateFrames());
+    // With deadMs > timeoutMs (pipelined or not): a frame still not here after timeoutMs is late, not
+    // lost: Texture() keeps the last frame, the request stays, the next Frame collects it (LateFrames());
     // only deadMs after its request is the server taken for dead (and replaced by Poll).
     bool Frame(const FrameInputs& in, int timeoutMs = 1000, int deadMs = -1);
     // Frames shown again because the server on screen had not delivered the next in time (Frame's
