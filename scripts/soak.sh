@@ -326,6 +326,16 @@ around=$(awk '$1 >= 1.0 { if (n++) printf "%.0f %.3f %.3f\n", ($1 - p) * 1000, p
             END { if (rep) printf "             (and %d more like it)\n", rep }' "$work/live.err.stamped" 2>/dev/null | tail -8
     done)
 
+# The show's own account of its long frames (`live --hitch-ms`, 100 by default: at most one line a
+# second, the longest): how much of them its thread ran, waited for a CPU (the machine too loaded)
+# or was blocked (the GPU, a render process, a file), and their longest stages.
+hitchRe='^sdfvj live: a [0-9]* ms frame'
+hitchLines=$(grep -a -c "$hitchRe" "$work/live.err" || true)
+hitchShare=$(grep -a "$hitchRe" "$work/live.err" | awk '{ ms += $4; for (i = 1; i < NF; ++i) {
+        if ($i == "ran") r += $(i + 1); if ($i == "waited") w += $(i + 1); if ($i == "blocked") b += $(i + 1) } }
+    END { if (ms > 0) printf "the show'"'"'s thread ran %.0f %%, waited for a CPU %.0f %%, was blocked %.0f %% of their %.1f s", 100 * r / ms, 100 * w / ms, 100 * b / ms, ms / 1000 }')
+hitchTop=$(grep -a "$hitchRe" "$work/live.err" | sort -t' ' -k4,4 -rn | head -3 | cut -c1-260 | sed 's/^/    /')
+
 # --- summary --------------------------------------------------------------------------------
 echo
 echo "================ sdfvj soak summary ================"
@@ -337,6 +347,8 @@ echo "still running   $([ $aliveAtEnd = 1 ] && echo yes || echo "NO (noticed at 
 echo "frames          ${frames:-0} logged after the first second, live clock reached ${liveTime:-?} s"
 echo "longest gap     ${maxGap:-?} ms at live time ${gapAt:-?} s (limit ${gapLimit} ms); longest: $gaps"
 [ -n "$around" ] && echo "around the longest gaps, what sdfvj printed (live time, s):" && echo "$around"
+echo "hitches         ${hitchLines:-0} said (frames over --hitch-ms, the longest of each second)${hitchShare:+; $hitchShare}"
+[ -n "$hitchTop" ] && echo "$hitchTop"
 echo "late images     ${lateLines:-0} 'render process late' lines, the longest ${lateMax:-0} ms (limit ${gapLimit} ms; --render-process only)"
 echo "machine load    $loadStart at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end (1/5/15 min; $(nproc) cores)"
 echo "VmRSS           first frame $((rssFirst / 1024)) MB, baseline $((rssStart / 1024)) MB, end $((rssEnd / 1024)) MB, peak $((rssPeak / 1024)) MB; growth ${rssGrowth} MB (limit ${rssLimit} MB), ${rssLate} MB over the second half (median of its last minute against the middle one; $([ $quick = 1 ] && echo "not checked in --quick" || echo "limit ${rssLateLimit} MB"))"

@@ -113,7 +113,8 @@ bool LiveSession::Start(std::string* error) {
 }
 
 bool LiveSession::Frame() {
-    glfwPollEvents();
+    hitch_.Begin(Now());
+    Guard("window events", [] { glfwPollEvents(); });
     const double wall = Now(), dt = wall - last_;
     last_ = wall;
     if (frame_ >= 2) fps_ = fps_ == 0 ? 1.0 / std::max(dt, 1e-6) : 0.95 * fps_ + 0.05 / std::max(dt, 1e-6);
@@ -160,8 +161,10 @@ bool LiveSession::Frame() {
     Guard("draw", [&] { Draw(now); });
     Guard("costs", [&] { MeasureEffectCosts(); });
     Guard("overlay", [&] { DrawOverlay(); });
-    Present();
+    Guard("present", [&] { Present(); });
     Guard("servers", [&] { if (servers_) servers_->FrameDone(); });   // the servers this frame retired end in the gap
+    // The terminal only: the overlay has its frame-time graph, and its report stays the show's messages.
+    if (std::string line; hitch_.End(Now(), &line)) std::fprintf(stderr, "%s\n", line.c_str());
     return true;
 }
 
@@ -216,27 +219,28 @@ void LiveSession::Reload() {
     for (const std::string& folder : state_.foldersToWatch) Watch(folder);
     state_.foldersToWatch.clear();
     const std::vector<std::string> changed = watcher_.Poll();
-    ApplyFileChanges(state_, changed, Now());
+    // Each part its own stage (--hitch-ms says which one took a long frame's time).
+    Guard("reload: files", [&] { ApplyFileChanges(state_, changed, Now()); });
     if (servers_) {   // --render-process: builds go to spare servers
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
         std::vector<std::string> say;
-        PrepareServerMorph();
-        servers_->Update(state_.wanted, changed, Scaled(w), Scaled(h), &say);
+        Guard("reload: morph", [&] { PrepareServerMorph(); });
+        Guard("reload: render processes", [&] { servers_->Update(state_.wanted, changed, Scaled(w), Scaled(h), &say); });
         for (const std::string& line : say) state_.report.Say(line);
-        FadeServersIfSceneChanged(Now());
-        PrefetchReachable(Now());
-        ReloadPost(changed);
+        Guard("reload: fade", [&] { FadeServersIfSceneChanged(Now()); });
+        Guard("reload: prefetch", [&] { PrefetchReachable(Now()); });
+        Guard("reload: post", [&] { ReloadPost(changed); });
         return;
     }
     if (!(state_.wanted == live_.Key()) && !state_.show.isfScene) {
-        PrepareFieldMorph();
-        live_.Request(state_.wanted);
+        Guard("reload: morph", [&] { PrepareFieldMorph(); });
+        Guard("reload: program", [&] { live_.Request(state_.wanted); });
     }
-    live_.Update(changed);
-    PrefetchReachable(Now());
-    ReloadPost(changed);
-    StartFadeIfSceneChanged(Now());
+    Guard("reload: program", [&] { live_.Update(changed); });
+    Guard("reload: prefetch", [&] { PrefetchReachable(Now()); });
+    Guard("reload: post", [&] { ReloadPost(changed); });
+    Guard("reload: fade", [&] { StartFadeIfSceneChanged(Now()); });
 }
 
 void LiveSession::StartFadeIfSceneChanged(double now) {
@@ -258,7 +262,7 @@ void LiveSession::StartFadeIfSceneChanged(double now) {
 // The program on screen decides the parameters (its header may have changed), and its error
 // the overlay's last line.
 void LiveSession::UpdateProgram() {
-    UpdatePost();
+    Guard("program: post", [&] { UpdatePost(); });
     // The scene's header alone unless a post chain adds inputs: no SceneInfo copy per frame.
     if (HasProgram() && postDecls_.empty()) FollowScene(state_, SceneOnScreen());
     else if (HasProgram()) FollowScene(state_, SceneWithPost());

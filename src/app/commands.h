@@ -173,6 +173,7 @@ struct LiveOptions {
     bool hideOverlay = false;           // start with the overlay hidden (as after Tab)
     double renderScale = 1.0;           // the scene renders at this fraction of the window (0.25..1; 2: 2x2 supersampled)
     double frameBudgetMs = 0;           // > 0: keep frames under this (frame_budget.h)
+    double hitchMs = 100;               // > 0: say a frame longer than this, and where its time went (frame_hitch.h)
     bool warmAhead = false;             // variants built ahead are also finished on the render context (live_prefetch.cpp)
     std::string budgetFloor;            // never below: "scale=0.5,steps=64,shadow_steps=16,ao=2"
     std::string sync;                   // "mtc": the show clock follows MIDI Time Code; "clock": MIDI clock (live_sync.h)

@@ -21,6 +21,7 @@
 #include "app/commands.h"
 #include "app/effect_costs.h"
 #include "app/frame_budget.h"
+#include "app/frame_hitch.h"
 #include "app/live_overlay.h"
 #include "app/live_forward.h"
 #include "app/live_servers.h"
@@ -222,6 +223,11 @@ private:
     void Watch(const std::string& folder);
     // The last-resort guard around each stage: a bug reported, never a stopped show.
     template <class Stage> void Guard(const char* name, Stage&& stage) {
+        const auto t0 = std::chrono::steady_clock::now();
+        struct Timed {   // the stage's time to --hitch-ms, however it ends
+            FrameHitch& hitch; const char* name; std::chrono::steady_clock::time_point t0;
+            ~Timed() { hitch.Stage(name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()); }
+        } timed{hitch_, name, t0};
         try {
             stage();
         } catch (const std::exception& e) {
@@ -239,6 +245,7 @@ private:
     LiveState state_;
     GLFWwindow* window_;
     std::chrono::steady_clock::time_point start_;
+    FrameHitch hitch_{o_.hitchMs};   // --hitch-ms: a long frame said, with where its time went
     EventQueue queue_;
     InputSession input_;
     FolderWatcher watcher_;

@@ -67,7 +67,8 @@ void LiveSession::FadeServersIfSceneChanged(double now) {
 void LiveSession::DrawServerScene(double now, int rw, int rh) {
     if (DrawServerFieldFade(now)) return;
     int w = 0, h = 0;
-    const unsigned texture = servers_->Frame(in_, &w, &h);
+    unsigned texture = 0;
+    Guard("draw: render process's frame", [&] { texture = servers_->Frame(in_, &w, &h); });
     if (!texture) return;
     const double t = fade_.server ? (now - fade_.start) / fade_.seconds : 1.0;
     if (t < 1.0) {
@@ -87,8 +88,8 @@ void LiveSession::DrawServerScene(double now, int rw, int rh) {
         fade_ = Fade{};
         servers_->DropPrevious();
     }
-    PresentServerTexture(texture, w, h, now, servers_->FrameReadFramebuffer());
-    servers_->AfterRead(in_);
+    Guard("draw: to the window", [&] { PresentServerTexture(texture, w, h, now, servers_->FrameReadFramebuffer()); });
+    Guard("draw: next frame asked", [&] { servers_->AfterRead(in_); });
 }
 
 // A server's frame (w x h) to the window: through the post chain, or blitted (from readFbo, a

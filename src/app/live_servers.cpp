@@ -105,6 +105,18 @@ bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error)
     return true;
 }
 
+// A newer load waits for the build in flight (nothing of it on screen yet) to finish, at most
+// kLoadWait after it was sent; then the newest variant asked for is sent. Each load takes a
+// process (started, its GL and Vulkan set up, its program loaded and first used): a storm of
+// effect pads and presets (the soak's 40 a second) started 7 a second on llvmpipe, each one
+// superseding the last before it was done, so none reached the screen while they took more
+// than a core of 2 from the frames. A quick tier on screen is not waited on: its optimized
+// build is dropped for the next edit at once. SDFVJ_LOAD_WAIT_MS=0: each load at once, as before.
+bool LiveServers::WaitForBuild(std::chrono::steady_clock::time_point now) const {
+    static const int waitMs = EnvInt("SDFVJ_LOAD_WAIT_MS", 1000, 0, 10000);
+    return show_.Building() && !(OnScreen() && show_.OnScreenLoad() == lastLoad_) && now - lastSentAt_ < std::chrono::milliseconds(waitMs);
+}
+
 void LiveServers::Update(const VariantKey& want, const std::vector<std::string>& changed, int w, int h, std::vector<std::string>* say) {
     std::string error;
     // Said once the late frame came (or its server went), at most once a second: the counts add up meanwhile.
@@ -129,6 +141,8 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         }
         if (!sceneChanged_ && !wasQuick) show_.DropPrevious();   // after a quick tier: the one it replaced is gone already
         const RenderProcess::Ready& r = show_.Shown().back();
+        cacheServes_ = cacheServes_ || r.fromCache;
+        if (!show_.OnScreenQuick() && show_.OnScreenLoad() == lastLoad_) optimizedShown_.insert({sceneHash_, lastLoad_.path});
         char line[260];
         std::snprintf(line, sizeof line, "shader reloaded%s (its render process: build %.0f ms%s, first use %.0f ms, first frame %.0f ms)%s",
                       show_.OnScreenQuick() ? ", quick tier" : "", r.buildMs,
@@ -150,8 +164,10 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     }
     SayBuiltAhead(say);
     const ServerLoad load = LoadFor(want, w, h);
-    if (load == wanted_ && !ShaderSaved(changed)) return;
+    const bool nothingNew = load == wanted_ && !ShaderSaved(changed);
+    if (nothingNew && (!loadDeferred_ || WaitForBuild(now))) return;
     wanted_ = load;
+    loadDeferred_ = false;
     SceneInfo scene;
     uint64_t hash = 0, sceneHash = 0;
     ShaderSource lifted;
@@ -177,6 +193,10 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         error_.clear();
         say->push_back("shader retuned: the new numbers are on screen (read from uniforms by a render process), its optimized program builds behind them");
     }
+    if (WaitForBuild(now)) {   // checked (a broken file is said at once), sent once the build in flight is done
+        loadDeferred_ = true;
+        return;
+    }
     buildingScene_ = std::move(scene);
     buildingHash_ = hash;
     buildingSceneHash_ = sceneHash;
@@ -186,7 +206,9 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     ServerLoad sameScene = load;
     sameScene.post = show_.OnScreenLoad().post;
     const bool postOnly = OnScreen() && sceneHash == sceneHash_ && sameScene == show_.OnScreenLoad();
-    if (!show_.Load(load, &error, !postOnly)) {
+    const bool cached = cacheServes_ && optimizedShown_.count({sceneHash, load.path}) > 0;
+    lastSentAt_ = now;
+    if (!show_.Load(load, &error, !postOnly && !cached)) {
         error_ = "sdfvj live: " + error;
         say->push_back(error_);
     }

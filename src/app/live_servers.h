@@ -16,6 +16,7 @@
 #pragma once
 #include <chrono>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -114,6 +115,14 @@ private:
     size_t aheadSaid_ = 0;   // BuiltAheadLoads() already reported
     uint64_t hash_ = 0, buildingHash_ = 0;
     uint64_t sceneHash_ = 0, buildingSceneHash_ = 0;   // the scene's program alone, on screen and building
+    // Scene programs (hash, path) whose optimized build was on screen: once a load has come from the
+    // program cache (it works here), a load of one of them sends no quick tier, which would be one
+    // more process for a program that loads from the cache at once (a preset storm: half the spawns).
+    std::set<std::pair<uint64_t, RenderPath>> optimizedShown_;
+    bool cacheServes_ = false;
+    bool loadDeferred_ = false;   // a newer load waits for the build in flight (WaitForBuild)
+    bool WaitForBuild(std::chrono::steady_clock::time_point now) const;
+    std::chrono::steady_clock::time_point lastSentAt_{};
     std::string error_;
 };
 

@@ -264,6 +264,11 @@ int main(int argc, char** argv) {
                         "follower nodes (other `sdfvj live`), and the whole state once a second (docs/sync.md)");
     cmdLive->add_option("--frame-budget", live.frameBudgetMs, "keep frames under MS: about once a second the best setting of the accuracy sweep's front that fits (docs/performance.md; 0: off)")
         ->check(FiniteFrom(0, false));
+    cmdLive->add_option("--hitch-ms", live.hitchMs,
+                        "say a frame longer than MS (at most a line a second, the longest): how much of it the show's "
+                        "thread ran, waited for a CPU (a loaded machine) or was blocked (the GPU, a render process), and "
+                        "its longest stages (0: off)")
+        ->check(FiniteFrom(0, false))->capture_default_str();
     cmdLive->add_flag("--warm-ahead", live.warmAhead,
                       "sound check: every variant an effect pad or a preset reaches is built ahead AND drawn once as it "
                       "arrives, so the next hit shows it in one frame. On NVIDIA that first draw freezes the picture "

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <charconv>
 #include <cstring>
 #include <filesystem>
 #if defined(__GLIBC__)
@@ -26,6 +27,15 @@ bool EnvSwitch(const char* name, bool fallback) {
     if (env && (std::strcmp(env, "0") == 0 || std::strcmp(env, "off") == 0)) return false;
     if (env && (std::strcmp(env, "1") == 0 || std::strcmp(env, "on") == 0)) return true;
     return fallback;
+}
+
+int EnvInt(const char* name, int fallback, int lo, int hi) {
+    const char* e = std::getenv(name);
+    if (!e) return fallback;
+    const char* end = e + std::strlen(e);
+    int v = 0;
+    if (std::from_chars(e, end, v).ptr != end || v < lo || v > hi) return fallback;
+    return v;
 }
 
 namespace {

@@ -29,6 +29,8 @@ namespace sdfvj {
 
 // An on/off environment switch: NAME=1|on gives true, NAME=0|off false, anything else `fallback`.
 bool EnvSwitch(const char* name, bool fallback);
+// An integer environment setting: NAME's value when it is a whole number in [lo, hi], else `fallback`.
+int EnvInt(const char* name, int fallback, int lo, int hi);
 
 class LiveProgram {
 public:

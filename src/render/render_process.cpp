@@ -282,7 +282,7 @@ bool RenderProcess::FinishImport(Ready* ready, int timeoutMs) {
 
 bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pending) {
     size_t at = 0;
-    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0, standby = 0;
+    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0, standby = 0, optimized = 0;
     uint64_t modifier = 0, memorySize = 0;
     int32_t stride = 0, offset = 0;
     if (!Take(payload, &at, &ok) || !Take(payload, &at, &transport) || !Take(payload, &at, &ready->buildMs) ||
@@ -290,7 +290,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
         !Take(payload, &at, &modifier) || !Take(payload, &at, &stride) || !Take(payload, &at, &offset) ||
         !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached) ||
         !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2) || !Take(payload, &at, &ready->shareMs) ||
-        !Take(payload, &at, &standby)) {
+        !Take(payload, &at, &standby) || !Take(payload, &at, &optimized)) {
         ready->text = "the render process's answer is malformed";
         return false;
     }
@@ -298,6 +298,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
     ready->ok = ok != 0;
     ready->fromCache = cached != 0;
     ready->fromStandby = standby != 0;
+    ready->optimized = optimized != 0;
     if (!ready->ok) return false;
     if (fds_.empty()) {
         ready->text = "the render process sent no frame buffer";

@@ -121,6 +121,7 @@ public:
         bool fromStandby = false;                          // the program a build ahead left in that server: nothing built, nothing first used
         double importMs = 0;                               // here, the render thread: the answer read and its images imported (PollReady)
         double importThreadMs = -1;                        // on the import thread (SetImporter): its imports; -1: none there
+        bool optimized = false;                            // a quick tier's load found the optimized program in the cache and shows it
     };
     struct BuiltAhead {
         bool ok = false, fromCache = false;   // fromCache: it was there already

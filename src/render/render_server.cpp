@@ -8,12 +8,12 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include <charconv>
 #include <cstdlib>
 #include <cstring>
 
 #include "render/compile_worker.h"
 #include "render/field_morph.h"
+#include "render/live_program.h"
 #include "render/render_process.h"
 #include "render/render_wire.h"
 #include "render/shared_image.h"
@@ -197,12 +197,30 @@ bool ParseLoad(const std::string& payload, LoadMessage* m) {
 
 // The scene read from its file, as the show would, and its program's source (no GL). A field morph
 // reads both scenes (*from too).
-bool AssembleLoad(const LoadMessage& m, SceneInfo* scene, SceneInfo* from, ShaderSource* src, std::string* error) {
+// A quick tier's load also gives the optimized text (*optimized, when asked for).
+bool AssembleLoad(const LoadMessage& m, SceneInfo* scene, SceneInfo* from, ShaderSource* src, std::string* error,
+                  std::string* optimized = nullptr) {
     if (!LoadScene(m.scenePath, scene, error)) return false;
     const VariantKey key{m.scenePath, m.hasEffects ? m.effects : scene->effects, m.path};
     if (!m.morphFrom.empty()) return LoadScene(m.morphFrom, from, error) && AssembleMorphProgram(*from, *scene, key, src, error);
     if (!AssembleProgram(*scene, key, src, error, m.lifted != 0)) return false;
+    if (m.quick && optimized) *optimized = src->text;
     if (m.quick) src->text = QuickTierText(src->text);
+    return true;
+}
+
+// A quick tier's load whose optimized program the program cache holds (a scene or preset shown
+// before): that one instead, no quick build and no optimized build to follow (ServerShow::Poll).
+// In `sdfvj live`'s process the same holds (LiveProgram); here it halves the processes a preset
+// change among scenes already seen starts. False: not cached (nothing done).
+bool BuildOptimizedFromCache(const ShaderSource& quick, const std::string& optimizedText, RenderPath path, Program* program,
+                             bool* ok, std::string* error) {
+    if (optimizedText.empty()) return false;
+    ShaderSource full = quick;
+    full.text = optimizedText;
+    PendingProgram pending;
+    if (!pending.BeginFromCache(full, path)) return false;
+    *ok = pending.Finish(program, error);
     return true;
 }
 
@@ -223,14 +241,7 @@ struct KeptProgram {
 // with a wait after each, so the show's frames, drawn meanwhile on the same GPU, are not queued
 // behind one whole frame's dispatch (bench reload --modes render-process+SDFVJ_SERVER_STRIPS=8).
 int FirstFrameStrips() {
-    static const int strips = [] {
-        int n = 1;
-        if (const char* e = std::getenv("SDFVJ_SERVER_STRIPS")) {
-            const char* end = e + std::strlen(e);
-            if (std::from_chars(e, end, n).ptr != end || n < 1 || n > 64) n = 1;
-        }
-        return n;
-    }();
+    static const int strips = EnvInt("SDFVJ_SERVER_STRIPS", 1, 1, 64);
     return strips;
 }
 
@@ -268,11 +279,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         // once on screen do too. Off by default: on llvmpipe (2 cores, 320x180) it cut the longest
         // frame of a character reload by 16-20 % but made the build 26-44 % slower, and did nothing
         // for midi's (docs/performance.md, "Session 20").
-        int nice = 0;
-        if (const char* e = std::getenv("SDFVJ_SERVER_NICE")) {
-            const char* end = e + std::strlen(e);
-            if (std::from_chars(e, end, nice).ptr != end || nice < 0 || nice > 19) nice = 0;
-        }
+        const int nice = EnvInt("SDFVJ_SERVER_NICE", 0, 0, 19);
         if (nice > 0) setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), nice);
     }
     SceneInfo scene;
@@ -398,9 +405,12 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         }
         auto t0 = Clock::now();
         ShaderSource src;
-        if (ok) ok = AssembleLoad(m, &scene, &from, &src, &error);
+        std::string optimizedText;
+        if (ok) ok = AssembleLoad(m, &scene, &from, &src, &error, &optimizedText);
         const bool standby = ok && kept.Matches(src, m);   // built, used and drawn here already
+        bool optimized = false;   // a quick load that shows the optimized program, from the cache
         if (standby) program = std::move(kept.program);
+        else if (ok && BuildOptimizedFromCache(src, optimizedText, m.path, program.get(), &ok, &error)) optimized = ok;
         else if (ok) ok = program->Build(src, m.path, &error);
         kept = KeptProgram{};   // a server loads once
         morph = ok && !m.morphFrom.empty();
@@ -459,6 +469,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         Put<uint32_t>(&p, (uint32_t)images);
         Put(&p, shareMs);
         Put<uint32_t>(&p, standby ? 1 : 0);
+        Put<uint32_t>(&p, optimized ? 1 : 0);
         if (!SendAll(fd, Message(1, p), ok ? target.fd : -1, ok && images == 2 ? targets[1].fd : -1)) return 0;
         if (!ok) return 1;
         for (ServerTarget& t : targets)

@@ -104,6 +104,7 @@ void ServerShow::FrameDone() {
 
 bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) {
     c.asked = false;
+    c.optimized = false;
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
         c.process = attempt == 0 ? TakeFor(c, load, error) : Spawn(error);
         if (c.process && !load.post.empty() && (!wave_.empty() || !spectrum_.empty())) c.process->SetAudio(wave_, spectrum_);   // its chain's first draws with it
@@ -165,8 +166,9 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         }
         if (!r.text.empty() && note_.empty()) note_ = r.text;
         transport_ = r.transport;
+        c.optimized = c.quick && r.optimized;
         shown_.push_back(r);
-        shownQuick_.push_back(c.quick);
+        shownQuick_.push_back(c.quick && !c.optimized);
         if (pipelined_) {   // its first frame with the inputs of now, drawn while the one on screen goes on
             c.asked = c.process->Request(lastInputs_);
             if (c.asked) return false;
@@ -176,7 +178,7 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         c.asked = false;
         fresh_ = c.process->Collect(0);
     }
-    PutOnScreen(std::move(c.process), building_, c.quick);
+    PutOnScreen(std::move(c.process), building_, c.quick && !c.optimized);
     return true;
 }
 
@@ -352,6 +354,11 @@ bool ServerShow::Poll(std::string* error) {
     }
     std::string quickError;
     const bool quick = Promote(quick_, &quickError);
+    if (quick && !onScreenQuick_) {   // the quick load showed the optimized program (from the cache): nothing follows
+        deferred_ = false;
+        Retire(std::move(next_.process));
+        next_.asked = false;
+    }
     if (deferred_ && !quick_.process) {   // the quick tier is on screen (or failed): the optimized build now
         deferred_ = false;
         std::string why;

@@ -163,6 +163,7 @@ private:
         std::unique_ptr<RenderProcess> process;
         bool quick = false;
         bool asked = false;   // pipelined: its first frame was asked for; it goes on screen when that arrives
+        bool optimized = false;   // quick, but it loaded the optimized program from the cache (Ready::optimized)
     };
     std::unique_ptr<RenderProcess> Spawn(std::string* error);
     std::unique_ptr<RenderProcess> TakeSpare(std::string* error, bool spawn = true);   // spawn: one now when none is ready

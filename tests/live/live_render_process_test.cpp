@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <sstream>
 #include <dirent.h>
@@ -287,6 +288,45 @@ TEST_CASE("live render process: a render process that stops answering for 0.8 s 
     CHECK(gap < 0.5);      // was >= 0.8 s: the show waited for the stopped process
     CHECK(during >= 3);    // the loop went on (at >= 50 ms a frame while the image was late)
     CHECK(show.Log().find("the render server on screen ended") == std::string::npos);   // not replaced: it answered in time
+    CHECK(show.Running());
+}
+
+// The number after `key` in `line` ("ran 12 ms" -> 12); -1 when it is not there.
+double NumberAfter(const std::string& line, const std::string& key) {
+    const size_t at = line.find(key);
+    if (at == std::string::npos) return -1;
+    return std::atof(line.c_str() + at + key.size());
+}
+
+TEST_CASE("live render process: a frame that waits for a stopped render process is said as a hitch, blocked, in its draw stage") {
+    const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-hitch");
+    // The old wait (SDFVJ_SERVER_LATE=0): the show's draw waits for the frame it asked for, up to 1 s.
+    LiveShow show(dir, {"--scene", "midi", "--render-process", "--hitch-ms", "300"}, "", {{"SDFVJ_SERVER_LATE", "0"}});
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForFramesAfter(0, 30, kDeadline));
+    const std::vector<pid_t> servers = Children(show.pid);
+    REQUIRE(servers.size() >= 1);
+    const size_t logAt = show.Log().size();
+    for (pid_t p : servers) kill(p, SIGSTOP);
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    for (pid_t p : servers) kill(p, SIGCONT);
+    // Said within a second of the frame's end (at most one line a second): the longest frame, how
+    // long the show's thread ran, waited for a CPU and was blocked, and its longest stages.
+    REQUIRE_LIVE(show, PollFor(kDeadline, [&] { return show.Log().find("sdfvj live: a ", logAt) != std::string::npos; }));
+    std::string line;
+    for (size_t at = show.Log().find("sdfvj live: a ", logAt); at != std::string::npos; at = show.Log().find("sdfvj live: a ", at + 1)) {
+        const std::string l = show.Log().substr(at, show.Log().find('\n', at) - at);
+        if (NumberAfter(l, "sdfvj live: a ") > NumberAfter(line, "sdfvj live: a ")) line = l;
+    }
+    INFO(line);
+    const double ms = NumberAfter(line, "sdfvj live: a "), ran = NumberAfter(line, "thread ran "),
+                 waited = NumberAfter(line, "waited "), blocked = NumberAfter(line, "was blocked ");
+    CHECK(ms >= 500);                          // the 0.7 s stop, less the frame it began in
+    CHECK(ran >= 0);
+    CHECK(ran < 0.2 * ms);                     // it did not spin while it waited
+    CHECK(waited >= 0);
+    CHECK(blocked >= 0.8 * ms - 50);           // it waited on the process's socket, off the CPU
+    CHECK(line.find("longest stages: draw ") != std::string::npos);   // the stage that waited
     CHECK(show.Running());
 }
 

@@ -535,7 +535,13 @@ TEST_CASE("render process: live's servers rebuild for a post effect's save, with
     servers.Update(key, {fs}, kW, kH, &say);
     CHECK(servers.Building());
     CHECK_FALSE(servers.Servers().BuildingQuick());
-    // The scene's own variant changed as well: its quick tier builds beside it.
+    // Then the scene's own variant (once the save's build is on screen: a newer load waits for the
+    // one in flight): its quick tier builds beside it.
+    for (int i = 0; i < 60000 && servers.Building(); ++i) {
+        servers.Update(key, {}, kW, kH, &say);
+        ::usleep(2000);
+    }
+    REQUIRE_FALSE(servers.Building());
     const VariantKey none{scene.path, EffectSet{}, RenderPath::Fragment};
     servers.Update(none, {}, kW, kH, &say);
     CHECK(servers.Servers().BuildingQuick());

@@ -1,0 +1,160 @@
+// Loads a show sends its render processes (part of test_render_process, whose main makes this
+// binary its own `render-server`): a quick tier's load whose optimized program is in the program
+// cache shows that one and nothing follows; `live`'s servers send no quick tier for a program whose
+// optimized build was on screen once the cache serves; a newer load waits for the build in flight
+// instead of ending it before it was shown (a storm of pads and presets on 2 cores: docs/reliability.md).
+#include <catch2/catch.hpp>
+#include <epoxy/gl.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "app/live_servers.h"
+#include "gl_fixture.h"
+#include "render/program_cache.h"
+#include "render/server_show.h"
+#include "render_process_fixture.h"
+#include "scene/scene.h"
+
+using namespace sdfvj;
+using namespace sdfvj::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The program cache on, in a folder of its own, for the servers spawned while it lives (they
+// inherit the environment); the fixture's "cache off" after.
+struct CacheOn {
+    fs::path folder;
+    bool binaries = false;   // the driver gives program binaries (Mesa: only with its disk cache on)
+    explicit CacheOn(const std::string& name) {
+        RequireGl();
+        folder = fs::temp_directory_path() / ("sdfvj-loads-" + name + "-" + std::to_string(::getpid()));
+        fs::remove_all(folder);
+        setenv("XDG_CACHE_HOME", folder.c_str(), 1);
+        setenv("SDFVJ_PROGRAM_CACHE", "1", 1);
+        GLint formats = 0;
+        glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
+        binaries = formats > 0;
+        if (!binaries) WARN("the driver gives no program binaries (Mesa with MESA_SHADER_CACHE_DISABLE): nothing to cache");
+    }
+    ~CacheOn() {
+        setenv("SDFVJ_PROGRAM_CACHE", "0", 1);
+        unsetenv("XDG_CACHE_HOME");
+        std::error_code ec;
+        fs::remove_all(folder, ec);
+    }
+};
+
+// Polls until nothing builds (the optimized program on screen, or a failure), up to 120 s.
+bool PollUntilSettled(ServerShow* show, std::string* error) {
+    for (int i = 0; i < 60000; ++i) {
+        show->Poll(error);
+        if (!error->empty()) return false;
+        if (!show->Building()) return true;
+        ::usleep(2000);
+    }
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("render process: a quick tier's load whose optimized program is in the program cache shows that program, and no optimized build follows", "[render_process]") {
+    CacheOn cache("quick");
+    if (!cache.binaries) return;
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    ServerShow show(FrameTransport::Shm, false, true);   // tiered
+    show.SetTiersInTurn(true);                           // the quick tier alone first, the optimized build once it is on screen
+    const ServerLoad none{scene.path, false, EffectSet{}, RenderPath::Fragment, kW, kH};
+    INFO(error);
+    REQUIRE(show.Start(none, &error));
+    CHECK(show.OnScreenQuick());   // nothing cached yet: the quick tier
+    REQUIRE(PollUntilSettled(&show, &error));
+    CHECK_FALSE(show.OnScreenQuick());   // its optimized program followed, and went to the cache
+    CHECK_FALSE(show.Shown().back().fromCache);
+    // Another variant, then the first again: its optimized program is in the cache now.
+    REQUIRE(show.Load(ServerLoad{scene.path, false, scene.effects, RenderPath::Fragment, kW, kH}, &error));
+    REQUIRE(PollUntilSettled(&show, &error));
+    REQUIRE(show.Load(none, &error));
+    CHECK(show.BuildingQuick());   // sent as a quick tier
+    REQUIRE(PollUntilChange(&show, &error));
+    const RenderProcess::Ready r = show.Shown().back();
+    CHECK(r.optimized);
+    CHECK(r.fromCache);
+    CHECK_FALSE(show.OnScreenQuick());
+    CHECK_FALSE(show.Building());   // no optimized build follows: it is on screen
+    REQUIRE(show.Frame(Inputs(scene, 1.0)));
+    CHECK(CompareImages(ReadTexture(show.Texture()), RenderScene("midi", EffectSet{}, RenderPath::Fragment, kW, kH, 1.0), 1).fractionOver == 0.0);
+}
+
+TEST_CASE("render process: live's servers send no quick tier for a program whose optimized build was on screen, once the cache serves", "[render_process]") {
+    CacheOn cache("live");
+    if (!cache.binaries) return;
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene("midi", &scene, &error));
+    const VariantKey own{scene.path, scene.effects, RenderPath::Fragment}, none{scene.path, EffectSet{}, RenderPath::Fragment};
+    LiveServers servers(true, false);   // tiered, as on NVIDIA
+    INFO(error);
+    REQUIRE(servers.Start(own, kW, kH, &error));
+    std::vector<std::string> say;
+    auto settle = [&](const VariantKey& key) {
+        for (int i = 0; i < 60000; ++i) {
+            servers.Update(key, {}, kW, kH, &say);
+            if (!servers.Building() && servers.Key() == key && !servers.Servers().OnScreenQuick()) return true;
+            ::usleep(2000);
+        }
+        return false;
+    };
+    servers.Update(none, {}, kW, kH, &say);
+    CHECK(servers.Servers().BuildingQuick());   // a program not seen: its quick tier beside it
+    REQUIRE(settle(none));
+    servers.Update(own, {}, kW, kH, &say);
+    REQUIRE(servers.Building());
+    REQUIRE(settle(own));   // from the cache (the first build put it there): the cache serves
+    REQUIRE(servers.Servers().Shown().back().fromCache);
+    servers.Update(none, {}, kW, kH, &say);
+    REQUIRE(servers.Building());
+    CHECK_FALSE(servers.Servers().BuildingQuick());   // its optimized build was on screen: no quick tier
+    REQUIRE(settle(none));
+    CHECK(servers.Servers().Shown().back().fromCache);
+}
+
+TEST_CASE("render process: a newer load waits for the build in flight, which goes on screen, then the newest is sent", "[render_process]") {
+    SceneInfo scene;
+    std::string error;
+    RequireGl();
+    REQUIRE(FindScene("midi", &scene, &error));
+    const VariantKey own{scene.path, scene.effects, RenderPath::Fragment}, none{scene.path, EffectSet{}, RenderPath::Fragment};
+    EffectSet fog;
+    fog.fog = true;
+    const VariantKey fogOnly{scene.path, fog, RenderPath::Fragment};
+    LiveServers servers(false, false);
+    INFO(error);
+    REQUIRE(servers.Start(own, kW, kH, &error));
+    std::vector<std::string> say;
+    servers.Update(none, {}, kW, kH, &say);   // sent at once: nothing in flight
+    REQUIRE(servers.Building());
+    REQUIRE(servers.Servers().BuildingLoad().effects == EffectSet{});
+    // Two more asks while it builds (a pad hit twice): the one in flight goes on, the newest waits.
+    servers.Update(own, {}, kW, kH, &say);
+    servers.Update(fogOnly, {}, kW, kH, &say);
+    CHECK(servers.Servers().BuildingLoad().effects == EffectSet{});
+    bool noneShown = false;
+    for (int i = 0; i < 60000 && !(servers.Key() == fogOnly && !servers.Building()); ++i) {
+        servers.Update(fogOnly, {}, kW, kH, &say);
+        noneShown = noneShown || servers.Key() == none;
+        ::usleep(2000);
+    }
+    CHECK(noneShown);                     // the build in flight reached the screen
+    CHECK(servers.Key() == fogOnly);      // then the newest asked for, not the one between
+    CHECK_FALSE(servers.Building());
+    int w = 0, h = 0;
+    REQUIRE(servers.Frame(Inputs(scene, 1.0), &w, &h) != 0);
+    const Image fogImage = RenderScene("midi", fog, RenderPath::Fragment, kW, kH, 1.0);
+    CHECK(CompareImages(ReadTexture(servers.Servers().Texture()), fogImage, 1).fractionOver == 0.0);
+}
