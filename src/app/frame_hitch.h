@@ -5,8 +5,8 @@
 // once a frame. A frame over the limit is kept; at most once a second the longest one kept is said
 // as one line: how long, how much of it the thread ran, waited for a CPU (a machine too loaded:
 // render processes compiling, llvmpipe's threads) or was blocked (the GPU, a render process, a
-// file), and its three longest stages. A VJ's technician reads which it was; the soak
-// (scripts/soak.sh) prints these lines around its longest gaps.
+// file), and its five longest stages (a part of a stage, `reload: post`, listed beside the
+// stage). A VJ's technician reads which it was; the soak (scripts/soak.sh) prints these lines.
 #pragma once
 
 #include <array>
@@ -31,7 +31,7 @@ public:
     // One frame's account, kept while it is the longest of the second.
     struct Account {
         double ms = 0, runMs = -1, waitMs = -1;   // wall; on a CPU and waiting for one (-1: no schedstat)
-        std::array<std::pair<const char*, double>, 3> top{};   // the longest stages, longest first
+        std::array<std::pair<const char*, double>, 5> top{};   // the longest stages, longest first
     };
     static std::string Describe(const Account& a, double limitMs, int more);
 

@@ -130,7 +130,10 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         show_.ResetLate();
     }
     const bool wasQuick = show_.OnScreenQuick();
-    if (show_.Poll(&error)) {   // a build went on screen (or a replacement of the same program)
+    Timed timedPoll(stageTimer_, "render processes: poll");
+    const bool polled = show_.Poll(&error);
+    timedPoll.Done();
+    if (polled) {   // a build went on screen (or a replacement of the same program)
         if (show_.OnScreenLoad() == lastLoad_) {
             sceneChanged_ = lastLoad_.scenePath != key_.scenePath;
             previousScene_ = scene_;
@@ -171,7 +174,10 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     SceneInfo scene;
     uint64_t hash = 0, sceneHash = 0;
     ShaderSource lifted;
-    if (!Check(want, &scene, &hash, &error, literalTier_ ? &lifted : nullptr, &sceneHash)) {   // a broken header or include: said once, nothing built
+    Timed timedCheck(stageTimer_, "render processes: check");
+    const bool checked = Check(want, &scene, &hash, &error, literalTier_ ? &lifted : nullptr, &sceneHash);
+    timedCheck.Done();
+    if (!checked) {   // a broken header or include: said once, nothing built
         if (error != error_) say->push_back(error);
         error_ = error;
         return;
@@ -208,7 +214,10 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     const bool postOnly = OnScreen() && sceneHash == sceneHash_ && sameScene == show_.OnScreenLoad();
     const bool cached = cacheServes_ && optimizedShown_.count({sceneHash, load.path}) > 0;
     lastSentAt_ = now;
-    if (!show_.Load(load, &error, !postOnly && !cached)) {
+    Timed timedLoad(stageTimer_, "render processes: load sent");
+    const bool sent = show_.Load(load, &error, !postOnly && !cached);
+    timedLoad.Done();
+    if (!sent) {
         error_ = "sdfvj live: " + error;
         say->push_back(error_);
     }

@@ -37,7 +37,7 @@ double NumberAfter(const std::string& line, const std::string& key) {
 
 }  // namespace
 
-TEST_CASE("frame hitch: a frame over the limit is said once with its three longest stages, a short one not at all, at most a line a second") {
+TEST_CASE("frame hitch: a frame over the limit is said once with its five longest stages, a short one not at all, at most a line a second") {
     FrameHitch hitch(50);
     const auto t0 = Clock::now();
     std::string line;
@@ -46,13 +46,17 @@ TEST_CASE("frame hitch: a frame over the limit is said once with its three longe
     hitch.Stage("draw", 30);
     hitch.Stage("reload", 12);
     hitch.Stage("overlay", 3);
+    hitch.Stage("reload: post", 11);
+    hitch.Stage("present", 2);
+    hitch.Stage("program", 4);
     std::this_thread::sleep_for(std::chrono::milliseconds(70));
     REQUIRE(hitch.End(Seconds(t0), &line));
     {
         INFO(line);
         CHECK(NumberAfter(line, "sdfvj live: a ") >= 70);
-        CHECK(line.find("longest stages: draw 30 ms, reload 12 ms, overlay 3 ms") != std::string::npos);
+        CHECK(line.find("longest stages: draw 30 ms, reload 12 ms, reload: post 11 ms, program 4 ms, overlay 3 ms") != std::string::npos);
         CHECK(line.find("input") == std::string::npos);
+        CHECK(line.find("present") == std::string::npos);
     }
 
     // The next long frame within the second is kept, and said with the count when the second is up.
