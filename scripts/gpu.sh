@@ -102,16 +102,6 @@ case "${1:-}" in
       sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$v\"/" "shaders/scenes/$s.glsl" > "$root/shaders/scenes/${s}_$v.glsl"
       for d in "$@"; do sed -i "/^}\*\//a #define $d" "$root/shaders/scenes/${s}_$v.glsl"; done; }
     all="midi primitives character mandelbulb field50 field150"   # every shipped scene
-    if [ "$part" = slot ]; then
-    # Issue 12, session 37: a loading render process's GPU work (first use, first frame, the
-    # hand-over) only in the gap after the show's frame (SDFVJ_SERVER_SLOT=1), against without,
-    # rounds interleaved in one run.
-    for s in midi character; do
-      timeout 280 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute \
-        --modes render-process,render-process+SDFVJ_SERVER_SLOT=1 --rounds 5 > "$out/slot_$s.txt" 2>&1 || true
-    done
-    exit
-    fi
     if [ "$part" = reload ] || [ "$part" = all ]; then
     for s in midi character; do
       timeout 100 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --rounds 3 > "$out/reload_$s.txt" 2>&1 || true

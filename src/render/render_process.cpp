@@ -144,12 +144,7 @@ std::string LoadPayload(const ServerLoad& load, FrameTransport transport, bool q
 bool RenderProcess::Load(const ServerLoad& load, FrameTransport transport, bool quick) {
     width_ = load.width;
     height_ = load.height;
-    loading_ = Send(Message(1, LoadPayload(load, transport, quick)));
-    return loading_;
-}
-
-void RenderProcess::Slot() {
-    if (loading_ && Usable()) Send(Message(7, std::string()));
+    return Send(Message(1, LoadPayload(load, transport, quick)));
 }
 
 bool RenderProcess::BuildAhead(const ServerLoad& load) { return Send(Message(4, LoadPayload(load, FrameTransport::Shm, false))); }
@@ -248,7 +243,6 @@ bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
         ready->text = "the render process ended before its program was ready";
         return true;
     }
-    loading_ = false;
     if (type != 1) {
         MarkDead();
         ready->ok = false;

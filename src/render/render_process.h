@@ -147,11 +147,6 @@ public:
     // later Load of it, in any server, is a cache load. Only before Load; one at a time: the next
     // after PollBuiltAhead said it is done. Never blocks.
     bool BuildAhead(const ServerLoad& load);
-    // A load's GPU slot: the show's frame is done, so the GPU is idle until its next one. A server
-    // loading with SDFVJ_SERVER_SLOT=1 does its GPU work (first use, first frame, the hand-over's
-    // images) only after one, or 100 ms without (render_server.cpp). Sent by ServerShow::FrameDone
-    // to the processes still loading; nothing once the answer is read.
-    void Slot();
     // True once the server answered BuildAhead (or died: then built->ok is false). Never blocks
     // with timeoutMs 0.
     bool PollBuiltAhead(BuiltAhead* built, int timeoutMs = 0);
@@ -203,7 +198,6 @@ public:
 
 private:
     bool Send(const std::string& message);
-    bool loading_ = false;   // a Load was sent, its answer not read yet (Slot)
     bool Receive(int timeoutMs);                 // reads what arrived (fds too) into inbox_/fds_
     bool TakeMessage(uint32_t* type, std::string* payload);
     bool Answer(uint32_t* type, std::string* payload, int timeoutMs);   // false: none yet, or the server is gone

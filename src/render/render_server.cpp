@@ -2,7 +2,6 @@
 // scene built, used and drawn on request, each frame handed over to the show.
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
-#include <poll.h>
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
@@ -10,7 +9,6 @@
 #include <unistd.h>
 
 #include <cstdlib>
-#include <deque>
 #include <cstring>
 
 #include "render/compile_worker.h"
@@ -320,48 +318,11 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
     const char* imagesEnv = std::getenv("SDFVJ_SERVER_IMAGES");
     const bool oneImage = imagesEnv && std::string(imagesEnv) == "1";
     bool loaded = false;
-    // SDFVJ_SERVER_SLOT=1: a load's GPU work waits for a slot (wire type 7, RenderProcess::Slot), the
-    // show's frame just done, or 100 ms; messages read meanwhile wait here for the loop.
-    static const bool slots = EnvSwitch("SDFVJ_SERVER_SLOT", false);
-    std::deque<std::pair<uint32_t, std::string>> stashed;
-    auto readFromFd = [&](uint32_t* type, std::string* payload) {
-        uint32_t h[2];
-        if (!ReadAll(fd, h, sizeof h) || h[1] > kMaxPayload) return false;
-        payload->assign(h[1], '\0');
-        *type = h[0];
-        return ReadAll(fd, payload->data(), payload->size());
-    };
-    auto readMessage = [&](uint32_t* type, std::string* payload) {
-        if (stashed.empty()) return readFromFd(type, payload);
-        *type = stashed.front().first;
-        *payload = std::move(stashed.front().second);
-        stashed.pop_front();
-        return true;
-    };
-    auto waitForSlot = [&]() {
-        if (!slots) return;
-        auto next = [&](int timeoutMs) {   // 1: a slot; 2: another message, kept; 0: none in time; -1: the show is gone
-            pollfd pfd{fd, POLLIN, 0};
-            if (::poll(&pfd, 1, timeoutMs) <= 0) return 0;
-            uint32_t type = 0;
-            std::string payload;
-            if (!readFromFd(&type, &payload)) return -1;   // the loop's next read finds out
-            if (type == 7) return 1;
-            stashed.emplace_back(type, std::move(payload));
-            return 2;
-        };
-        while (next(0) > 0) {
-        }   // the slots sent while this server compiled are stale: a new one
-        const auto t0 = Clock::now();
-        for (int left = 100; left > 0; left = 100 - (int)MsSince(t0))
-            if (next(left) != 2) return;   // a slot, none in 100 ms, or gone
-    };
     for (;;) {
         uint32_t header[2];
-        std::string payload;
-        if (!readMessage(&header[0], &payload)) return 0;
-        header[1] = (uint32_t)payload.size();
-        if (header[0] == 7) continue;   // a slot for a load already done (or not asked for)
+        if (!ReadAll(fd, header, sizeof header) || header[1] > kMaxPayload) return 0;
+        std::string payload(header[1], '\0');
+        if (!ReadAll(fd, payload.data(), payload.size())) return 0;
         if (header[0] == 2 && loaded) {
             FrameInputs in;
             if (!DecodeInputs(payload, &in)) return 3;
@@ -456,7 +417,6 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         buildMs = MsSince(t0);
         FrameInputs in;
         for (const ParamDecl& d : frameScene(in).params) in.params.emplace_back(d.name, d.defaultValue);
-        if (ok) waitForSlot();   // first use and first frame on the GPU in the gap after the show's frame
         if (ok) ok = fr.Resize(w, h, &error);
         if (ok) {
             t0 = Clock::now();
@@ -478,7 +438,6 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             buildMs += MsSince(t0);
         }
         if (ok) {
-            waitForSlot();   // the hand-over's images and first copy: the next gap
             t0 = Clock::now();
             std::string why, why2;
             if (transport != 0 && !target.ShareVulkan(w, h, &why) && !target.ExportDmaBuf(w, h, &why2))

@@ -99,8 +99,6 @@ void ServerShow::EndRetired() {
 
 void ServerShow::FrameDone() {
     EndRetired();
-    for (Candidate* c : {&next_, &quick_})   // the GPU is free until the next frame: a loading server's first GPU work now
-        if (c->process) c->process->Slot();
     if (importer_) importer_->FrameDone();   // a new server's images imported in the gap too
 }
 
