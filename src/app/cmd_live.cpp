@@ -235,7 +235,7 @@ void LiveSession::Reload() {
     }
     if (!(state_.wanted == live_.Key()) && !state_.show.isfScene) {
         Guard("reload: morph", [&] { PrepareFieldMorph(); });
-        Guard("reload: program", [&] { live_.Request(state_.wanted); });
+        Guard("reload: program asked", [&] { live_.Request(state_.wanted); });
     }
     Guard("reload: program", [&] { live_.Update(changed); });
     Guard("reload: prefetch", [&] { PrefetchReachable(Now()); });
