@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <string>
 
@@ -23,6 +24,23 @@ public:
     FrameHitch& operator=(const FrameHitch&) = delete;
 
     bool On() const { return limitMs_ > 0; }
+    // Times a scope as a stage: Done(), or the end of the scope however it ends. A null hitch: nothing.
+    class Scope {
+    public:
+        Scope(FrameHitch* hitch, const char* name) : hitch_(hitch), name_(name), t0_(std::chrono::steady_clock::now()) {}
+        ~Scope() { Done(); }
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+        void Done() {
+            if (hitch_) hitch_->Stage(name_, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count());
+            hitch_ = nullptr;
+        }
+
+    private:
+        FrameHitch* hitch_;
+        const char* name_;
+        std::chrono::steady_clock::time_point t0_;
+    };
     void Begin(double now);                       // the frame starts (the show's wall clock, s)
     void Stage(const char* name, double ms);      // a stage of it took ms
     // The frame ends at `now`: true with *line set when a hitch is due to be said.

@@ -223,11 +223,7 @@ private:
     void Watch(const std::string& folder);
     // The last-resort guard around each stage: a bug reported, never a stopped show.
     template <class Stage> void Guard(const char* name, Stage&& stage) {
-        const auto t0 = std::chrono::steady_clock::now();
-        struct Timed {   // the stage's time to --hitch-ms, however it ends
-            FrameHitch& hitch; const char* name; std::chrono::steady_clock::time_point t0;
-            ~Timed() { hitch.Stage(name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()); }
-        } timed{hitch_, name, t0};
+        FrameHitch::Scope timed(&hitch_, name);   // the stage's time to --hitch-ms, however it ends
         try {
             stage();
         } catch (const std::exception& e) {

@@ -14,7 +14,7 @@ void LiveSession::StartServers() {
     glfwGetFramebufferSize(window_, &w, &h);
     servers_ = std::make_unique<LiveServers>(LiveProgram::TieredCompileDefault(), live_.LiteralTier());
     servers_->SetImporter(importer_);   // null: this thread imports each server's images
-    servers_->SetStageTimer([this](const char* name, double ms) { hitch_.Stage(name, ms); });
+    servers_->SetHitch(&hitch_);
     // On a GPU a spare holds the program on screen ready (its binary load's first draw took 90-300 ms
     // on NVIDIA); on llvmpipe it would compile it again beside the frames.
     servers_->SetStandby(EnvSwitch("SDFVJ_STANDBY", !softwareGl_));

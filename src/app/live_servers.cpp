@@ -130,7 +130,7 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
         show_.ResetLate();
     }
     const bool wasQuick = show_.OnScreenQuick();
-    Timed timedPoll(stageTimer_, "render processes: poll");
+    FrameHitch::Scope timedPoll(hitch_, "render processes: poll");
     const bool polled = show_.Poll(&error);
     timedPoll.Done();
     if (polled) {   // a build went on screen (or a replacement of the same program)
@@ -174,7 +174,7 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     SceneInfo scene;
     uint64_t hash = 0, sceneHash = 0;
     ShaderSource lifted;
-    Timed timedCheck(stageTimer_, "render processes: check");
+    FrameHitch::Scope timedCheck(hitch_, "render processes: check");
     const bool checked = Check(want, &scene, &hash, &error, literalTier_ ? &lifted : nullptr, &sceneHash);
     timedCheck.Done();
     if (!checked) {   // a broken header or include: said once, nothing built
@@ -214,7 +214,7 @@ void LiveServers::Update(const VariantKey& want, const std::vector<std::string>&
     const bool postOnly = OnScreen() && sceneHash == sceneHash_ && sameScene == show_.OnScreenLoad();
     const bool cached = cacheServes_ && optimizedShown_.count({sceneHash, load.path}) > 0;
     lastSentAt_ = now;
-    Timed timedLoad(stageTimer_, "render processes: load sent");
+    FrameHitch::Scope timedLoad(hitch_, "render processes: load sent");
     const bool sent = show_.Load(load, &error, !postOnly && !cached);
     timedLoad.Done();
     if (!sent) {

@@ -15,13 +15,13 @@
 // Render thread only.
 #pragma once
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "app/frame_hitch.h"
 #include "render/server_show.h"
 
 namespace sdfvj {
@@ -41,8 +41,8 @@ public:
     bool Start(const VariantKey& key, int w, int h, std::string* error);
     // The thread that imports each server's frame images (ServerShow::SetImporter). Before Start.
     void SetImporter(ImportThread* importer) { show_.SetImporter(importer); }
-    // Update's parts (poll, check, load sent) timed to `timer` (the show's FrameHitch::Stage).
-    void SetStageTimer(std::function<void(const char*, double)> timer) { stageTimer_ = std::move(timer); }
+    // Update's parts (poll, check, load sent) timed as stages of the show's --hitch-ms.
+    void SetHitch(FrameHitch* hitch) { hitch_ = hitch; }
     // Each frame: the variant the show wants, the files saved since the last frame and the render
     // size. Lines for the show's report go to *say (a build that failed, a server replaced, a
     // program on screen).
@@ -125,19 +125,7 @@ private:
     bool cacheServes_ = false;
     bool loadDeferred_ = false;   // a newer load waits for the build in flight (WaitForBuild)
     bool WaitForBuild(std::chrono::steady_clock::time_point now) const;
-    // A part of Update timed for the show's --hitch-ms (SetStageTimer); Done() or the end of scope.
-    struct Timed {
-        const std::function<void(const char*, double)>& to;
-        const char* name;
-        std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-        bool done = false;
-        void Done() {
-            if (!done && to) to(name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-            done = true;
-        }
-        ~Timed() { Done(); }
-    };
-    std::function<void(const char*, double)> stageTimer_;
+    FrameHitch* hitch_ = nullptr;   // Update's parts timed as stages (SetHitch)
     std::chrono::steady_clock::time_point lastSentAt_{};
     std::string error_;
 };
