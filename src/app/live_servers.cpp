@@ -106,7 +106,7 @@ bool LiveServers::Start(const VariantKey& key, int w, int h, std::string* error)
 }
 
 // A newer load waits for the build in flight (nothing of it on screen yet) to finish, at most
-// kLoadWait after it was sent; then the newest variant asked for is sent. Each load takes a
+// 1 s (SDFVJ_LOAD_WAIT_MS) after it was sent; then the newest variant asked for is sent. Each load takes a
 // process (started, its GL and Vulkan set up, its program loaded and first used): a storm of
 // effect pads and presets (the soak's 40 a second) started 7 a second on llvmpipe, each one
 // superseding the last before it was done, so none reached the screen while they took more
