@@ -3,7 +3,7 @@
 #
 #   scripts/soak.sh [--quick] [--minutes N] [--bin PATH] [--driver PATH] [--keep]
 #                   [--only osc|midi|saves] [--rss-limit-mb N] [--rss-late-limit-mb N] [--gap-limit-ms N] [--seed N]
-#                   [--render-process] [--post CHAIN] [--live-arg ARG ...]
+#                   [--render-process] [--post CHAIN] [--live-arg ARG ...] [--driver-cache cold|as-set]
 #
 #   --quick        at most 45 s in all (CI, `ctest -L soak`): a 15 s storm
 #   --minutes N    length of the storm (default 10)
@@ -18,6 +18,10 @@
 #                  SDFVJ_POST_IN_SERVER=1 has the render processes build and draw it (and its saves)
 #   --live-arg ARG one more argument for `sdfvj live` (repeatable), e.g. the frame budget moving
 #                  the render scale under the storm: --live-arg --frame-budget --live-arg 20
+#   --driver-cache cold (default): Mesa's shader disk cache in an empty folder of the work folder
+#                  (MESA_SHADER_CACHE_DIR), so llvmpipe compiles every program's pixel code during the
+#                  soak, as at a first show on a new machine; as-set: the cache as the environment has it
+#                  (warmed by earlier runs, it hides a first draw that compiles on the show's thread)
 #
 # It runs `sdfvj live --preset demo --post bloom,feedback_trails (--post) --audio system:capture_1` at 320x180 in an Xvfb display on Mesa llvmpipe, with
 # SDFVJ_ROOT at a temporary COPY of shaders/, presets/ and mappings/ (the repository's files are
@@ -39,6 +43,7 @@ set -u
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
 quick=0 minutes=10 bin="" driver="" keep=0 only="" rssLimit="" rssLateLimit="" gapLimit=250 seed=$$ liveExtra=() post=bloom,feedback_trails
+driverCache=cold
 while [ $# -gt 0 ]; do
     case $1 in
     --quick) quick=1 ;;
@@ -54,12 +59,14 @@ while [ $# -gt 0 ]; do
     --render-process) liveExtra+=(--render-process) ;;
     --post) post=${2:?--post needs a chain, e.g. bloom}; shift ;;
     --live-arg) liveExtra+=("${2?--live-arg needs an argument}"); shift ;;
+    --driver-cache) driverCache=${2:?--driver-cache needs cold or as-set}; shift ;;
     -h|--help) sed -n '2,/^set -u/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "soak: unknown argument '$1' (see --help)"; exit 2 ;;
     esac
     shift
 done
 case $minutes in ''|*[!0-9.]*) echo "soak: --minutes wants a number"; exit 2 ;; esac
+case $driverCache in cold|as-set) ;; *) echo "soak: --driver-cache wants cold or as-set, not '$driverCache'"; exit 2 ;; esac
 
 if [ $quick = 1 ]; then storm=15; else storm=$(awk -v m="$minutes" 'BEGIN { printf "%d", m * 60 }'); fi
 [ "$storm" -ge 5 ] || storm=5
@@ -171,6 +178,11 @@ fi
 export ASAN_OPTIONS UBSAN_OPTIONS LSAN_OPTIONS
 export SDFVJ_ROOT=$work/root
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe
+if [ $driverCache = cold ]; then
+  mkdir -p "$work/mesa-cache"
+  export MESA_SHADER_CACHE_DIR=$work/mesa-cache
+fi
+echo "soak: Mesa's shader disk cache: ${MESA_SHADER_CACHE_DIR:-as set} ($driverCache)"
 echo "soak: $bin (sanitizer build: $([ $sanitized = 1 ] && echo yes || echo no)), storm ${storm} s, display $display, JACK $JACK_DEFAULT_SERVER, work $work"
 (cd "$work" && DISPLAY=$display LD_PRELOAD=$sdfvj_preload exec "$bin" live --preset demo --post "$post" --audio system:capture_1 --size 320x180 --path fragment --midi soak-controller \
     --osc-port 0 --log-params "$work/params.log" --record "$work/take.mid" --seconds "$liveSeconds" "${liveExtra[@]}") \

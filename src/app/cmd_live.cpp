@@ -367,17 +367,25 @@ void LiveSession::DrawScene(double now) {
         DrawServerScene(now, rw, rh);
         return;
     }
-    if (fbw_ > 0 && fbh_ > 0 && live_.Current()) DrawScalesAhead(now);
+    if (fbw_ > 0 && fbh_ > 0 && live_.Current()) {
+        FrameHitch::Scope timed(&hitch_, "draw: scales ahead");
+        DrawScalesAhead(now);
+    }
     if (fbw_ <= 0 || fbh_ <= 0 || !live_.Current() || !renderer_.Resize(rw, rh, &error)) return;
     in_.time = now;
     in_.frame = frame_++;
     if (DrawFieldFade(now, rw, rh)) return;
-    renderer_.Draw(*live_.Current(), live_.Scene(), in_);
+    {
+        FrameHitch::Scope timed(&hitch_, "draw: scene");
+        renderer_.Draw(*live_.Current(), live_.Scene(), in_);
+    }
     const double t = fade_.program ? (now - fade_.start) / fade_.seconds : 1.0;
     if (t < 1.0 && fadeRenderer_.Resize(rw, rh, &error)) {
         FrameInputs old = in_;
         old.params = fade_.params;
+        FrameHitch::Scope timed(&hitch_, "draw: scene fading out");
         fadeRenderer_.Draw(*fade_.program, fade_.scene, old);
+        timed.Done();
         const bool post = HasPost() && postInput_.Resize(rw, rh, &error);
         crossfade_.Draw(fadeRenderer_.Texture(), renderer_.Texture(), Ease(fade_.easing, t),
                         post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);

@@ -104,7 +104,9 @@ public:
         // variant switch does not stall frames. Elsewhere the driver's parallel compile is used.
         // Where the compile process hands over binaries (NVIDIA), the same hidden window's thread
         // is the loader: it loads each binary and uses it once, so the driver's finishing of a
-        // loaded program at its first use (150-600 ms) never lands in a frame (issue 12).
+        // loaded program at its first use (150-600 ms) never lands in a frame (issue 12); on
+        // llvmpipe it loads the program cache's binaries and draws each once, so its JIT code is in
+        // Mesa's disk cache before the show's first draw (LiveProgram::LoaderDefault).
         const bool loader = LiveProgram::LoaderDefault();
         if (PreferCompileThread() || loader) {
             glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);

@@ -69,6 +69,7 @@ bool LiveSession::DrawFieldFade(double now, int rw, int rh) {
         fade_ = Fade{};
         return false;   // done: the new scene alone from now on
     }
+    FrameHitch::Scope timed(&hitch_, "draw: field morph");
     if (fade_.waiting) {
         FrameInputs old = in_;
         old.params = fade_.params;
@@ -76,6 +77,7 @@ bool LiveSession::DrawFieldFade(double now, int rw, int rh) {
     } else {
         fieldMorph_.Draw(renderer_, in_, fade_.params, Ease(fade_.easing, t));
     }
+    timed.Done();
     PresentRenderer(rw, rh, now);
     return true;
 }

@@ -71,6 +71,10 @@ void LiveSession::UpdatePost() {
         if (postContexts_ && !files.empty() && !(env && std::string(env) == "0")) own = postContexts_();
         post_ = own[0].makeCurrent ? std::make_unique<IsfHost>(own) : std::make_unique<IsfHost>();
         post_->SetKeptSizes(keepSizes_);
+        // The scene's frame (FrameRenderer: RGBA8; an ISF generator has none) and the audio
+        // input's textures, from the first build on.
+        post_->SetFrameHint(state_.show.isfScene ? 0 : GL_RGBA8, audio_ ? (int)audio_->Textures().waveform.size() : 0,
+                            audio_ ? (int)audio_->Textures().spectrum.size() : 0);
         if (!files.empty() && !post_->OwnContexts())
             state_.report.Say("sdfvj live: no context of its own for the post chain; its builds hold a frame");
     }
@@ -78,7 +82,10 @@ void LiveSession::UpdatePost() {
     postSay_ = postShown_.empty() ? "" : "post: " + postShown_;
     if (postInServers_ && servers_ && !files.empty())
         state_.report.Say("post: " + postShown_ + " has feedback (a PERSISTENT target): drawn in this process, where it outlives the render processes' swaps");
-    post_->Request(std::move(files), Scaled(fbw_), Scaled(fbh_));
+    // Before the first frame fbw_ is not known yet: the window's size, as that frame will have it.
+    int ww = fbw_, wh = fbh_;
+    if (ww <= 0 || wh <= 0) glfwGetFramebufferSize(window_, &ww, &wh);
+    post_->Request(std::move(files), Scaled(ww), Scaled(wh));
 }
 
 // --render-process: a chain without feedback is drawn by the servers. One with a PERSISTENT target
@@ -209,7 +216,9 @@ bool LiveSession::DrawPost(unsigned texture, int w, int h, double now) {
         in.audioWaveform = audio_->Textures().waveform;
         in.audioSpectrum = audio_->Textures().spectrum;
     }
+    FrameHitch::Scope timed(&hitch_, "draw: post chain");
     const unsigned out = post_->Render(texture, w, h, in);
+    timed.Done();
     crossfade_.Draw(out, out, 0.0f, 0, fbw_, fbh_);   // the chain's output, scaled to the window
     return true;
 }

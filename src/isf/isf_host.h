@@ -99,6 +99,17 @@ public:
     // SDFVJ_POST_SPARE=0|1 forces. Before the first Request.
     void SetSpareTargets(bool on) { spare_ = on; }
     bool SpareTargets() const { return spare_; }
+    // What the show's frames will hand the chain, for the builds before the first frame: the
+    // input's internal format (GL_RGBA8, say; 0: none) and the audio textures' lengths (0: no
+    // audio). A build's first draw is drawn as the last frame was; before any frame, as this says
+    // (and at Request's size). On llvmpipe a draw with another input, another kind of size (a
+    // power of two or not) or other audio textures is another variant of the program, compiled at
+    // that draw: the show's first frame with the chain paid it (450 ms in the soak's first second).
+    void SetFrameHint(unsigned inputFormat, int waveSamples, int spectrumBins) {
+        if (!lastFormat_) lastFormat_ = inputFormat;
+        if (!lastWave_) lastWave_ = waveSamples;
+        if (!lastSpectrum_) lastSpectrum_ = spectrumBins;
+    }
     // Every chain keeps the render targets of its last `n` other sizes (IsfEffect::SetKeptSizes).
     // Before the first Request.
     void SetKeptSizes(int n) { keepSizes_ = n; }

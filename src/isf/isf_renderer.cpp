@@ -403,15 +403,21 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
         const std::vector<float> row = IsfAudioRow(values, i.maxSamples);
         audioOf[i.name] = UploadAudioRow(&tex, &width, row, isWave);
     }
+    auto side = [&](const std::string& expr, int full) {
+        double v = full;
+        std::string why;
+        if (!expr.empty() && !EvalIsfExpression(expr, vars, &v, &why)) v = full;   // checked at load; an input made it inf
+        return (int)std::clamp(std::round(v), 1.0, double(kMaxSide));
+    };
+    // Every pass's target first: a pass that reads a later pass's target (last frame's) reads it at
+    // its size, never the 1x1 black stand-in, so a chain's first draw (a build's) has the textures
+    // every later frame has. On llvmpipe another texture size is another compile of the pass.
+    for (const IsfPass& pass : f.passes)
+        s.buffers[pass.target].Ensure(side(pass.widthExpr, w), side(pass.heightExpr, h), pass.floatTarget, s.pool,
+                                      s.keepSizes, pass.persistent);
     unsigned output = input;
     for (size_t pi = 0; pi < f.passes.size(); ++pi) {
         const IsfPass& pass = f.passes[pi];
-        auto side = [&](const std::string& expr, int full) {
-            double v = full;
-            std::string why;
-            if (!expr.empty() && !EvalIsfExpression(expr, vars, &v, &why)) v = full;   // checked at load; an input made it inf
-            return (int)std::clamp(std::round(v), 1.0, double(kMaxSide));
-        };
         const int pw = side(pass.widthExpr, w), ph = side(pass.heightExpr, h);
         Buffer& b = s.buffers[pass.target];
         b.Ensure(pw, ph, pass.floatTarget, s.pool, s.keepSizes, pass.persistent);

@@ -50,10 +50,14 @@ bool LiveProgram::TieredCompileDefault() { return EnvSwitch("SDFVJ_TIERED", Vend
 bool LiveProgram::ProcessCompileDefault() { return EnvSwitch("SDFVJ_COMPILE_PROCESS", VendorIsNvidia()); }
 
 bool LiveProgram::LoaderDefault() {
-    // Off unless asked for: on the H200 the driver finishes a loaded program once per CONTEXT
-    // (a use on the loader's shared context does not spare the render context's first use, and the
-    // loader's own finishing delays save -> screen by 120-570 ms): docs/performance.md.
-    return EnvSwitch("SDFVJ_LOADER", false);
+    // On a GPU off unless asked for: on the H200 the driver finishes a loaded program once per
+    // CONTEXT (a use on the loader's shared context does not spare the render context's first use,
+    // and the loader's own finishing delays save -> screen by 120-570 ms): docs/performance.md.
+    // On llvmpipe on: a program the program cache serves (an effect pad's variant built in an
+    // earlier run) was JITted by the show's first draw (320-580 ms, a frozen frame in the soak with
+    // Mesa's disk cache cold); the loader's draw puts that code in Mesa's disk cache, where the
+    // show's first draw reads it (as it does for the compile thread's builds).
+    return EnvSwitch("SDFVJ_LOADER", IsSoftwareRenderer());
 }
 
 void LiveProgram::SetLiteralTier(bool on) { literalTier_ = EnvSwitch("SDFVJ_LITERAL_TIER", on); }

@@ -74,6 +74,7 @@ public:
     // on a loader thread before they go on screen (PendingProgram::SetLoader): where the compile
     // process is used: only with SDFVJ_LOADER=1 (measured on the H200: NVIDIA finishes a loaded
     // program per context, so the loader's use does not spare the render context's; off by default).
+    // On llvmpipe on by default, for the program cache's loads (SDFVJ_LOADER=0: off).
     static bool LoaderDefault();
     // The literal tier (off by default; `live` and `bench reload` turn it on): once the variant on
     // screen is built, the same scene with its float literals as uniforms (literals.h) is built

@@ -307,3 +307,19 @@ TEST_CASE("isf chain: stages run in order, a chain that fails to load keeps the 
     CHECK(chain.Size() == 2);
     CHECK(chain.Params().size() == 1 + 3 + 3 * 4);   // mode; exposure, contrast, saturation; lift, gamma, gain x4
 }
+
+// A chain's first draw is the build's (IsfHost draws each new chain once before the show does):
+// it must bind what every later frame binds. On llvmpipe a texture of another size (a power of
+// two or not) is another compile of the pass, which the show's first frame then paid (400-470 ms
+// in the soak). So every pass's target is made before the first pass draws.
+TEST_CASE("isf render: on the first frame a pass that reads a later pass's target reads it at its size", "[isf][gl]") {
+    RequireGl();
+    IsfEffect e;
+    LoadOrFail(e, TestFile("reads_later_pass.fs"));
+    for (int frame = 0; frame < 2; ++frame) {
+        INFO("frame " << frame);
+        const Img img = ReadBack(e.Render(0, 64, 40, {}), 64, 40);
+        CHECK(img.At(20, 20, 0) == 16);   // `second` is 64/4 x 40/4, not a 1x1 stand-in
+        CHECK(img.At(20, 20, 1) == 10);
+    }
+}
