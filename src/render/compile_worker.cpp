@@ -1,5 +1,9 @@
 #include "render/compile_worker.h"
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -160,11 +164,16 @@ void CompileWorker::Forget(uint64_t ticket) {
     }
 }
 
+void CompileWorker::TrimSoon() {
+    if (trimAfterJobs_.load()) trimAt_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(kTrimDelayMs);
+}
+
 void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> release) {
     // Compiles yield the CPU to the frame: on llvmpipe both share the same few cores, and a
     // stream of reloads or effect toggles must not starve drawing (the stage soak measured
     // frame gaps of over a second while compiles ran at the render thread's priority).
     setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), 10);
+    lastTrim_ = std::chrono::steady_clock::now();
     const bool ok = bind();
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -190,7 +199,24 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
                     ++it;
                 }
             }
-            wake_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
+            auto ready = [&] { return stop_ || !jobs_.empty(); };
+            if (trimAt_) {
+                // A trim is due once no job came for kTrimDelayMs, or between two jobs when the last
+                // trim is kTrimEveryMs old (a storm of toggles never leaves the queue that long).
+                const auto due = std::min(*trimAt_, lastTrim_ + std::chrono::milliseconds(kTrimEveryMs));
+                if (std::chrono::steady_clock::now() >= due || !wake_.wait_until(lock, due, ready)) {
+                    trimAt_.reset();
+                    lock.unlock();
+#if defined(__GLIBC__)
+                    malloc_trim(0);
+#endif
+                    ++trims_;
+                    lastTrim_ = std::chrono::steady_clock::now();
+                    continue;
+                }
+            } else {
+                wake_.wait(lock, ready);
+            }
             if (stop_) {
                 // Programs linked here that nobody took: deleted on this context, then the
                 // context is let go before the thread ends.
@@ -226,6 +252,7 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
             done.buildMs = elapsedMs();
             std::lock_guard<std::mutex> lock(mutex_);
             done_[job.ticket] = std::move(done);
+            TrimSoon();
             continue;
         }
         unsigned prog = CompileLinkHere(job.text, job.path, &log, handOverBinary_ || job.store);
@@ -258,6 +285,7 @@ void CompileWorker::Loop(std::function<bool()> bind, std::function<void()> relea
         done.log = log;
         std::lock_guard<std::mutex> lock(mutex_);
         done_[job.ticket] = std::move(done);
+        TrimSoon();
     }
 }
 

@@ -10,12 +10,15 @@
 // Program objects are shared between the two contexts; the render thread adopts the finished
 // program name (Program::Adopt). Thread-safe; one job at a time, in order.
 #pragma once
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 #include <thread>
@@ -72,6 +75,16 @@ public:
     bool Poll(uint64_t ticket, Result* result);
     // The caller no longer wants this ticket; its program is deleted when done.
     void Forget(uint64_t ticket);
+    // After its jobs, once none came for kTrimDelayMs, the heap's freed pages go back to the system
+    // (glibc malloc_trim, every arena), on this thread: a compile frees tens of MB that glibc would
+    // keep mapped. Not on the render thread, where the trim held the frame that put a program on
+    // screen 8-22 ms (llvmpipe, `bench reload --modes worker`); and not beside the render thread's
+    // first draw of the program it handed over, which a trim at once slowed 2-4x (the draw took
+    // its memory back from the system, page by page). Under a stream of jobs, at least every
+    // kTrimEveryMs, between two of them. Off by default.
+    void SetTrimAfterJobs(bool on) { trimAfterJobs_ = on; }
+    bool TrimAfterJobs() const { return trimAfterJobs_.load(); }
+    int Trims() const { return trims_.load(); }   // trims run so far
 
 private:
     struct Job {
@@ -86,6 +99,8 @@ private:
     };
     using Done = Result;
     void Loop(std::function<bool()> bind, std::function<void()> release);
+    void TrimSoon();   // mutex_ held
+    static constexpr int kTrimDelayMs = 500, kTrimEveryMs = 5000;
 
     std::mutex mutex_;
     std::condition_variable wake_, started_;
@@ -95,6 +110,10 @@ private:
     uint64_t next_ = 1;
     int state_ = 0;          // 0 starting, 1 running, -1 no context
     bool stop_ = false;
+    std::atomic<bool> trimAfterJobs_{false};
+    std::atomic<int> trims_{0};
+    std::optional<std::chrono::steady_clock::time_point> trimAt_;   // a trim due then (mutex_)
+    std::chrono::steady_clock::time_point lastTrim_;                 // this thread's
     bool handOverBinary_ = false;
     std::thread thread_;
 };

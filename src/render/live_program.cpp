@@ -302,12 +302,16 @@ void LiveProgram::Trim() {
 #if defined(__GLIBC__)
     // A compile on llvmpipe (LLVM) or in the driver allocates and frees tens of MB; glibc keeps
     // freed pages of every arena mapped, so a show's RSS would climb with each compile. Measured
-    // in scripts/soak.sh (docs/reliability.md).
+    // in scripts/soak.sh (docs/reliability.md). Where the compile thread trims after each of its
+    // jobs (CompileWorker::SetTrimAfterJobs: the trim held the frame that put a program on screen
+    // 8-22 ms on llvmpipe) not here.
     static const bool off = [] {
         const char* env = std::getenv("SDFVJ_MALLOC_TRIM");
         return env && std::strcmp(env, "0") == 0;
     }();
-    if (!off) malloc_trim(0);
+    CompileWorker* worker = PendingProgram::Worker() ? PendingProgram::Worker() : PendingProgram::Loader();
+    if (worker && !off) worker->SetTrimAfterJobs(true);
+    if (!off && !(worker && worker->TrimAfterJobs())) malloc_trim(0);
 #endif
 }
 

@@ -91,6 +91,7 @@ CompileWorker* g_loader = nullptr;   // likewise; its context shares objects wit
 void PendingProgram::SetWorker(CompileWorker* worker) { g_worker = worker; }
 void PendingProgram::SetLoader(CompileWorker* loader) { g_loader = loader; }
 CompileWorker* PendingProgram::Loader() { return g_loader; }
+CompileWorker* PendingProgram::Worker() { return g_worker; }
 
 bool PendingProgram::StartLoad(unsigned format, std::vector<uint8_t> binary) const {
     loadDone_ = false;

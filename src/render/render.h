@@ -178,6 +178,7 @@ public:
     // Binaries the driver refuses there are built again the way they would be without a loader.
     static void SetLoader(CompileWorker* loader);
     static CompileWorker* Loader();
+    static CompileWorker* Worker();
     // With a usable compile process (compile_process.h), Begin() sends the compile there (before
     // any worker); Finish() loads its binary, or compiles here when the process cannot serve.
     void SetProcess(CompileProcess* process) { process_ = process; }
