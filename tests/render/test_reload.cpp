@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include "gl_fixture.h"
@@ -19,6 +20,27 @@ using namespace sdfvj::test;
 namespace fs = std::filesystem;
 
 namespace {
+
+// A compile thread on a context of its own, set as PendingProgram's worker while it lives.
+// binary = false: that context shares programs with the test's; true: the worker hands over
+// program binaries instead.
+struct WorkerOn {
+    HeadlessContext shared;
+    std::unique_ptr<CompileWorker> worker;
+    explicit WorkerOn(bool binary = false) {
+        RequireGl();
+        std::string err;
+        REQUIRE(shared.CreateShared(*TestContext(), &err, !binary));
+        worker = std::make_unique<CompileWorker>([this] { return shared.MakeCurrent(); }, binary,
+                                                 [this] { shared.ReleaseCurrent(); });
+        REQUIRE(worker->Ok());
+        PendingProgram::SetWorker(worker.get());
+    }
+    ~WorkerOn() {
+        PendingProgram::SetWorker(nullptr);
+        worker.reset();   // before the context it uses
+    }
+};
 
 struct ReloadRig {
     fs::path root;
@@ -215,15 +237,7 @@ TEST_CASE("variant: a library save while an effect toggle compiles keeps the pro
     // Issue 10, defect 3: the reload evicted every owner of the saved file except the variant
     // asked for, so the program still on screen was deleted while the toggled variant compiled
     // on the compile thread (as in `live` on Mesa), and the next draw used freed memory.
-    RequireGl();
-    HeadlessContext shared;
-    std::string err;
-    REQUIRE(shared.CreateShared(*TestContext(), &err, true));
-    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, false, [&shared] { shared.ReleaseCurrent(); });
-    REQUIRE(worker.Ok());
-    PendingProgram::SetWorker(&worker);
-    struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
-
+    WorkerOn on;
     ReloadRig rig("toggle-save");
     Image before = rig.Frame();
     const unsigned onScreen = rig.live.Current()->Id();
@@ -261,15 +275,7 @@ namespace {
 // binary = false: the worker's context shares programs with the test's context; true: it has
 // its own context and hands over program binaries.
 void WorkerReload(bool binary) {
-    RequireGl();
-    HeadlessContext shared;
-    std::string err;
-    REQUIRE(shared.CreateShared(*TestContext(), &err, !binary));
-    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, binary, [&shared] { shared.ReleaseCurrent(); });
-    REQUIRE(worker.Ok());
-    PendingProgram::SetWorker(&worker);
-    struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
-
+    WorkerOn on(binary);
     ReloadRig rig(binary ? "worker-binary" : "worker");
     Image good = rig.Frame(), after;
     rig.Save("shaders/scenes/reloadme.glsl", ReloadRig::SceneText("vec3(0.1f, 0.3f, 0.9f)"));
@@ -307,16 +313,9 @@ TEST_CASE("reload: a compile thread with its own context hands over program bina
 // thread it runs there, once no compile came for half a second (not beside the frame that first
 // draws the new program, which it slowed).
 TEST_CASE("reload: on a compile thread the heap is trimmed there, after the build, while frames go on", "[reload]") {
-    RequireGl();
-    HeadlessContext shared;
-    std::string err;
-    REQUIRE(shared.CreateShared(*TestContext(), &err, true));
-    CompileWorker worker([&shared] { return shared.MakeCurrent(); }, false, [&shared] { shared.ReleaseCurrent(); });
-    REQUIRE(worker.Ok());
+    WorkerOn on;
+    CompileWorker& worker = *on.worker;
     CHECK_FALSE(worker.TrimAfterJobs());
-    PendingProgram::SetWorker(&worker);
-    struct Unset { ~Unset() { PendingProgram::SetWorker(nullptr); } } unset;
-
     ReloadRig rig("worker-trim");
     CHECK(worker.TrimAfterJobs());   // LiveProgram hands its trims to the compile thread
     Image good = rig.Frame(), after;
