@@ -8,6 +8,8 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "isf/isf.h"
 #include "render/gl_stages.h"
@@ -412,13 +414,17 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
     // Every pass's target first: a pass that reads a later pass's target (last frame's) reads it at
     // its size, never the 1x1 black stand-in, so a chain's first draw (a build's) has the textures
     // every later frame has. On llvmpipe another texture size is another compile of the pass.
-    for (const IsfPass& pass : f.passes)
-        s.buffers[pass.target].Ensure(side(pass.widthExpr, w), side(pass.heightExpr, h), pass.floatTarget, s.pool,
-                                      s.keepSizes, pass.persistent);
+    // Each pass's size is evaluated once a frame, here.
+    std::vector<std::pair<int, int>> sizes;
+    sizes.reserve(f.passes.size());
+    for (const IsfPass& pass : f.passes) {
+        const auto& [pw, ph] = sizes.emplace_back(side(pass.widthExpr, w), side(pass.heightExpr, h));
+        s.buffers[pass.target].Ensure(pw, ph, pass.floatTarget, s.pool, s.keepSizes, pass.persistent);
+    }
     unsigned output = input;
     for (size_t pi = 0; pi < f.passes.size(); ++pi) {
         const IsfPass& pass = f.passes[pi];
-        const int pw = side(pass.widthExpr, w), ph = side(pass.heightExpr, h);
+        const auto [pw, ph] = sizes[pi];
         Buffer& b = s.buffers[pass.target];
         b.Ensure(pw, ph, pass.floatTarget, s.pool, s.keepSizes, pass.persistent);
         glBindFramebuffer(GL_FRAMEBUFFER, b.fbo[b.front ^ 1]);

@@ -309,9 +309,11 @@ void LiveProgram::Trim() {
         const char* env = std::getenv("SDFVJ_MALLOC_TRIM");
         return env && std::strcmp(env, "0") == 0;
     }();
-    CompileWorker* worker = PendingProgram::Worker() ? PendingProgram::Worker() : PendingProgram::Loader();
-    if (worker && !off) worker->SetTrimAfterJobs(true);
-    if (!off && !(worker && worker->TrimAfterJobs())) malloc_trim(0);
+    if (off) return;
+    if (CompileWorker* worker = PendingProgram::Worker() ? PendingProgram::Worker() : PendingProgram::Loader())
+        worker->SetTrimAfterJobs(true);
+    else
+        malloc_trim(0);
 #endif
 }
 
