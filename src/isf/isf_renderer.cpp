@@ -388,7 +388,7 @@ unsigned IsfEffect::Render(unsigned input, int w, int h, const IsfFrameInputs& i
     glUseProgram(s.program);
     if (!s.vao) glCreateVertexArrays(1, &s.vao);   // drawn first in another context
     glBindVertexArray(s.vao);
-    glDisable(GL_BLEND);
+    SetOverwriteBlend();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);

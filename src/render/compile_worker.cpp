@@ -87,7 +87,11 @@ void PrimeProgram(unsigned prog, RenderPath path, bool floatImage) {
         glGenVertexArrays(1, &vao);
         glBindVertexArray(vao);
         glViewport(0, 0, 1, 1);
+        GLboolean blend = glIsEnabled(GL_BLEND);   // put back below, as the rest
+        SetOverwriteBlend();   // the state every draw of it has (llvmpipe compiles per state)
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (blend) glEnable(GL_BLEND);
+        else glDisable(GL_BLEND);
     }
     glFinish();
     if (vao) glDeleteVertexArrays(1, &vao);

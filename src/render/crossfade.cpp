@@ -55,7 +55,7 @@ void Crossfade::Draw(unsigned fromTexture, unsigned toTexture, float t, unsigned
     if (!program_) return;
     glBindFramebuffer(GL_FRAMEBUFFER, targetFramebuffer);
     glViewport(0, 0, width, height);
-    glDisable(GL_BLEND);
+    SetOverwriteBlend();
     glUseProgram(program_);
     glUniform1f(mixLocation_, t);
     glBindTextureUnit(0, fromTexture);

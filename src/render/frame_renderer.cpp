@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "render/gl_stages.h"
 #include "render/gpu_timer.h"
 #include "render/kept_sizes.h"
 #include "render/render.h"
@@ -208,7 +209,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
         glViewport(0, 0, width_, height_);
         glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
+        SetOverwriteBlend();
         glBindVertexArray(vao_);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }

@@ -2,6 +2,11 @@
 
 #include <epoxy/gl.h>
 
+#include <atomic>
+
+#include "render/live_program.h"
+#include "render/render.h"
+
 namespace sdfvj {
 
 std::string ShaderLog(unsigned shader) {
@@ -43,6 +48,34 @@ unsigned LinkStages(std::initializer_list<unsigned> stages, std::string* rawLog)
     *rawLog = ProgramLog(p);
     glDeleteProgram(p);
     return 0;
+}
+
+namespace {
+std::atomic<int> overwriteBlendOverride{-1};
+}
+
+void SetOverwriteBlendOverride(int mode) { overwriteBlendOverride.store(mode < 0 ? -1 : mode > 0 ? 1 : 0); }
+
+bool OverwriteBlendOn() {
+    if (const int o = overwriteBlendOverride.load(); o >= 0) return o == 1;
+    static std::atomic<int> on{-1};   // -1: not decided yet (no context was current)
+    int v = on.load();
+    if (v < 0) {
+        if (!glGetString(GL_RENDERER)) return false;
+        v = EnvSwitch("SDFVJ_IDENTITY_BLEND", IsSoftwareRenderer()) ? 1 : 0;
+        on.store(v);
+    }
+    return v == 1;
+}
+
+void SetOverwriteBlend() {
+    if (!OverwriteBlendOn()) {
+        glDisable(GL_BLEND);
+        return;
+    }
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ZERO);
 }
 
 }  // namespace sdfvj

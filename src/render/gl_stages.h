@@ -17,4 +17,18 @@ unsigned CompileStage(unsigned kind, const char* text, std::string* rawLog);
 // the driver's link log.
 unsigned LinkStages(std::initializer_list<unsigned> stages, std::string* rawLog);
 
+// The blend state of a full-screen pass that writes every pixel of its target and reads none (the
+// scene's fragment path, ISF passes, the crossfade, the compile thread's first draw of a program).
+// llvmpipe compiles a fragment program at its first draw, for that draw's state; with blending off
+// the draw is "opaque" and llvmpipe builds the program twice, an edge-tested function and one for
+// whole tiles. Blending on as the identity (ONE, ZERO, ADD: the pixel written is the shader's) makes
+// it build one: the compile about 40 % shorter, the frame the same (docs/performance.md, session
+// 39). Elsewhere, and with SDFVJ_IDENTITY_BLEND=0, blending off. Every draw of a program must use
+// this, or llvmpipe compiles it again for the other state. Needs a current context.
+void SetOverwriteBlend();
+// Whether SetOverwriteBlend turns blending on here (decided once a process, on llvmpipe).
+bool OverwriteBlendOn();
+// Tests: 1 on, 0 off, -1 as decided above.
+void SetOverwriteBlendOverride(int mode);
+
 }  // namespace sdfvj

@@ -11,7 +11,10 @@
 #include <sstream>
 #include <tuple>
 
+#include <epoxy/gl.h>
+
 #include "gl_fixture.h"
+#include "render/gl_stages.h"
 
 using namespace sdfvj;
 using namespace sdfvj::test;
@@ -386,4 +389,33 @@ TEST_CASE("render: a return to a size drawn at before takes its target again whe
         draw(32, 18), draw(48, 27), draw(64, 36);
         if (round == 1) CHECK(fr.TargetsMade() == (keep > 0 ? made : made + 3));
     }
+}
+
+TEST_CASE("render: the identity blend a full-screen pass draws with on llvmpipe gives the image blending off gives", "[render]") {
+    RequireGl();
+    // On llvmpipe blending is on as the identity (ONE, ZERO, ADD), so that llvmpipe builds each
+    // fragment program once, not also a whole-tile copy; elsewhere off (gl_stages.h).
+    CHECK(OverwriteBlendOn() == (IsSoftwareRenderer() && std::getenv("SDFVJ_IDENTITY_BLEND") == nullptr));
+    struct Reset {
+        ~Reset() { SetOverwriteBlendOverride(-1); }
+    } reset;
+    EffectSet effects;
+    effects.shadows = 2;
+    effects.ao = true;
+    effects.specular = true;
+    Image drawn[2];
+    for (int on : {1, 0}) {
+        SetOverwriteBlendOverride(on);
+        drawn[on] = RenderScene("midi", effects, RenderPath::Fragment, 96, 54);
+        GLint src = 0, dst = 0, eq = 0;
+        glGetIntegerv(GL_BLEND_SRC_RGB, &src);
+        glGetIntegerv(GL_BLEND_DST_RGB, &dst);
+        glGetIntegerv(GL_BLEND_EQUATION_RGB, &eq);
+        INFO("identity blend " << on);
+        CHECK((bool)glIsEnabled(GL_BLEND) == (on == 1));
+        if (on) CHECK((src == GL_ONE && dst == GL_ZERO && eq == GL_FUNC_ADD));
+    }
+    const ImageDiff d = CompareImages(drawn[1], drawn[0], 0);
+    CHECK(d.maxAbs == 0);   // the same pixels, exactly
+    CHECK(MeanLuma(drawn[1], 0, 0, 1, 1) > 10.0);   // and a scene was drawn, not a blank
 }
