@@ -330,12 +330,19 @@ sumc() { awk -v p="$1" '$1 == "COUNT" && $2 ~ p { s += $3 } END { print s + 0 }'
 around=$(awk '$1 >= 1.0 { if (n++) printf "%.0f %.3f %.3f\n", ($1 - p) * 1000, p, $1; p = $1 }' "$work/params.log" |
     sort -rn | head -3 | while read -r ms from to; do
         echo "  gap ${ms} ms from ${from} s:"
-        awk -v a="$from" -v b="$to" -v off="$clockOffset" '{ t = $1 - off } t >= a - 0.6 && t <= b {
+        win=$(awk -v a="$from" -v b="$to" -v off="$clockOffset" '{ t = $1 - off } t >= a - 0.6 && t <= b {
             m = substr($0, index($0, " ") + 1); k = substr(m, 1, 24)
             if (k == pk) { rep++; next }
             if (rep) printf "             (and %d more like it)\n", rep
             printf "    %7.2f  %s\n", t, m; pk = k; rep = 0 }
-            END { if (rep) printf "             (and %d more like it)\n", rep }' "$work/live.err.stamped" 2>/dev/null | tail -8
+            END { if (rep) printf "             (and %d more like it)\n", rep }' "$work/live.err.stamped" 2>/dev/null | tail -8)
+        [ -n "$win" ] && echo "$win"
+        # The show's own account of that frame: `--hitch-ms` says the longest frame of a second
+        # at most once a second, so its line can come up to a second after the gap, past the lines above.
+        hitch=$(awk -v a="$from" -v b="$to" -v off="$clockOffset" '{ t = $1 - off } t >= b - 0.05 && t <= b + 1.1 &&
+            index($0, "sdfvj live: a ") && index($0, " ms frame (--hitch-ms") {
+            printf "    %7.2f  %s\n", t, substr($0, index($0, " ") + 1); exit }' "$work/live.err.stamped" 2>/dev/null)
+        if [ -n "$hitch" ] && ! grep -qxF -- "$hitch" <<<"$win"; then echo "$hitch" | cut -c1-400; fi
     done)
 
 # The show's own account of its long frames (`live --hitch-ms`, 100 by default: at most one line a
