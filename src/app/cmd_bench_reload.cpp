@@ -30,6 +30,7 @@
 #include "app/commands.h"
 #include "render/compile_process.h"
 #include "render/compile_worker.h"
+#include "render/gl_stages.h"
 #include "render/live_program.h"
 #include "render/program_cache.h"
 #include "shader/literals.h"
@@ -110,8 +111,9 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     GLint binaryFormats = 0;
     glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &binaryFormats);
     std::printf("# sdfvj bench reload: %s at %dx%d on %s\n", scene.name.c_str(), w, h, gl.Description().c_str());
-    std::printf("driver disk caches: %s; program binary formats: %d; program cache: %s\n", cacheLine.c_str(),
-                binaryFormats, ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off");
+    std::printf("driver disk caches: %s; program binary formats: %d; program cache: %s; full-screen draws: %s\n", cacheLine.c_str(),
+                binaryFormats, ProgramCacheEnabled() ? ProgramCacheFolder().c_str() : "off",
+                OverwriteBlendOn() ? "the identity blend (llvmpipe builds one function a program)" : "blending off");
     if (!post.empty()) std::printf("post chain (drawn by the render processes): %s\n", o.post.c_str());
     std::printf("each save: %s; frames paced at %s\n",
                 !post.empty() ? "the post chain's last file gets a new function (a new program every run); the scene stays"
