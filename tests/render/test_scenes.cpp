@@ -5,6 +5,7 @@
 // Regenerate on purpose with SDFVJ_UPDATE_REFERENCES=1 (a section: -c NAME.png), then look at the PNGs.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -418,4 +419,60 @@ TEST_CASE("render: the identity blend a full-screen pass draws with on llvmpipe 
     const ImageDiff d = CompareImages(drawn[1], drawn[0], 0);
     CHECK(d.maxAbs == 0);   // the same pixels, exactly
     CHECK(MeanLuma(drawn[1], 0, 0, 1, 1) > 10.0);   // and a scene was drawn, not a blank
+}
+
+TEST_CASE("render: the identity blend writes the shader's value over a float target holding NaN or infinity", "[render]") {
+    RequireGl();
+    // A feedback pass (ISF PERSISTENT FLOAT buffers) draws over what it drew last frame. With the
+    // identity blend the pixel must still be the shader's alone: a NaN or an infinity under it
+    // (times the factor zero) must not come through, as it would not with blending off.
+    struct Reset {
+        ~Reset() { SetOverwriteBlendOverride(-1); }
+    } reset;
+    std::string log;
+    const unsigned vs = CompileStage(GL_VERTEX_SHADER,
+                                     "#version 450\nvoid main() { vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);"
+                                     " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n",
+                                     &log);
+    const unsigned fs = CompileStage(GL_FRAGMENT_SHADER, "#version 450\nout vec4 color; void main() { color = vec4(0.25, -2.0, 3.5, 0.75); }\n", &log);
+    INFO(log);
+    REQUIRE(vs);
+    REQUIRE(fs);
+    const unsigned prog = LinkStages({vs, fs}, &log);
+    REQUIRE(prog);
+    GLuint tex = 0, fbo = 0, vao = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RGBA32F, 8, 8);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+    glCreateVertexArrays(1, &vao);
+    const float nan = std::nanf(""), inf = INFINITY;
+    for (int on : {1, 0}) {
+        SetOverwriteBlendOverride(on);
+        for (const float under : {nan, inf, -inf}) {
+            const float clear[4] = {under, under, under, under};
+            glClearNamedFramebufferfv(fbo, GL_COLOR, 0, clear);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glViewport(0, 0, 8, 8);
+            glUseProgram(prog);
+            glBindVertexArray(vao);
+            SetOverwriteBlend();
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            std::vector<float> px(8 * 8 * 4);
+            glReadPixels(0, 0, 8, 8, GL_RGBA, GL_FLOAT, px.data());
+            INFO("identity blend " << on << ", under it " << under);
+            int wrong = 0;
+            for (size_t i = 0; i < px.size(); i += 4)
+                wrong += !(px[i] == 0.25f && px[i + 1] == -2.0f && px[i + 2] == 3.5f && px[i + 3] == 0.75f);
+            CHECK(wrong == 0);
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    glDeleteProgram(prog);
 }
