@@ -339,7 +339,7 @@ around=$(awk '$1 >= 1.0 { if (n++) printf "%.0f %.3f %.3f\n", ($1 - p) * 1000, p
         [ -n "$win" ] && echo "$win"
         # The show's own account of that frame: `--hitch-ms` says the longest frame of a second
         # at most once a second, so its line can come up to a second after the gap, past the lines above.
-        hitch=$(awk -v a="$from" -v b="$to" -v off="$clockOffset" '{ t = $1 - off } t >= b - 0.05 && t <= b + 1.1 &&
+        hitch=$(awk -v b="$to" -v off="$clockOffset" '{ t = $1 - off } t >= b - 0.05 && t <= b + 1.1 &&
             index($0, "sdfvj live: a ") && index($0, " ms frame (--hitch-ms") {
             printf "    %7.2f  %s\n", t, substr($0, index($0, " ") + 1); exit }' "$work/live.err.stamped" 2>/dev/null)
         if [ -n "$hitch" ] && ! grep -qxF -- "$hitch" <<<"$win"; then echo "$hitch" | cut -c1-400; fi

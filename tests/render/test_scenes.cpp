@@ -430,10 +430,7 @@ TEST_CASE("render: the identity blend writes the shader's value over a float tar
         ~Reset() { SetOverwriteBlendOverride(-1); }
     } reset;
     std::string log;
-    const unsigned vs = CompileStage(GL_VERTEX_SHADER,
-                                     "#version 450\nvoid main() { vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);"
-                                     " gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }\n",
-                                     &log);
+    const unsigned vs = CompileStage(GL_VERTEX_SHADER, FullscreenVertexShader(), &log);
     const unsigned fs = CompileStage(GL_FRAGMENT_SHADER, "#version 450\nout vec4 color; void main() { color = vec4(0.25, -2.0, 3.5, 0.75); }\n", &log);
     INFO(log);
     REQUIRE(vs);
