@@ -12,7 +12,8 @@
 #                                 timeouts of several add up past one 600 s call). Each part's comment
 #                                 below says what it measures. Issue 12 (reloads): reload, retune,
 #                                 adopt, toggle, launch, fresh, handover, stage, s16 (render processes),
-#                                 spirv (GLSL against SPIR-V builds), ahead (effect pad hits through
+#                                 spirv (GLSL against SPIR-V builds), compile (where a build's
+#                                 time goes: `bench compile`'s cuts), ahead (effect pad hits through
 #                                 render processes, cold against built ahead).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
@@ -324,6 +325,18 @@ case "${1:-}" in
     for s in ${SPIRV_SCENES:-midi character}; do
       timeout 200 bash "$0" remote bench spirv --scene $s --rounds ${SPIRV_ROUNDS:-5} > "$out/spirv_$s.txt" 2>&1 || true
       grep -h -E '^\| [0-9]|^medians|takes no SPIR-V|failed' "$out/spirv_$s.txt" | cut -c1-300 || tail -5 "$out/spirv_$s.txt"
+    done
+    fi
+    if [ "$part" = compile ]; then
+    # Session 40 (issue 12): where the driver's build time of a scene's program goes (`bench compile`):
+    # the quick tier and the optimized program, the renderer alone (map() a sphere), lighting cut
+    # away; cuts interleaved, caches off, each build to its first use. COMPILE_CUTS replaces the cuts.
+    for s in ${COMPILE_SCENES:-midi character}; do
+      # shellcheck disable=SC2086
+      timeout 280 bash "$0" remote bench compile --scene $s --rounds ${COMPILE_ROUNDS:-5} --csv "$out/compile_$s.csv" \
+        --cuts ${COMPILE_CUTS:-quick optimized quick@sphere optimized@sphere quick/none quick/none@sphere quick/-soft_shadows quick/-ao quick+BOUNDS=0} \
+        > "$out/compile_$s.txt" 2>&1 || true
+      sed -n '/^## medians/,$p' "$out/compile_$s.txt" | cut -c1-300; tail -2 "$out/compile_$s.txt"
     done
     fi
     if [ "$part" = define ]; then

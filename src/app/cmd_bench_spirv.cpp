@@ -11,21 +11,19 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <iterator>
 #include <string>
 #include <vector>
 
 #include <unistd.h>
 
+#include "app/bench_build.h"
 #include "app/bench_support.h"
 #include "app/commands.h"
-#include "render/compile_worker.h"
 #include "render/live_program.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -37,75 +35,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double MsSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-struct Steps {
-    double front = 0, compile = 0, link = 0, use = 0;
-    bool ok = false;
-    std::string error;
-    double Total() const { return front + compile + link + use; }
-};
-
-std::string ShaderLog(GLuint sh) {
-    GLint n = 0;
-    glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &n);
-    std::string log((size_t)std::max(n, 1), '\0');
-    glGetShaderInfoLog(sh, n, nullptr, log.data());
-    return log;
-}
-
-// Links `sh` into a program, uses it once; fills link and use.
-void LinkAndUse(GLuint sh, Steps* s) {
-    GLuint prog = glCreateProgram();
-    glAttachShader(prog, sh);
-    auto t0 = Clock::now();
-    glLinkProgram(prog);
-    GLint linked = 0;
-    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-    s->link = MsSince(t0);
-    if (linked) {
-        t0 = Clock::now();
-        PrimeProgram(prog, RenderPath::Compute, false);
-        glFinish();
-        s->use = MsSince(t0);
-        s->ok = true;
-    } else {
-        GLint n = 0;
-        glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &n);
-        std::string log((size_t)std::max(n, 1), '\0');
-        glGetProgramInfoLog(prog, n, nullptr, log.data());
-        s->error = "link: " + log.substr(0, 400);
-    }
-    glDeleteProgram(prog);
-}
-
-// A compute shader from `feed` (its source or its binary, into the new shader), timed from
-// glCreateShader to its compile status; then linked and used (LinkAndUse).
-void BuildShader(const std::function<void(GLuint)>& feed, const char* step, Steps* s) {
-    const auto t0 = Clock::now();
-    GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-    feed(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    s->compile = MsSince(t0);
-    if (ok) LinkAndUse(sh, s);
-    else s->error = std::string(step) + ": " + ShaderLog(sh).substr(0, 400);
-    glDeleteShader(sh);
-}
-
-Steps BuildGlsl(const std::string& text) {
-    Steps s;
-    BuildShader([&](GLuint sh) {
-        const char* p = text.c_str();
-        glShaderSource(sh, 1, &p, nullptr);
-        glCompileShader(sh);
-    }, "compile", &s);
-    return s;
-}
-
-Steps BuildSpirv(const std::string& text, const std::string& glslang, const fs::path& work, int round) {
-    Steps s;
+BuildSteps BuildSpirv(const std::string& text, const std::string& glslang, const fs::path& work, int round) {
+    BuildSteps s;
     const fs::path in = work / ("round" + std::to_string(round) + ".comp"), out = work / ("round" + std::to_string(round) + ".spv");
     std::ofstream(in, std::ios::binary) << text;
     const std::string cmd = "'" + glslang + "' -G --auto-map-locations --auto-map-bindings -S comp -o '" + out.string() + "' '" +
@@ -120,10 +51,12 @@ Steps BuildSpirv(const std::string& text, const std::string& glslang, const fs::
         s.error = "glslangValidator: " + std::string((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>()).substr(0, 600);
         return s;
     }
-    BuildShader([&](GLuint sh) {
+    const double front = s.front;
+    s = TimedComputeBuild([&](unsigned sh) {
         glShaderBinary(1, &sh, GL_SHADER_BINARY_FORMAT_SPIR_V_ARB, spirv.data(), (GLsizei)spirv.size());
         glSpecializeShaderARB(sh, "main", 0, nullptr, nullptr);
-    }, "glSpecializeShader", &s);
+    }, "glSpecializeShader");
+    s.front = front;
     return s;
 }
 
@@ -175,7 +108,7 @@ int RunSpirvBench(const SpirvBenchOptions& o) {
             const int form = (round % 2 == 0) ? 1 - k : k;   // 0 glsl, 1 spirv
             bool nudged = false;
             const std::string text = NudgeFirstConstant(src.text, 1e-4 * (10 * round + form + 1), &nudged);
-            const Steps s = form == 0 ? BuildGlsl(text) : BuildSpirv(text, glslang, work, round);
+            const BuildSteps s = form == 0 ? TimedGlslBuild(text) : BuildSpirv(text, glslang, work, round);
             if (!s.ok) {
                 std::printf("| %d | %s | failed: %s |\n", round, form ? "spirv" : "glsl", s.error.c_str());
                 continue;

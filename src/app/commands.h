@@ -104,6 +104,16 @@ struct SpirvBenchOptions {
 };
 int RunSpirvBench(const SpirvBenchOptions& o);
 
+// `sdfvj bench compile`: a scene's compute program built in cuts (tier, effects, map() replaced by a
+// sphere, renderer #defines), every step to its first use timed: where a driver's build time goes.
+struct CompileBenchOptions {
+    std::string scene = "midi";
+    int rounds = 5;
+    std::vector<std::string> cuts = {"quick", "optimized", "quick@sphere", "quick/none", "quick/none@sphere"};
+    std::string csv;   // also write the medians as CSV
+};
+int RunCompileBench(const CompileBenchOptions& o);
+
 // `sdfvj bench post`: a post effect's save, the chain in contexts of its own against the window's.
 struct PostBenchOptions {
     std::string effects = "bloom,feedback_trails";

@@ -157,6 +157,19 @@ int main(int argc, char** argv) {
     cmdSpirv->add_option("--scene", spirvBench.scene, "scene")->capture_default_str();
     cmdSpirv->add_option("--rounds", spirvBench.rounds, "builds of each form, interleaved (median)")->check(FiniteFrom(1, false))->capture_default_str();
     cmdSpirv->add_option("--glslang", spirvBench.glslang, "glslangValidator (default: beside sdfvj, then /usr/bin)");
+    CompileBenchOptions compileBench;
+    auto* cmdCompile = cmdBench->add_subcommand("compile", "where a driver's build time of a scene's program goes: the program built in cuts "
+                                                           "(tier, effects, map() replaced by a sphere), every step to its first use timed, "
+                                                           "the drivers' disk caches off");
+    cmdCompile->add_option("--scene", compileBench.scene, "scene (a name or a .glsl file)")->capture_default_str();
+    cmdCompile->add_option("--rounds", compileBench.rounds, "builds of each cut, interleaved (median)")->check(FiniteFrom(1, false))->capture_default_str();
+    cmdCompile->add_option("--cuts", compileBench.cuts,
+                           "TIER[/EFFECTS][@sphere][+NAME=VALUE].. each: TIER optimized or quick (the first tier of a tiered build); "
+                           "/EFFECTS on the scene's own, as --effects reads them (\"-ao,-soft_shadows\", \"none\"); @sphere: the scene's "
+                           "map() replaced by a sphere on a plane (the renderer alone); +NAME=VALUE: a #define first (CONE_PREPASS=0). "
+                           "The first cut is the others' yardstick")
+        ->capture_default_str();
+    cmdCompile->add_option("--csv", compileBench.csv, "also write the medians as CSV: scene,lighting,size,path,ms,gpu,cut,compile_ms,link_ms,use_ms,source_chars");
     PostBenchOptions postBench;
     auto* cmdPost = cmdBench->add_subcommand("post", "a post effect's save: save -> screen and the longest frame meanwhile, the chain "
                                                      "in contexts of its own (as live draws it) against the window's context");
@@ -331,6 +344,7 @@ int main(int argc, char** argv) {
     if (cmdSsaa->parsed()) return RunSsaaBench(ssaaBench);
     if (cmdWork->parsed()) return RunWorkBench(workBench);
     if (cmdSpirv->parsed()) return RunSpirvBench(spirvBench);
+    if (cmdCompile->parsed()) return RunCompileBench(compileBench);
     if (cmdPost->parsed()) return RunPostBench(postBench);
     if (cmdResize->parsed()) return RunResizeBench(resizeBench);
     if (cmdReload->parsed()) return RunReloadBench(reloadBench);
