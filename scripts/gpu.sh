@@ -334,10 +334,18 @@ case "${1:-}" in
     for s in ${COMPILE_SCENES:-midi character}; do
       # shellcheck disable=SC2086
       timeout 280 bash "$0" remote bench compile --scene $s --rounds ${COMPILE_ROUNDS:-5} --csv "$out/compile_$s.csv" \
-        --cuts ${COMPILE_CUTS:-quick optimized quick@sphere optimized@sphere quick/none quick/none@sphere quick/-soft_shadows quick/-ao quick+BOUNDS=0} \
+        --cuts ${COMPILE_CUTS:-quick optimized quick@sphere optimized@sphere quick/none quick/-soft_shadows quick/-ao quick+ONE_SITE=1 optimized+ONE_SITE=1 quick@sphere+ONE_SITE=1} \
         > "$out/compile_$s.txt" 2>&1 || true
       sed -n '/^## medians/,$p' "$out/compile_$s.txt" | cut -c1-300; tail -2 "$out/compile_$s.txt"
     done
+    # The one-site renderer's frames (render/one_site.glsl, ONE_SITE 1) against each scene as shipped.
+    root=/tmp/sdfvj-onesite; rm -rf "$root"; mkdir -p "$root"; cp -r shaders presets mappings "$root/"
+    names=""
+    for s in ${COMPILE_SCENES:-midi character}; do variant "$root" "$s" os "ONE_SITE 1"; names="$names $s ${s}_os"; done
+    # shellcheck disable=SC2086
+    SDFVJ_ROOT_OVERRIDE=$root timeout 250 bash "$0" remote bench --scenes $names --sizes 1920x1080 3840x2160 --tests full \
+      --paths compute --frames 10 --warmup 3 --markdown "$out/frames_onesite.md" > "$out/frames_onesite.txt" 2>&1 || true
+    grep -E '^\| |drift' "$out/frames_onesite.txt" | head -40
     fi
     if [ "$part" = define ]; then
     # A render lever against the shaders before it: every scene (or DEFINE_SCENES) against a copy with

@@ -83,7 +83,8 @@ float sceneGroundBlend() { return u_floorBlend; }
 
 #if FIELD_FRAME_INV
 #define SCENE_GROUND_SMIN(g, o) sminPolyInv(g, o, u_floorBlend, g_invFloorBlend)
-vec4 map(vec3 p) { return fOpUnionSmoothColorInv(mapGround(p), mapObjects(p), u_floorBlend, g_invFloorBlend); }
+#define SCENE_MAP_OF(g, o) fOpUnionSmoothColorInv(g, o, u_floorBlend, g_invFloorBlend)
+vec4 map(vec3 p) { return SCENE_MAP_OF(mapGround(p), mapObjects(p)); }
 #else
 vec4 map(vec3 p) { return fOpUnionSmoothColor(mapGround(p), mapObjects(p), sceneGroundBlend()); }
 #endif

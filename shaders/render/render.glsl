@@ -169,6 +169,11 @@ vec4 mapNear(vec3 p) {
 #ifndef SCENE_OBJECTS
 #define SCENE_OBJECTS 0
 #endif
+// The floor's union as map() computes it from the floor and the objects (render/one_site.glsl reads
+// the objects alone and composes map() so).
+#ifndef SCENE_MAP_OF
+#define SCENE_MAP_OF(g, o) fOpUnionSmoothColor(g, o, sceneGroundBlend())
+#endif
 // The floor's union's distance as map() computes it (a scene with the blend's reciprocal at hand
 // defines its own: lib/field_scene.glsl).
 #ifndef SCENE_GROUND_SMIN
@@ -371,9 +376,25 @@ vec3 background(vec3 rd) {
 
 // Direct light plus ambient at a surface point (linear radiance); bounce > 0: a surface a
 // reflection met (BOUNCE_LIGHT).
-vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
+// Direct light and ambient at a surface whose shadow (1 lit .. 0) and occlusion (1 open) are known.
+vec3 litSurface(vec3 n, vec3 rd, vec3 albedo, float shadow, float occlusion) {
     vec3 l = u_lightDir;
     vec3 v = -rd;
+#if PBR
+    vec3 col = cookTorrance(n, v, l, albedo, u_metalness, u_roughness) * u_lightColor * (PI * shadow);
+    col += ambientLight(n) * albedo * (1.0f - 0.8f * u_metalness) * occlusion;
+#else
+    vec3 col = albedo * (lambert(n, l) * shadow * u_lightColor + ambientLight(n) * occlusion);
+#if SPECULAR
+    if ((u_effectsOff & EFFECT_OFF_SPECULAR) == 0) col += u_lightColor * (blinnPhong(n, l, v, roughnessToShininess(u_roughness)) * shadow *
+                           (1.0f - 0.7f * u_roughness));
+#endif
+#endif
+    return col;
+}
+
+vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
+    vec3 l = u_lightDir;
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
     // Every direct term (Lambert, Blinn-Phong, Cook-Torrance) carries max(n.l, 0), so a surface
@@ -395,17 +416,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
 #if AO
     if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = ambientOcclusion(p, n, u_aoSamples);
 #endif
-#if PBR
-    vec3 col = cookTorrance(n, v, l, albedo, u_metalness, u_roughness) * u_lightColor * (PI * shadow);
-    col += ambientLight(n) * albedo * (1.0f - 0.8f * u_metalness) * occlusion;
-#else
-    vec3 col = albedo * (lambert(n, l) * shadow * u_lightColor + ambientLight(n) * occlusion);
-#if SPECULAR
-    if ((u_effectsOff & EFFECT_OFF_SPECULAR) == 0) col += u_lightColor * (blinnPhong(n, l, v, roughnessToShininess(u_roughness)) * shadow *
-                           (1.0f - 0.7f * u_roughness));
-#endif
-#endif
-    return col;
+    return litSurface(n, rd, albedo, shadow, occlusion);
 }
 
 // Shaded colour of one marched ray, with fog.
@@ -475,6 +486,8 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     return vec4(col, 1.0f);
 }
 
+#include "render/one_site.glsl"
+
 // Linear radiance to the display colour: tone mapped, sRGB (supersample.glsl averages these).
 vec3 displayColor(vec3 col) { return linearToSRGB(toneMapACES(col)); }
 
@@ -486,7 +499,11 @@ vec4 renderFrom(vec2 fragCoord, float tStart) {
     callSceneSetup();
     WORK_RESET();
     Hit none = Hit(0.0f, 0.0f, false, vec3(0.0f), 0.0f);
+#if USE_ONE_SITE
+    vec4 c = traceRayOneSite(u_camPos, cameraRay(fragCoord), tStart);
+#else
     vec4 c = traceRay(u_camPos, cameraRay(fragCoord), tStart, none, false);
+#endif
 #if DEBUG_VIEW
     return c;
 #else
