@@ -1,4 +1,4 @@
-// One compute program built and used once, every step timed (bench_build.h).
+// One program built and used once, every step timed (bench_build.h).
 #include "app/bench_build.h"
 
 #include <epoxy/gl.h>
@@ -24,21 +24,31 @@ std::string InfoLog(GLuint object, bool program) {
 
 }  // namespace
 
-BuildSteps TimedComputeBuild(const std::function<void(unsigned)>& feed, const char* step) {
+BuildSteps TimedBuild(const std::function<void(unsigned)>& feed, const char* step, RenderPath path) {
     BuildSteps s;
+    const bool compute = path == RenderPath::Compute;
     auto t0 = Clock::now();
-    const GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
+    const GLuint sh = glCreateShader(compute ? GL_COMPUTE_SHADER : GL_FRAGMENT_SHADER);
     feed(sh);
+    GLuint vs = 0;
+    if (!compute) {
+        vs = glCreateShader(GL_VERTEX_SHADER);
+        const char* text = FullscreenVertexShader();
+        glShaderSource(vs, 1, &text, nullptr);
+        glCompileShader(vs);
+    }
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     s.compile = MsSince(t0);
     if (!ok) {
         s.error = std::string(step) + ": " + InfoLog(sh, false);
         glDeleteShader(sh);
+        if (vs) glDeleteShader(vs);
         return s;
     }
     const GLuint prog = glCreateProgram();
     glAttachShader(prog, sh);
+    if (vs) glAttachShader(prog, vs);
     t0 = Clock::now();
     glLinkProgram(prog);
     GLint linked = 0;
@@ -46,7 +56,7 @@ BuildSteps TimedComputeBuild(const std::function<void(unsigned)>& feed, const ch
     s.link = MsSince(t0);
     if (linked) {
         t0 = Clock::now();
-        PrimeProgram(prog, RenderPath::Compute, false);
+        PrimeProgram(prog, path, false);
         glFinish();
         s.use = MsSince(t0);
         s.ok = true;
@@ -55,15 +65,16 @@ BuildSteps TimedComputeBuild(const std::function<void(unsigned)>& feed, const ch
     }
     glDeleteProgram(prog);
     glDeleteShader(sh);
+    if (vs) glDeleteShader(vs);
     return s;
 }
 
-BuildSteps TimedGlslBuild(const std::string& text) {
-    return TimedComputeBuild([&](unsigned sh) {
+BuildSteps TimedGlslBuild(const std::string& text, RenderPath path) {
+    return TimedBuild([&](unsigned sh) {
         const char* p = text.c_str();
         glShaderSource(sh, 1, &p, nullptr);
         glCompileShader(sh);
-    }, "compile");
+    }, "compile", path);
 }
 
 }  // namespace sdfvj

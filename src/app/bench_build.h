@@ -6,6 +6,8 @@
 #include <functional>
 #include <string>
 
+#include "shader/shader.h"
+
 namespace sdfvj {
 
 struct BuildSteps {
@@ -19,9 +21,11 @@ struct BuildSteps {
 };
 
 // A compute shader whose code `feed` gives it (glShaderSource + glCompileShader, or glShaderBinary +
-// glSpecializeShader), then linked and used once; `step` names the feed in an error.
-BuildSteps TimedComputeBuild(const std::function<void(unsigned shader)>& feed, const char* step);
+// glSpecializeShader), then linked and used once; `step` names the feed in an error. On the fragment
+// path the shader is a fragment shader, linked with the full-screen vertex shader (compiled in
+// `compile` too) and used by a 1x1 draw.
+BuildSteps TimedBuild(const std::function<void(unsigned shader)>& feed, const char* step, RenderPath path = RenderPath::Compute);
 // The same from GLSL source.
-BuildSteps TimedGlslBuild(const std::string& text);
+BuildSteps TimedGlslBuild(const std::string& text, RenderPath path = RenderPath::Compute);
 
 }  // namespace sdfvj

@@ -125,10 +125,10 @@ bool WriteSphereScene(const SceneInfo& scene, const fs::path& file, std::string*
     return true;
 }
 
-bool CutText(const SceneInfo& scene, const SceneInfo& sphere, Cut* c, std::string* error) {
+bool CutText(const SceneInfo& scene, const SceneInfo& sphere, RenderPath path, Cut* c, std::string* error) {
     ShaderSource src;
     const SceneInfo& from = c->sphere ? sphere : scene;
-    if (!AssembleProgram(from, VariantKey{from.path, c->effects, RenderPath::Compute}, &src, error)) return false;
+    if (!AssembleProgram(from, VariantKey{from.path, c->effects, path}, &src, error)) return false;
     std::string text = c->quick ? QuickTierText(src.text) : src.text;
     std::string defines;
     for (const std::string& d : c->defines) defines += "#define " + d + "\n";
@@ -157,10 +157,16 @@ int RunCompileBench(const CompileBenchOptions& o) {
         std::fprintf(stderr, "sdfvj bench compile: %s\n", error.c_str());
         return 2;
     }
+    RenderPath path = RenderPath::Compute;
+    if (o.path == "fragment") path = RenderPath::Fragment;
+    else if (o.path != "compute") {
+        std::fprintf(stderr, "sdfvj bench compile: path '%s', expected compute or fragment\n", o.path.c_str());
+        return 2;
+    }
     std::vector<Cut> cuts;
     for (const std::string& text : o.cuts) {
         Cut c;
-        if (!ParseCut(text, scene.effects, &c, &error) || !CutText(scene, sphere, &c, &error)) {
+        if (!ParseCut(text, scene.effects, &c, &error) || !CutText(scene, sphere, path, &c, &error)) {
             std::fprintf(stderr, "sdfvj bench compile: %s\n", error.c_str());
             return 2;
         }
@@ -174,8 +180,9 @@ int RunCompileBench(const CompileBenchOptions& o) {
     const std::string gpu = (const char*)glGetString(GL_RENDERER);
     std::printf("# sdfvj bench compile: %s (its own effects: %s) on %s, %s\n%s\n", scene.name.c_str(), DescribeEffects(scene.effects).c_str(),
                 gpu.c_str(), (const char*)glGetString(GL_VERSION), caches.c_str());
-    std::printf("each round builds every cut once (the order rotated), the scene's first constant nudged each time; compute "
-                "path; ms\n\n| round | cut | compile | link | first use | total |\n|---:|---|---:|---:|---:|---:|\n");
+    std::printf("each round builds every cut once (the order rotated), the scene's first constant nudged each time; %s "
+                "path (first use: a 1x1 %s); ms\n\n| round | cut | compile | link | first use | total |\n|---:|---|---:|---:|---:|---:|\n",
+                RenderPathName(path), path == RenderPath::Compute ? "dispatch" : "draw");
     const size_t n = cuts.size();
     std::vector<std::vector<double>> compile(n), link(n), use(n), total(n);
     std::vector<std::string> failed(n);
@@ -184,7 +191,7 @@ int RunCompileBench(const CompileBenchOptions& o) {
             const size_t i = (k + (size_t)round) % n;
             bool nudged = false;
             const std::string text = NudgeFirstConstant(cuts[i].text, 1e-4 * (double)(round * (int)n + (int)i + 1), &nudged);
-            const BuildSteps s = TimedGlslBuild(text);
+            const BuildSteps s = TimedGlslBuild(text, path);
             if (!s.ok) {
                 failed[i] = s.error;
                 std::replace(failed[i].begin(), failed[i].end(), '\n', ' ');
@@ -216,7 +223,7 @@ int RunCompileBench(const CompileBenchOptions& o) {
         std::snprintf(cm, sizeof cm, "%.2f", MedianMs(compile[i]));
         std::snprintf(lm, sizeof lm, "%.2f", MedianMs(link[i]));
         std::snprintf(um, sizeof um, "%.2f", MedianMs(use[i]));
-        csv.Add(scene.name, DescribeEffects(c.effects), "-", "compute", t, gpu, {c.label, cm, lm, um, std::to_string(c.text.size())});
+        csv.Add(scene.name, DescribeEffects(c.effects), "-", RenderPathName(path), t, gpu, {c.label, cm, lm, um, std::to_string(c.text.size())});
     }
     if (!o.csv.empty() && !csv.Write(o.csv, &error)) {
         std::fprintf(stderr, "sdfvj bench compile: %s\n", error.c_str());

@@ -52,7 +52,7 @@ BuildSteps BuildSpirv(const std::string& text, const std::string& glslang, const
         return s;
     }
     const double front = s.front;
-    s = TimedComputeBuild([&](unsigned sh) {
+    s = TimedBuild([&](unsigned sh) {
         glShaderBinary(1, &sh, GL_SHADER_BINARY_FORMAT_SPIR_V_ARB, spirv.data(), (GLsizei)spirv.size());
         glSpecializeShaderARB(sh, "main", 0, nullptr, nullptr);
     }, "glSpecializeShader");

@@ -110,6 +110,7 @@ struct CompileBenchOptions {
     std::string scene = "midi";
     int rounds = 5;
     std::vector<std::string> cuts = {"quick", "optimized", "quick@sphere", "quick/none", "quick/none@sphere"};
+    std::string path = "compute";   // or fragment
     std::string csv;   // also write the medians as CSV
 };
 int RunCompileBench(const CompileBenchOptions& o);

@@ -169,6 +169,7 @@ int main(int argc, char** argv) {
                            "map() replaced by a sphere on a plane (the renderer alone); +NAME=VALUE: a #define first (CONE_PREPASS=0). "
                            "The first cut is the others' yardstick")
         ->capture_default_str();
+    cmdCompile->add_option("--path", compileBench.path, "compute or fragment (the first use a 1x1 dispatch or draw)")->capture_default_str();
     cmdCompile->add_option("--csv", compileBench.csv, "also write the medians as CSV: scene,lighting,size,path,ms,gpu,cut,compile_ms,link_ms,use_ms,source_chars");
     PostBenchOptions postBench;
     auto* cmdPost = cmdBench->add_subcommand("post", "a post effect's save: save -> screen and the longest frame meanwhile, the chain "
