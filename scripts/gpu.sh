@@ -13,7 +13,8 @@
 #                                 below says what it measures. Issue 12 (reloads): reload, retune,
 #                                 adopt, toggle, launch, fresh, handover, stage, s16 (render processes),
 #                                 spirv (GLSL against SPIR-V builds), compile (where a build's
-#                                 time goes: `bench compile`'s cuts), ahead (effect pad hits through
+#                                 time goes: `bench compile`'s cuts, and the one-site renderer's frames),
+#                                 onesite (the one-site renderer as a save's quick tier), ahead (effect pad hits through
 #                                 render processes, cold against built ahead).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
@@ -346,6 +347,17 @@ case "${1:-}" in
     SDFVJ_ROOT_OVERRIDE=$root timeout 250 bash "$0" remote bench --scenes $names --sizes 1920x1080 3840x2160 --tests full \
       --paths compute --frames 10 --warmup 3 --markdown "$out/frames_onesite.md" > "$out/frames_onesite.txt" 2>&1 || true
     grep -E '^\| |drift' "$out/frames_onesite.txt" | head -40
+    fi
+    if [ "$part" = onesite ]; then
+    # Session 40 (issue 12): the one-site renderer (render/one_site.glsl) as the quick tier of a
+    # save (SDFVJ_QUICK_ONE_SITE=1 in the render servers' environment) against `inline none` alone:
+    # save -> quick tier, its frames, the optimized program after; rounds interleaved, caches off.
+    for s in ${ONESITE_SCENES:-midi character}; do
+      timeout 280 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered on --rounds ${ONESITE_ROUNDS:-4} \
+        --modes render-process,render-process+SDFVJ_QUICK_ONE_SITE=1 > "$out/reload_onesite_$s.txt" 2>&1 || true
+      grep -h -A4 'modes side by side' "$out/reload_onesite_$s.txt" | cut -c1-300 || tail -5 "$out/reload_onesite_$s.txt"
+      grep -h -E '^median' "$out/reload_onesite_$s.txt" | cut -c1-300
+    done
     fi
     if [ "$part" = define ]; then
     # A render lever against the shaders before it: every scene (or DEFINE_SCENES) against a copy with

@@ -4,6 +4,7 @@
 #include "render/compile_process.h"
 #include "render/compile_worker.h"
 #include "render/gl_stages.h"
+#include "render/live_program.h"
 #include "render/program_cache.h"
 
 #include <chrono>
@@ -50,7 +51,10 @@ std::string QuickTierText(const std::string& text) {
     const size_t eol = text.find('\n');
     if (text.rfind("#version", 0) != 0 || eol == std::string::npos) return text;
     // No cone pre-pass either (main_comp.glsl): its march is one more map() call site to compile.
-    return text.substr(0, eol + 1) + QuickTierPragmas() + "#define CONE_PREPASS 0\n" + text.substr(eol + 1);
+    // SDFVJ_QUICK_ONE_SITE=1: the whole trace with one call site of the scene's field (render/one_site.glsl).
+    static const bool oneSite = EnvSwitch("SDFVJ_QUICK_ONE_SITE", false);
+    return text.substr(0, eol + 1) + QuickTierPragmas() + "#define CONE_PREPASS 0\n" + (oneSite ? "#define ONE_SITE 1\n" : "") +
+           text.substr(eol + 1);
 }
 
 bool Program::Build(const ShaderSource& src, RenderPath path, std::string* log) {
