@@ -7,12 +7,13 @@
 // timed (bench_build.h); cuts are interleaved round by round (the order rotated), each build a text
 // no cache has seen (its first constant nudged), the drivers' disk caches off.
 //
-// A cut: TIER[/EFFECTS][@sphere][+NAME=VALUE]...
+// A cut: TIER[/EFFECTS][@sphere][+NAME=VALUE]...[!HINT]...
 //   TIER       optimized (as `live` builds it) or quick (QuickTierText: the first tier of a tiered build)
 //   /EFFECTS   applied to the scene's own effects, as --effects reads them ("-ao,-soft_shadows", "none")
 //   @sphere    the scene's map() replaced by a sphere on a plane (its header, uniforms and effects kept):
 //              what the renderer alone costs
 //   +NAME=VALUE  a #define before everything else (the renderer's #ifndef knobs: CONE_PREPASS=0, ...)
+//   !HINT      an NVIDIA compiler hint, `#pragma optionNV(HINT)` with the dashes as spaces (!unroll-none)
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -46,6 +47,7 @@ struct Cut {
     bool sphere = false;
     EffectSet effects;
     std::vector<std::string> defines;   // "NAME VALUE"
+    std::vector<std::string> hints;     // NVIDIA's optionNV hints ("unroll none")
     std::string text;                   // the program's source, built once
 };
 
@@ -64,6 +66,17 @@ bool ParseCut(const std::string& text, const EffectSet& own, Cut* out, std::stri
     c.label = text;
     c.effects = own;
     std::string head = text;
+    // !HINT..: `#pragma optionNV(HINT)` each (words joined by '-'), after the tier's own
+    for (size_t bang = head.rfind('!'); bang != std::string::npos; bang = head.rfind('!')) {
+        std::string hint = head.substr(bang + 1);
+        head.erase(bang);
+        if (hint.empty() || hint.size() > 40 || hint.find_first_not_of("abcdefghijklmnopqrstuvwxyz-") != std::string::npos) {
+            *error = "cut '" + text + "': bad hint '!" + hint + "', expected !WORDS-JOINED-BY-DASHES (an optionNV hint: !unroll-none)";
+            return false;
+        }
+        std::replace(hint.begin(), hint.end(), '-', ' ');
+        c.hints.insert(c.hints.begin(), hint);
+    }
     size_t plus = head.find('+');
     std::string defines = plus == std::string::npos ? "" : head.substr(plus + 1);
     if (plus != std::string::npos) head.erase(plus);
@@ -131,6 +144,7 @@ bool CutText(const SceneInfo& scene, const SceneInfo& sphere, RenderPath path, C
     if (!AssembleProgram(from, VariantKey{from.path, c->effects, path}, &src, error)) return false;
     std::string text = c->quick ? QuickTierText(src.text) : src.text;
     std::string defines;
+    for (const std::string& h : c->hints) defines += "#pragma optionNV(" + h + ")\n";
     for (const std::string& d : c->defines) defines += "#define " + d + "\n";
     const size_t eol = text.find('\n');
     c->text = text.substr(0, eol + 1) + defines + text.substr(eol + 1);

@@ -164,9 +164,9 @@ int main(int argc, char** argv) {
     cmdCompile->add_option("--scene", compileBench.scene, "scene (a name or a .glsl file)")->capture_default_str();
     cmdCompile->add_option("--rounds", compileBench.rounds, "builds of each cut, interleaved (median)")->check(FiniteFrom(1, false))->capture_default_str();
     cmdCompile->add_option("--cuts", compileBench.cuts,
-                           "TIER[/EFFECTS][@sphere][+NAME=VALUE].. each: TIER optimized or quick (the first tier of a tiered build); "
+                           "TIER[/EFFECTS][@sphere][+NAME=VALUE]..[!HINT].. each: TIER optimized or quick (the first tier of a tiered build); "
                            "/EFFECTS on the scene's own, as --effects reads them (\"-ao,-soft_shadows\", \"none\"); @sphere: the scene's "
-                           "map() replaced by a sphere on a plane (the renderer alone); +NAME=VALUE: a #define first (CONE_PREPASS=0). "
+                           "map() replaced by a sphere on a plane (the renderer alone); +NAME=VALUE: a #define first (CONE_PREPASS=0); !HINT: #pragma optionNV(HINT), dashes as spaces (!unroll-none). "
                            "The first cut is the others' yardstick")
         ->capture_default_str();
     cmdCompile->add_option("--path", compileBench.path, "compute or fragment (the first use a 1x1 dispatch or draw)")->capture_default_str();

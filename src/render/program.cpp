@@ -25,11 +25,12 @@ double NowMs() {
 }  // namespace
 
 // NVIDIA's compiler hints for the quick tier: `inline none`, or SDFVJ_QUICK_OPTIONS (words joined by
-// '-', hints by ':', "inline-none:unroll-none"), for measuring others (bench reload --modes
-// render-process+SDFVJ_QUICK_OPTIONS=...). A value with anything but letters, '-' and ':' is ignored.
+// '-', hints by ':', "inline-none:unroll-none"; "none": no hint), for measuring others (bench reload
+// --modes render-process+SDFVJ_QUICK_OPTIONS=...). A value with anything but letters, '-' and ':' is ignored.
 std::string QuickTierPragmas() {
     const char* env = std::getenv("SDFVJ_QUICK_OPTIONS");
     std::string options = env ? env : "";
+    if (options == "none") return "";
     const bool valid = !options.empty() && options.size() < 200 &&
                        options.find_first_not_of("abcdefghijklmnopqrstuvwxyz-:") == std::string::npos;
     if (!valid) options = "inline-none";

@@ -76,9 +76,10 @@ def main():
         failures.append(f"a cut that does not compile: exit {rc} (expected 1) and no 'failed: compile' row")
 
     for bad, expected in (("fast", "expected optimized or quick"), ("quick@cube", "expected @sphere"),
-                          ("quick+9X=1", "expected +NAME=VALUE"), ("quick/glow", "unknown effect")):
+                          ("quick+9X=1", "expected +NAME=VALUE"), ("quick/glow", "unknown effect"),
+                          ("quick!Inline_None", "expected !WORDS-JOINED-BY-DASHES")):
         rc, out = run(binary, "--scene", "midi", "--rounds", "1", "--cuts", bad)
-        if rc != 2 or expected not in out or bad.split("+")[0].split("@")[0].split("/")[0] not in out:
+        if rc != 2 or expected not in out or bad.split("!")[0].split("+")[0].split("@")[0].split("/")[0] not in out:
             failures.append(f"bad cut '{bad}': exit {rc}, output {out.strip()[:200]!r}; expected exit 2 saying '{expected}'")
 
     for f in failures:
