@@ -352,16 +352,17 @@ case "${1:-}" in
     # Session 40 (issue 12): the one-site renderer (render/one_site.glsl) as the quick tier of a
     # save (SDFVJ_QUICK_ONE_SITE=1 in the render servers' environment) against `inline none` alone:
     # save -> quick tier, its frames, the optimized program after; rounds interleaved, caches off.
-    # First its builds with NVIDIA's hints or none (bench compile), then saves: the quick tier built
-    # with `inline none` (as shipped), one-site with no hint, one-site with `inline none`.
-    for s in ${ONESITE_SCENES:-midi character}; do
+    # First its builds with NVIDIA's hints or none (bench compile; ONESITE_COMPILE=0 skips them), then
+    # saves: the quick tier as shipped (one site, `unroll none`), one site with no hint, and the
+    # quick tier before session 40 (SDFVJ_QUICK_ONE_SITE=0: the usual renderer, `inline none`).
+    [ "${ONESITE_COMPILE:-1}" = 1 ] && for s in ${ONESITE_SCENES:-midi character}; do
       timeout 150 bash "$0" remote bench compile --scene $s --rounds 3 --csv "$out/compile_onesite_$s.csv" --cuts quick \
         optimized+ONE_SITE=1 'optimized+ONE_SITE=1!unroll-none' quick+ONE_SITE=1 > "$out/compile_onesite_$s.txt" 2>&1 || true
       sed -n '/^## medians/,$p' "$out/compile_onesite_$s.txt" | cut -c1-300
     done
     for s in ${ONESITE_SCENES:-midi character}; do
       timeout 280 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered on --rounds ${ONESITE_ROUNDS:-4} \
-        --modes render-process,render-process+SDFVJ_QUICK_ONE_SITE=1+SDFVJ_QUICK_OPTIONS=none,render-process+SDFVJ_QUICK_ONE_SITE=1 \
+        --modes render-process,render-process+SDFVJ_QUICK_OPTIONS=none,render-process+SDFVJ_QUICK_ONE_SITE=0 \
         > "$out/reload_onesite_$s.txt" 2>&1 || true
       grep -h -A4 'modes side by side' "$out/reload_onesite_$s.txt" | cut -c1-300 || tail -5 "$out/reload_onesite_$s.txt"
       grep -h -E '^median' "$out/reload_onesite_$s.txt" | cut -c1-300

@@ -24,16 +24,25 @@ double NowMs() {
 }
 }  // namespace
 
-// NVIDIA's compiler hints for the quick tier: `inline none`, or SDFVJ_QUICK_OPTIONS (words joined by
-// '-', hints by ':', "inline-none:unroll-none"; "none": no hint), for measuring others (bench reload
-// --modes render-process+SDFVJ_QUICK_OPTIONS=...). A value with anything but letters, '-' and ':' is ignored.
+// The quick tier's form (issue 12, docs/performance.md "Session 40"): the one-site renderer
+// (render/one_site.glsl: one call site of the scene's field) with NVIDIA's `unroll none`; before,
+// the usual renderer with `inline none`. SDFVJ_QUICK_ONE_SITE=0|1 picks the renderer.
+bool QuickTierOneSite() {
+    static const bool oneSite = EnvSwitch("SDFVJ_QUICK_ONE_SITE", true);
+    return oneSite;
+}
+
+// NVIDIA's compiler hints for the quick tier: `unroll none` for the one-site renderer, `inline none`
+// for the usual one, or SDFVJ_QUICK_OPTIONS (words joined by '-', hints by ':',
+// "inline-none:unroll-none"; "none": no hint), for measuring others (bench reload --modes
+// render-process+SDFVJ_QUICK_OPTIONS=...). A value with anything but letters, '-' and ':' is ignored.
 std::string QuickTierPragmas() {
     const char* env = std::getenv("SDFVJ_QUICK_OPTIONS");
     std::string options = env ? env : "";
     if (options == "none") return "";
     const bool valid = !options.empty() && options.size() < 200 &&
                        options.find_first_not_of("abcdefghijklmnopqrstuvwxyz-:") == std::string::npos;
-    if (!valid) options = "inline-none";
+    if (!valid) options = QuickTierOneSite() ? "unroll-none" : "inline-none";
     std::string pragmas;
     size_t at = 0;
     while (at <= options.size()) {
@@ -52,9 +61,7 @@ std::string QuickTierText(const std::string& text) {
     const size_t eol = text.find('\n');
     if (text.rfind("#version", 0) != 0 || eol == std::string::npos) return text;
     // No cone pre-pass either (main_comp.glsl): its march is one more map() call site to compile.
-    // SDFVJ_QUICK_ONE_SITE=1: the whole trace with one call site of the scene's field (render/one_site.glsl).
-    static const bool oneSite = EnvSwitch("SDFVJ_QUICK_ONE_SITE", false);
-    return text.substr(0, eol + 1) + QuickTierPragmas() + "#define CONE_PREPASS 0\n" + (oneSite ? "#define ONE_SITE 1\n" : "") +
+    return text.substr(0, eol + 1) + QuickTierPragmas() + "#define CONE_PREPASS 0\n" + (QuickTierOneSite() ? "#define ONE_SITE 1\n" : "") +
            text.substr(eol + 1);
 }
 

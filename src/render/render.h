@@ -106,9 +106,14 @@ struct ProgramOrigin {
 // while the optimized one compiles (NVIDIA: `#pragma optionNV(inline none)` after #version).
 enum class BuildTier { Optimized, Quick };
 
-// The source of the quick tier: `#pragma optionNV(inline none)` right after #version (a line
-// before any #line directive, so error lines stay right). Drivers other than NVIDIA ignore it.
+// The source of the quick tier: right after #version (lines before any #line directive, so error
+// lines stay right) NVIDIA's hint, no cone pre-pass, and the one-site renderer (ONE_SITE 1,
+// render/one_site.glsl: one call site of the scene's field, the same pixels) with `#pragma
+// optionNV(unroll none)`; SDFVJ_QUICK_ONE_SITE=0: the usual renderer with `inline none`.
+// Drivers other than NVIDIA ignore the hint (Mesa tiers only with SDFVJ_TIERED=1).
 std::string QuickTierText(const std::string& text);
+// Whether the quick tier is the one-site renderer (SDFVJ_QUICK_ONE_SITE, default on; read once).
+bool QuickTierOneSite();
 
 // A linked program and the uniforms it actually declares.
 class Program {
