@@ -1,23 +1,26 @@
 // one_site.glsl - the pixel's whole trace with ONE call site of the scene's field (GLSL only;
-// included by render.glsl after traceRay). A quick first tier for drivers that inline every
-// function, as Mesa does: each call site of map() in the program (the march, the albedo at the
-// hit, the normal, the shadow ray, AO) is a copy of the scene's code for the compiler, and on
-// llvmpipe those copies are 65-77 % of a program's build (`sdfvj bench compile --path fragment`,
-// docs/performance.md "Session 40"). Here the march, the normal's samples, the shadow ray, the AO
-// probes and the reflection's own are phases of one loop, each iteration reading the field once,
-// at one place: the compiler sees the scene's code once.
+// included by render.glsl after traceRay): the quick first tier of a save (QuickTierText). Each
+// call site of map() in a program (the march, the albedo at the hit, the normal, the shadow ray,
+// AO) is a copy of the scene's code for the compiler: on llvmpipe, which inlines everything, the
+// copies are 63-76 % of a program's build; on NVIDIA the scene's field is most of the quick tier's
+// link, and the renderer around it links in 72-108 ms (`sdfvj bench compile`, docs/performance.md
+// "Session 40"). Here the march, the normal's samples, the shadow ray, the AO probes and the
+// reflection's own are phases of one loop, each iteration reading the field once, at one place:
+// the compiler sees the scene's code once. Built with NVIDIA's `unroll none`, a save's first image
+// came 18-25 % sooner on an H100 than with the `inline none` tier before it, and drew 5x as fast.
 //
 // Every phase does what traceRay's functions do, in the same order with the same arithmetic
 // (march/marchRange with ALBEDO_AT_HIT, onGround, surfaceNormal, shadowRange and the shadow loops
 // of lib/shading.glsl through shadowProbe, ambientOcclusion, shadeSurface, the mirror bounce), so
-// it draws the picture traceRay draws (test: `render: the one-site quick tier ...`). The frame is
-// slower (each iteration pays the phases' branches); it is on screen only until the optimized
-// program replaces it. Scenes of objects over a floor (SCENE_OBJECTS) read mapObjects() at the
-// site and compose map() from it and the floor (SCENE_MAP_OF), as their map() does.
+// it draws the picture traceRay draws (test: `render: the one-site renderer draws the picture the
+// renderer's own functions draw`: byte for byte on llvmpipe). Its frames are slower (1.5-1.7x on
+// the H100, 1.4-2x on llvmpipe: each iteration pays every phase's branches); it is on screen only
+// until the optimized program replaces it. Scenes of objects over a floor (SCENE_OBJECTS) read
+// mapObjects() at the site and compose map() from it and the floor (SCENE_MAP_OF), as their map()
+// does.
 //
-// ONE_SITE 1 asks for it (QuickTierText on drivers that ignore `optionNV(inline none)`); it is
-// used where it covers the variant: no debug view, no supersampling, no fixed-step march, the
-// albedo read at the hit. Elsewhere ONE_SITE changes nothing.
+// ONE_SITE 1 asks for it; it is used where it covers the variant: no debug view, no
+// supersampling, no fixed-step march, the albedo read at the hit. Elsewhere ONE_SITE changes nothing.
 #ifndef SDF_RENDER_ONE_SITE_GLSL
 #define SDF_RENDER_ONE_SITE_GLSL
 

@@ -62,7 +62,7 @@ public:
     // Tiered compiles on or off (default: TieredCompileDefault()). Takes effect at the next build.
     void SetTiered(bool on) { tiered_ = on ? 1 : 0; }
     bool Tiered() const { return tiered_ == 1 || (tiered_ < 0 && TieredCompileDefault()); }
-    // True where the driver honours `#pragma optionNV(inline none)` (GL_VENDOR contains NVIDIA),
+    // True where the driver honours `#pragma optionNV` hints (GL_VENDOR contains NVIDIA),
     // unless SDFVJ_TIERED=0. Needs a current context.
     static bool TieredCompileDefault();
     // Builds go to this compile process (nullptr: none, in-process). Default: ProcessCompileDefault().

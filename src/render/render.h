@@ -103,7 +103,7 @@ struct ProgramOrigin {
 };
 
 // Which build of a source: the optimized program, or a quick first tier that goes on screen
-// while the optimized one compiles (NVIDIA: `#pragma optionNV(inline none)` after #version).
+// while the optimized one compiles (NVIDIA: QuickTierText, the one-site renderer with its hint).
 enum class BuildTier { Optimized, Quick };
 
 // The source of the quick tier: right after #version (lines before any #line directive, so error
