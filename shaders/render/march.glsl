@@ -185,8 +185,10 @@ Hit onGround(vec3 ro, vec3 rd, Hit h) {
 // The primary (and reflection) ray: with the scene's bound only the stretch inside the sphere
 // is marched, and the ground is met analytically. One marchRange call site: one inlined loop.
 // maxSteps: the march's step budget (traceRay gives a reflection BOUNCE_STEPS).
-Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
 #if USE_BOUND
+// The stretch of the ray worth marching from tmin: (from, to, where it meets the ground: past
+// 2 u_maxDist where it does not). march() and the one-site renderer's march (render/one_site.glsl).
+vec3 marchStretch(vec3 ro, vec3 rd, float tmin) {
     float tGround = 2.0f * u_maxDist + 1.0f;   // no ground in front
     float a = tmin, b = u_maxDist;   // under the floor no shortcut: the whole field from tmin
     if (SCENE_GROUND == 0 || ro.y >= 0.0f) {
@@ -202,6 +204,14 @@ Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
         b = min(b, box.y);
 #endif
     }
+    return vec3(a, b, tGround);
+}
+#endif
+
+Hit march(vec3 ro, vec3 rd, float tmin, int maxSteps) {
+#if USE_BOUND
+    vec3 stretch = marchStretch(ro, rd, tmin);
+    float a = stretch.x, b = stretch.y, tGround = stretch.z;
     float steps = 0.0f;
     if (a <= b) {
         Hit h = marchRange(ro, rd, a, b, maxSteps);

@@ -62,19 +62,10 @@ void osBeginMarch(float tmin) {
     os_b = u_maxDist;
     os_tGround = 2.0f * u_maxDist + 1.0f;
 #if USE_BOUND
-    if (SCENE_GROUND == 0 || os_ro.y >= 0.0f) {
-#if SCENE_GROUND
-        if (os_rd.y < 0.0f) os_tGround = -os_ro.y / os_rd.y;
-#endif
-        vec2 inside = sphereInterval(os_ro, os_rd, sceneBound());
-        a = max(inside.x, tmin);
-        os_b = min(min(inside.y, os_tGround), u_maxDist);
-#if USE_BOX
-        vec2 box = boxInterval(os_ro, os_rd, sceneBoxMin(), sceneBoxMax());
-        a = max(a, box.x);
-        os_b = min(os_b, box.y);
-#endif
-    }
+    vec3 stretch = marchStretch(os_ro, os_rd, tmin);
+    a = stretch.x;
+    os_b = stretch.y;
+    os_tGround = stretch.z;
     if (a > os_b) {
         os_phase = OS_MISSED;
         return;
