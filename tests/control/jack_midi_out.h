@@ -11,7 +11,9 @@
 // The subset of RtMidiOut the tests use, with the same meaning: getPortCount/getPortName list
 // JACK's MIDI inputs, openPort(i) connects to one of them, openVirtualPort(name) makes a port
 // that others connect to ("plug in"), closePort() removes it ("unplug"), sendMessage queues one
-// message for the next JACK cycle. Errors throw std::runtime_error.
+// message for the next JACK cycle. Errors throw std::runtime_error. Xruns() counts the cycles JACK
+// reported late (a client that did not finish in time): events of such a cycle can be lost on
+// the way, by JACK, before any of sdfvj's code sees them.
 #pragma once
 #include <jack/jack.h>
 #include <jack/midiport.h>
@@ -33,6 +35,7 @@ public:
         if (!client_) throw std::runtime_error("JackMidiOut: no JACK server for client '" + clientName + "'");
         ring_ = jack_ringbuffer_create(1 << 16);
         jack_set_process_callback(client_, &JackMidiOut::Process, this);
+        jack_set_xrun_callback(client_, &JackMidiOut::Xrun, this);
         Activate();
     }
     ~JackMidiOut() {
@@ -85,7 +88,13 @@ public:
         jack_ringbuffer_write(ring_, reinterpret_cast<const char*>(message->data()), n);
     }
 
+    unsigned Xruns() const { return xruns_.load(); }
+
 private:
+    static int Xrun(void* arg) {
+        ++static_cast<JackMidiOut*>(arg)->xruns_;
+        return 0;
+    }
     void Activate() {
         if (jack_activate(client_) != 0) throw std::runtime_error("JackMidiOut: cannot activate the JACK client");
     }
@@ -110,6 +119,7 @@ private:
     jack_client_t* client_ = nullptr;
     jack_ringbuffer_t* ring_ = nullptr;
     std::atomic<jack_port_t*> port_{nullptr};
+    std::atomic<unsigned> xruns_{0};
     std::vector<std::string> inputs_;
 };
 

@@ -39,7 +39,8 @@ stop)
         sleep 0.01
     done
     rm -f "$state.pid"
-    echo "jackd stopped"
+    # Late cycles (a client that did not finish in time) lose MIDI on the way: say how many.
+    echo "jackd stopped; it reported $(grep -c 'XRun' "$state.log" 2>/dev/null || echo 0) late cycle(s)"
     ;;
 *)
     echo "usage: $0 start|stop STATE_PREFIX"; exit 2

@@ -372,22 +372,40 @@ TEST_CASE("midi clock: start, 24 pulses a beat and stop through JACK reach the q
     // JACK connects asynchronously (slowly on a loaded CI machine): resend a harmless CC until
     // one arrives, let the resent ones land, then count from there.
     REQUIRE(WaitFor([&] { Send(*out, {0xB0, 1, 0}); return r.queue.Pushed() > 0; }, 3.0));
-    r.Settle();
-    const size_t base = r.queue.Pushed();
-    Send(*out, {0xFA});
     const int pulses = 48;   // two beats at 120 bpm
-    for (int i = 0; i < pulses; ++i) {
-        Send(*out, {0xF8});
-        std::this_thread::sleep_for(std::chrono::microseconds(20833));
+    // A take: start, the pulses, stop. Every event must arrive. The one excuse is JACK's own:
+    // under ASan on a loaded 2-core CI machine a client once missed its cycle and two of the 50
+    // events never reached any of sdfvj's code. Such a take is played again, only when JACK
+    // reported the late cycle (an xrun) during it; a take short with no xrun fails the test.
+    std::vector<ControlEvent> take;
+    for (int attempt = 1;; ++attempt) {
+        r.Settle();
+        r.queue.DrainUntil(Now() + 1e9);   // the handshake and any earlier take
+        const size_t base = r.queue.Pushed();
+        const unsigned xruns = out->Xruns();
+        Send(*out, {0xFA});
+        for (int i = 0; i < pulses; ++i) {
+            Send(*out, {0xF8});
+            std::this_thread::sleep_for(std::chrono::microseconds(20833));
+        }
+        Send(*out, {0xFC});
+        const bool whole = WaitFor([&] { return r.queue.Pushed() >= base + pulses + 2; }, 3.0);
+        const unsigned late = out->Xruns() - xruns;
+        INFO("take " << attempt << ": events pushed " << r.queue.Pushed() - base << " of " << pulses + 2
+                     << "; JACK reported " << late << " late cycle(s) during it");
+        if (whole) {
+            take = r.queue.DrainUntil(Now());
+            break;
+        }
+        REQUIRE(late > 0);
+        REQUIRE(attempt < 3);
+        WARN("JACK lost events in a late cycle; the take is played again");
     }
-    Send(*out, {0xFC});
-    INFO("events pushed since the handshake: " << r.queue.Pushed() - base);
-    REQUIRE(WaitFor([&] { return r.queue.Pushed() >= base + pulses + 2; }, 3.0));
     TempoState tempo;
     tempo.bpm = 60.0;
     MidiClockFollower clock;
     int seen = 0, starts = 0, stops = 0;
-    for (const ControlEvent& e : r.queue.DrainUntil(Now())) {
+    for (const ControlEvent& e : take) {
         if (e.midiSize == 1 && e.midi[0] == 0xF8) ++seen;
         if (e.midiSize == 1 && e.midi[0] == 0xFA) ++starts;
         if (e.midiSize == 1 && e.midi[0] == 0xFC) ++stops;
