@@ -190,7 +190,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         const bool reattach = modeName == "render-process-reattach";
         const bool retireNow = modeName == "render-process-retire-now" || atOnce;
         const bool standby = modeName == "render-process-standby";
-        if (inTurn || importHere || reattach || retireNow || standby || !importOptions.touch || !importOptions.freeThere ||
+        const bool firstAfterImport = modeName == "render-process-first-after-import";
+        if (inTurn || importHere || reattach || retireNow || standby || firstAfterImport || !importOptions.touch || !importOptions.freeThere ||
             !importOptions.afterFrame)
             modeName = "render-process";
         int mode = modeName == "driver" ? 0 : modeName == "worker" ? 1 : modeName == "binary" ? 2 : modeName == "process" ? 3
@@ -202,7 +203,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             return Fail("--modes: '" + modeName + "', expected driver, worker, binary, process, process-source, warm, adopt, "
                         "adopt-process, stage, render-process, render-process-sync, render-process-one-image, render-process-in-turn, "
                         "render-process-import-here, render-process-no-touch, render-process-free-here, render-process-reattach, render-process-retire-now, render-process-import-now, render-process-at-once, render-process-standby, "
-                        "render-process+NAME=VALUE or "
+                        "render-process-first-after-import, render-process+NAME=VALUE or "
                         "render-process-shm");
         if (!post.empty() && mode < 9) return Fail("--post: render-process modes only (`bench post` times the chain in the show's process)");
         ModeRun m;
@@ -273,6 +274,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             run->SetReattach(reattach);
             run->Show().SetRetireAtOnce(retireNow);
             run->Show().SetStandby(standby);
+            run->Show().SetFirstFrameAfterImport(firstAfterImport);
             m.standby = standby;
             run->SetPost(post);
         }

@@ -172,6 +172,11 @@ public:
     // write it: call Read() after the commands that read it; Request then waits for the read of the
     // image the server writes next (with two images, that of the frame before: long done).
     bool Request(const FrameInputs& in);
+    // Request's first frame while this server's images are still on the import thread (Importing()):
+    // the server draws it as the images are imported, so the frame is here when they are (a swap a
+    // display refresh sooner). Nothing reads the images yet, so nothing is waited for. False when
+    // not importing, a frame is already asked for, or the server is gone.
+    bool RequestWhileImporting(const FrameInputs& in);
     void Read();
     // deadMs > timeoutMs: a frame not here after timeoutMs stays asked for (Outstanding(); Collect
     // again later) until deadMs have passed since its Request, when the server is taken for dead.

@@ -32,6 +32,13 @@ bool RenderProcess::Request(const FrameInputs& in) {
     return true;
 }
 
+bool RenderProcess::RequestWhileImporting(const FrameInputs& in) {
+    if (outstanding_ || !importing_ || !Send(Message(2, EncodeInputs(in)))) return false;
+    outstanding_ = true;
+    requestedAt_ = Clock::now();
+    return true;
+}
+
 double RenderProcess::OutstandingMs() const { return outstanding_ ? MsSince(requestedAt_) : 0.0; }
 
 double RenderProcess::TimeDraw(const FrameInputs& in, int timeoutMs) {

@@ -104,6 +104,8 @@ void ServerShow::FrameDone() {
 
 bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) {
     c.asked = false;
+    c.ready = false;
+    c.answeredAt = -1;
     c.optimized = false;
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
         c.process = attempt == 0 ? TakeFor(c, load, error) : Spawn(error);
@@ -149,11 +151,20 @@ bool ServerShow::Load(const ServerLoad& load, std::string* error, bool quickTier
 
 bool ServerShow::Promote(Candidate& c, std::string* error) {
     if (!c.process) return false;
-    if (!c.asked) {
+    if (!c.ready) {
         RenderProcess::Ready r;
-        if (!c.process->PollReady(&r, 0)) return false;
+        const bool taken = c.process->PollReady(&r, 0);
+        if (c.answeredAt < 0 && (taken || c.process->Importing())) c.answeredAt = polls_;
+        if (!taken) {
+            // Answered, its images on the import thread: its first frame is drawn meanwhile, with the
+            // inputs of now (as a pipelined frame is), and collected once they are imported.
+            if (pipelined_ && !firstAfterImport_ && !c.asked && c.process->Importing())
+                c.asked = c.process->RequestWhileImporting(lastInputs_);
+            return false;
+        }
         if (!r.ok) {
             Retire(std::move(c.process));
+            c.asked = false;
             if (r.transport != FrameTransport::Shm && transport_ != FrameTransport::Shm) {
                 // The server shared an image this context could not import: shared memory from now on.
                 note_ = std::string(FrameTransportName(r.transport)) + " import refused here (" + r.text + "): shared memory instead";
@@ -166,18 +177,23 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         }
         if (!r.text.empty() && note_.empty()) note_ = r.text;
         transport_ = r.transport;
+        c.ready = true;
         c.optimized = c.quick && r.optimized;
         shown_.push_back(r);
         shownQuick_.push_back(c.quick && !c.optimized);
-        if (pipelined_) {   // its first frame with the inputs of now, drawn while the one on screen goes on
+        if (pipelined_ && !c.asked) {   // its first frame with the inputs of now, drawn while the one on screen goes on
             c.asked = c.process->Request(lastInputs_);
             if (c.asked) return false;
         }
-    } else {
+    }
+    if (c.asked) {
         if (!c.process->Arrived() && c.process->Usable()) return false;
         c.asked = false;
         fresh_ = c.process->Collect(0);
     }
+    c.ready = false;
+    lastSwapPolls_ = polls_ - c.answeredAt;
+    c.answeredAt = -1;
     PutOnScreen(std::move(c.process), building_, c.quick && !c.optimized);
     return true;
 }
@@ -323,6 +339,7 @@ void ServerShow::StepStandby() {
 
 bool ServerShow::Poll(std::string* error) {
     error->clear();
+    ++polls_;
     EndRetired();   // a show that does not call FrameDone: those the last frame retired end now
     for (size_t i = 0; i < retired_.size();)
         if (retired_[i]->TryReap()) retired_.erase(retired_.begin() + (long)i);
@@ -349,7 +366,7 @@ bool ServerShow::Poll(std::string* error) {
     }
     if (Promote(next_, error)) {
         Retire(std::move(quick_.process));   // the optimized program came first or follows: the quick one is done
-        quick_.asked = false;
+        quick_.asked = quick_.ready = false;
         return true;
     }
     std::string quickError;
@@ -357,7 +374,7 @@ bool ServerShow::Poll(std::string* error) {
     if (quick && !onScreenQuick_) {   // the quick load showed the optimized program (from the cache): nothing follows
         deferred_ = false;
         Retire(std::move(next_.process));
-        next_.asked = false;
+        next_.asked = next_.ready = false;
     }
     if (deferred_ && !quick_.process) {   // the quick tier is on screen (or failed): the optimized build now
         deferred_ = false;

@@ -99,6 +99,13 @@ public:
     // The way before (bench reload --modes render-process-retire-now): servers retired end at once,
     // in the frame that retired them.
     void SetRetireAtOnce(bool on) { retireAfterFrame_ = !on; }
+    // The way before (bench reload --modes render-process-first-after-import): a new server's first
+    // frame is asked for once its images are imported (the frame after its answer), not while they
+    // are, so it goes on screen a display refresh later.
+    void SetFirstFrameAfterImport(bool on) { firstAfterImport_ = on; }
+    // Polls from the one that read the last server put on screen's answer to the one that put it
+    // there (1: the next Poll; -1: none yet).
+    long LastSwapPolls() const { return lastSwapPolls_; }
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
     unsigned ReadFramebuffer();                // a framebuffer reading Texture() (RenderProcess::ReadFramebuffer); 0: none
@@ -163,6 +170,8 @@ private:
         std::unique_ptr<RenderProcess> process;
         bool quick = false;
         bool asked = false;   // pipelined: its first frame was asked for; it goes on screen when that arrives
+        bool ready = false;   // its answer taken (and its images imported): it goes on screen with its first frame
+        long answeredAt = -1;   // the Poll (polls_) that read its answer
         bool optimized = false;   // quick, but it loaded the optimized program from the cache (Ready::optimized)
     };
     std::unique_ptr<RenderProcess> Spawn(std::string* error);
@@ -201,6 +210,8 @@ private:
     std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
     std::vector<std::unique_ptr<RenderProcess>> ending_;    // retired during this frame: ended at FrameDone
     bool retireAfterFrame_ = true;
+    bool firstAfterImport_ = false;
+    long polls_ = 0, lastSwapPolls_ = -1;
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
     std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
     ServerLoad previousLoad_;

@@ -37,6 +37,7 @@
 #undef SDF_RENDER_UNIFORMS_GLSL
 #undef SDF_RENDER_RENDER_GLSL
 #undef SDF_RENDER_MARCH_GLSL
+#undef SDF_RENDER_INTERVALS_GLSL
 // what a scene declares for render.glsl (its bounding volume) must not carry over to the next
 #undef SCENE_BOUND
 #undef SCENE_GROUND

@@ -211,6 +211,68 @@ TEST_CASE("render process gap: a new server's images are imported after the fram
     CHECK_FALSE(Running(old));
 }
 
+TEST_CASE("render process swap: a new server's first frame is drawn while its images are imported, so it goes on screen in the frame after its answer, a refresh sooner than asked for after the import", "[render_process]") {
+    // Pipelined, as `live --render-process` runs: the frame shown is the one asked for a frame
+    // before. A swap used to take three frames from the server's answer: the answer read (its images
+    // queued for the import thread), the images taken and the first frame asked for, that frame
+    // collected. Now the first frame is asked for with the answer, so the frame that takes the
+    // images takes it too. Frames are paced 150 ms apart here, room for the import and a small frame under ASan.
+    const Scenes scenes = TwoScenes();
+    const SceneInfo &midi = scenes.midi, &primitives = scenes.primitives;
+    std::string error;
+    const std::unique_ptr<ImportThread> thread = ImportOnContext();
+    INFO(error);
+    for (const bool afterImport : {false, true}) {
+        INFO((afterImport ? "first frame asked for after the import (the way before)" : "first frame asked for with the answer"));
+        ServerShow show(FrameTransport::VkMemory, true, false);
+        show.SetImporter(thread.get());
+        show.SetFirstFrameAfterImport(afterImport);
+        REQUIRE(show.Start(ServerLoad{midi.path, true, {}, RenderPath::Compute, kW, kH}, &error));
+        if (show.Transport() != FrameTransport::VkMemory) {
+            WARN("no Vulkan-allocated image here (" << show.Note() << "): nothing is imported on a thread");
+            return;
+        }
+        double time = 1.0;
+        // One paced frame as the show runs it; true when the Poll put a new server on screen.
+        auto frame = [&](const SceneInfo& scene) {
+            const bool swapped = show.Poll(&error);
+            REQUIRE(show.Frame(Inputs(scene, time)));
+            REQUIRE(show.ReadFramebuffer() != 0);
+            ReadFramebufferImage(show.ReadFramebuffer());   // the show's read of the frame
+            show.AfterRead(Inputs(scene, time));
+            show.FrameDone();
+            ::usleep(150000);
+            return swapped;
+        };
+        for (int i = 0; i < 3; ++i) frame(midi), time += 0.5;
+        REQUIRE(show.Load(ServerLoad{primitives.path, true, {}, RenderPath::Compute, kW, kH}, &error));
+        bool swapped = false;
+        double swapTime = 0;
+        for (int i = 0; i < 600 && !swapped; ++i) {
+            swapTime = time;
+            swapped = frame(primitives);   // the old server draws these inputs too: only the new one's frames are checked
+            time += 0.5;
+        }
+        REQUIRE(swapped);
+        INFO("polls from the answer to the swap: " << show.LastSwapPolls());
+        if (afterImport) CHECK(show.LastSwapPolls() >= 2);   // asked for only once the images are taken: never the next Poll
+        else CHECK(show.LastSwapPolls() == 1);
+        // The frame it went on screen with: the new scene, drawn with the inputs of two frames
+        // before (a Poll comes before the frame's own inputs, so what it asks for has the last
+        // frame's, and pipelined, the frame shown is the one asked for a frame before), either way.
+        CHECK(CompareImages(ReadFramebufferImage(show.ReadFramebuffer()),
+                            RenderScene(primitives.name, primitives.effects, RenderPath::Compute, kW, kH, swapTime - 1.0), 1)
+                  .fractionOver == 0.0);
+        // And it goes on drawing the new scene, frame by frame (pipelined: the one asked for a frame before).
+        const double asked = time;
+        frame(primitives);
+        REQUIRE(show.Frame(Inputs(primitives, asked + 0.5)));
+        CHECK(CompareImages(ReadFramebufferImage(show.ReadFramebuffer()),
+                            RenderScene(primitives.name, primitives.effects, RenderPath::Compute, kW, kH, asked), 1)
+                  .fractionOver == 0.0);
+    }
+}
+
 int main(int argc, char** argv) {
     if (argc == 2 && std::string(argv[1]) == "render-server") return RunRenderServer(3, MakeIsfServerPost);
     return Catch::Session().run(argc, argv);
