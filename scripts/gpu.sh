@@ -14,7 +14,8 @@
 #                                 adopt, toggle, launch, fresh, handover, stage, s16 (render processes),
 #                                 spirv (GLSL against SPIR-V builds), compile (where a build's
 #                                 time goes: `bench compile`'s cuts, and the one-site renderer's frames),
-#                                 onesite (the one-site renderer as a save's quick tier), ahead (effect pad hits through
+#                                 onesite (the one-site renderer as a save's quick tier), swap (a new
+#                                 server's first frame asked for with its answer or after its import), ahead (effect pad hits through
 #                                 render processes, cold against built ahead).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
@@ -366,6 +367,17 @@ case "${1:-}" in
         > "$out/reload_onesite_$s.txt" 2>&1 || true
       grep -h -A4 'modes side by side' "$out/reload_onesite_$s.txt" | cut -c1-300 || tail -5 "$out/reload_onesite_$s.txt"
       grep -h -E '^median' "$out/reload_onesite_$s.txt" | cut -c1-300
+    done
+    fi
+    if [ "$part" = swap ]; then
+    # Session 41 (issue 12): a new render server's first frame asked for with its answer, drawn while
+    # its images are imported (as shipped), against asked for once they are (before session 41:
+    # render-process-first-after-import). Structural saves, tiered, caches off, rounds interleaved.
+    for s in ${SWAP_SCENES:-midi character}; do
+      timeout 280 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered on --rounds ${SWAP_ROUNDS:-5} \
+        --modes render-process,render-process-first-after-import > "$out/reload_swap_$s.txt" 2>&1 || true
+      grep -h -A4 'modes side by side' "$out/reload_swap_$s.txt" | cut -c1-300 || tail -5 "$out/reload_swap_$s.txt"
+      grep -h -E '^median' "$out/reload_swap_$s.txt" | cut -c1-300
     done
     fi
     if [ "$part" = define ]; then
