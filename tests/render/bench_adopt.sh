@@ -21,6 +21,9 @@ adopt=$(echo "$out" | awk -F'|' -v m=" $mode " '$2 == m { gsub(/ /, "", $5); pri
 # of that at most (0 here alone).
 wmiss=$(echo "$out" | awk -F'|' '$2 == " worker " { gsub(/ /, "", $10); print $10 }')
 amiss=$(echo "$out" | awk -F'|' -v m=" $mode " '$2 == m { gsub(/ /, "", $10); print $10 }')
+# Each mode says what its saves waited for past the build (save -> screen less the compile).
+past=$(echo "$out" | sed -n 's/^past the build.*median \([0-9.]*\) ms$/\1/p' | head -1)
+awk -v p="$past" 'BEGIN { if (p == "" || p + 0 <= 0) { print "bench_adopt: no \"past the build\" median"; exit 1 } }' || exit 1
 awk -v w="$worker" -v a="$adopt" -v m="$mode" -v wm="$wmiss" -v am="$amiss" 'BEGIN {
     if (w == "" || a == "" || wm == "" || am == "") { print "bench_adopt: no side-by-side table"; exit 1 }
     r = a / w
