@@ -4,6 +4,7 @@
 #include <poll.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/render_wire.h"
 
@@ -159,7 +160,7 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
             // Answered, its images on the import thread: its first frame is drawn meanwhile, with the
             // inputs of now (as a pipelined frame is), and collected once they are imported.
             if (pipelined_ && !firstAfterImport_ && !c.asked && c.process->Importing())
-                c.asked = c.process->RequestWhileImporting(lastInputs_);
+                c.asked = c.process->RequestWhileImporting(FirstFrameInputs());
             return false;
         }
         if (!r.ok) {
@@ -182,7 +183,7 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         shown_.push_back(r);
         shownQuick_.push_back(c.quick && !c.optimized);
         if (pipelined_ && !c.asked) {   // its first frame with the inputs of now, drawn while the one on screen goes on
-            c.asked = c.process->Request(lastInputs_);
+            c.asked = c.process->Request(FirstFrameInputs());
             if (c.asked) return false;
         }
     }
@@ -400,7 +401,25 @@ void ServerShow::SendAudio(RenderProcess& p) const {
     if (!onScreenLoad_.post.empty() && (!wave_.empty() || !spectrum_.empty())) p.SetAudio(wave_, spectrum_);
 }
 
+FrameInputs ServerShow::FirstFrameInputs() const {
+    // A Poll comes before its frame's inputs: the last ones are a frame old, and pipelined the frame
+    // asked for now is shown a frame later, in place of one the server on screen would have drawn
+    // with this frame's inputs. Asked for with the last inputs, the new server's first frame showed
+    // the time of the frame before again (a one-frame stall at every swap): one frame on, as far as
+    // the last two frames went (not across a seek, a pause or a stall of more than 0.5 s).
+    FrameInputs next = lastInputs_;
+    const double dt = lastInputs_.time - previousTime_;
+    if (dt > 0.0 && dt <= 0.5) {
+        next.time += dt;
+        next.frame += 1;
+        const double beat = next.beat + dt * next.bpm / 60.0;
+        next.beat = (float)(beat - std::floor(beat));
+    }
+    return next;
+}
+
 bool ServerShow::Frame(const FrameInputs& in, int timeoutMs, int deadMs) {
+    previousTime_ = lastInputs_.time;
     lastInputs_ = in;
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;

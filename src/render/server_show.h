@@ -212,6 +212,8 @@ private:
     bool retireAfterFrame_ = true;
     bool firstAfterImport_ = false;
     long polls_ = 0, lastSwapPolls_ = -1;
+    double previousTime_ = 0.0;   // the time of the inputs before lastInputs_
+    FrameInputs FirstFrameInputs() const;   // a new server's first frame: lastInputs_ one frame on
     std::unique_ptr<RenderProcess> lastFrame_;              // a dead server on screen: its texture until the replacement draws
     std::unique_ptr<RenderProcess> previous_;               // SetKeepPrevious: the one a build replaced
     ServerLoad previousLoad_;

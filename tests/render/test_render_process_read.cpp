@@ -233,6 +233,7 @@ TEST_CASE("render process swap: a new server's first frame is drawn while its im
             return;
         }
         double time = 1.0;
+        const double kStep = 0.25;   // show seconds a frame (paced 150 ms apart in wall time)
         // One paced frame as the show runs it; true when the Poll put a new server on screen.
         auto frame = [&](const SceneInfo& scene) {
             const bool swapped = show.Poll(&error);
@@ -244,29 +245,32 @@ TEST_CASE("render process swap: a new server's first frame is drawn while its im
             ::usleep(150000);
             return swapped;
         };
-        for (int i = 0; i < 3; ++i) frame(midi), time += 0.5;
+        for (int i = 0; i < 3; ++i) frame(midi), time += kStep;
         REQUIRE(show.Load(ServerLoad{primitives.path, true, {}, RenderPath::Compute, kW, kH}, &error));
         bool swapped = false;
         double swapTime = 0;
         for (int i = 0; i < 600 && !swapped; ++i) {
             swapTime = time;
             swapped = frame(primitives);   // the old server draws these inputs too: only the new one's frames are checked
-            time += 0.5;
+            time += kStep;
         }
         REQUIRE(swapped);
         INFO("polls from the answer to the swap: " << show.LastSwapPolls());
         if (afterImport) CHECK(show.LastSwapPolls() >= 2);   // asked for only once the images are taken: never the next Poll
         else CHECK(show.LastSwapPolls() == 1);
-        // The frame it went on screen with: the new scene, drawn with the inputs of two frames
-        // before (a Poll comes before the frame's own inputs, so what it asks for has the last
-        // frame's, and pipelined, the frame shown is the one asked for a frame before), either way.
-        CHECK(CompareImages(ReadFramebufferImage(show.ReadFramebuffer()),
-                            RenderScene(primitives.name, primitives.effects, RenderPath::Compute, kW, kH, swapTime - 1.0), 1)
+        // The frame it went on screen with: the new scene a frame behind, as every pipelined frame
+        // is, either way. A Poll comes before its frame's inputs, so the last ones are two frames
+        // behind the swap: asked for with those, the first frame showed the frame before's time
+        // again (a stall at every swap); it is asked for one frame on (ServerShow::FirstFrameInputs).
+        const Image shown = ReadFramebufferImage(show.ReadFramebuffer());
+        CHECK(CompareImages(shown, RenderScene(primitives.name, primitives.effects, RenderPath::Compute, kW, kH, swapTime - kStep), 1)
                   .fractionOver == 0.0);
+        CHECK(CompareImages(shown, RenderScene(primitives.name, primitives.effects, RenderPath::Compute, kW, kH, swapTime - 2 * kStep), 1)
+                  .fractionOver > 0.0);   // the times differ on screen: this check can tell them apart
         // And it goes on drawing the new scene, frame by frame (pipelined: the one asked for a frame before).
         const double asked = time;
         frame(primitives);
-        REQUIRE(show.Frame(Inputs(primitives, asked + 0.5)));
+        REQUIRE(show.Frame(Inputs(primitives, asked + kStep)));
         CHECK(CompareImages(ReadFramebufferImage(show.ReadFramebuffer()),
                             RenderScene(primitives.name, primitives.effects, RenderPath::Compute, kW, kH, asked), 1)
                   .fractionOver == 0.0);
