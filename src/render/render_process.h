@@ -203,6 +203,7 @@ public:
 
 private:
     bool Send(const std::string& message);
+    bool SendRequest(const FrameInputs& in);   // a frame asked for (wire type 2): outstanding from now
     bool Receive(int timeoutMs);                 // reads what arrived (fds too) into inbox_/fds_
     bool TakeMessage(uint32_t* type, std::string* payload);
     bool Answer(uint32_t* type, std::string* payload, int timeoutMs);   // false: none yet, or the server is gone

@@ -26,14 +26,15 @@ bool RenderProcess::Request(const FrameInputs& in) {
         glDeleteSync((GLsync)reads_[next]);
         reads_[next] = nullptr;
     }
-    if (!Send(Message(2, EncodeInputs(in)))) return false;
-    outstanding_ = true;
-    requestedAt_ = Clock::now();
-    return true;
+    return SendRequest(in);
 }
 
 bool RenderProcess::RequestWhileImporting(const FrameInputs& in) {
-    if (outstanding_ || !importing_ || !Send(Message(2, EncodeInputs(in)))) return false;
+    return !outstanding_ && importing_ && SendRequest(in);
+}
+
+bool RenderProcess::SendRequest(const FrameInputs& in) {
+    if (!Send(Message(2, EncodeInputs(in)))) return false;
     outstanding_ = true;
     requestedAt_ = Clock::now();
     return true;

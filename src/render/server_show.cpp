@@ -104,10 +104,7 @@ void ServerShow::FrameDone() {
 }
 
 bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) {
-    c.asked = false;
-    c.ready = false;
-    c.answeredAt = -1;
-    c.optimized = false;
+    c.Clear();
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
         c.process = attempt == 0 ? TakeFor(c, load, error) : Spawn(error);
         if (c.process && !load.post.empty() && (!wave_.empty() || !spectrum_.empty())) c.process->SetAudio(wave_, spectrum_);   // its chain's first draws with it
@@ -135,7 +132,7 @@ bool ServerShow::Start(const ServerLoad& load, std::string* error, int timeoutMs
 
 bool ServerShow::Load(const ServerLoad& load, std::string* error, bool quickTier) {
     error->clear();
-    for (Candidate* c : {&next_, &quick_}) Retire(std::move(c->process));   // superseded before they were shown
+    for (Candidate* c : {&next_, &quick_}) Drop(*c);   // superseded before they were shown
     building_ = load;
     deferred_ = false;
     if (tiered_ && quickTier && inTurn_) {   // the quick tier alone first; the optimized build once it is on screen (Poll)
@@ -164,8 +161,7 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
             return false;
         }
         if (!r.ok) {
-            Retire(std::move(c.process));
-            c.asked = false;
+            Drop(c);
             if (r.transport != FrameTransport::Shm && transport_ != FrameTransport::Shm) {
                 // The server shared an image this context could not import: shared memory from now on.
                 note_ = std::string(FrameTransportName(r.transport)) + " import refused here (" + r.text + "): shared memory instead";
@@ -192,10 +188,10 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         c.asked = false;
         fresh_ = c.process->Collect(0);
     }
-    c.ready = false;
     lastSwapPolls_ = polls_ - c.answeredAt;
-    c.answeredAt = -1;
-    PutOnScreen(std::move(c.process), building_, c.quick && !c.optimized);
+    const bool quick = c.quick && !c.optimized;
+    c.Clear();
+    PutOnScreen(std::move(c.process), building_, quick);
     return true;
 }
 
@@ -366,16 +362,14 @@ bool ServerShow::Poll(std::string* error) {
         return false;
     }
     if (Promote(next_, error)) {
-        Retire(std::move(quick_.process));   // the optimized program came first or follows: the quick one is done
-        quick_.asked = quick_.ready = false;
+        Drop(quick_);   // the optimized program came first or follows: the quick one is done
         return true;
     }
     std::string quickError;
     const bool quick = Promote(quick_, &quickError);
     if (quick && !onScreenQuick_) {   // the quick load showed the optimized program (from the cache): nothing follows
         deferred_ = false;
-        Retire(std::move(next_.process));
-        next_.asked = next_.ready = false;
+        Drop(next_);
     }
     if (deferred_ && !quick_.process) {   // the quick tier is on screen (or failed): the optimized build now
         deferred_ = false;

@@ -173,7 +173,9 @@ private:
         bool ready = false;   // its answer taken (and its images imported): it goes on screen with its first frame
         long answeredAt = -1;   // the Poll (polls_) that read its answer
         bool optimized = false;   // quick, but it loaded the optimized program from the cache (Ready::optimized)
+        void Clear() { asked = ready = optimized = false, answeredAt = -1; }   // before a load, or once retired
     };
+    void Drop(Candidate& c) { Retire(std::move(c.process)), c.Clear(); }   // retired: its flags go with it
     std::unique_ptr<RenderProcess> Spawn(std::string* error);
     std::unique_ptr<RenderProcess> TakeSpare(std::string* error, bool spawn = true);   // spawn: one now when none is ready
     void FillSpares();

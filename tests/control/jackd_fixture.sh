@@ -40,7 +40,8 @@ stop)
     done
     rm -f "$state.pid"
     # Late cycles (a client that did not finish in time) lose MIDI on the way: say how many.
-    echo "jackd stopped; it reported $(grep -c 'XRun' "$state.log" 2>/dev/null || echo 0) late cycle(s)"
+    late=$(grep -c 'XRun' "$state.log" 2>/dev/null)   # prints 0 (and fails) when there is none
+    echo "jackd stopped; it reported ${late:-0} late cycle(s)"
     ;;
 *)
     echo "usage: $0 start|stop STATE_PREFIX"; exit 2
