@@ -15,7 +15,8 @@
 #                                 spirv (GLSL against SPIR-V builds), compile (where a build's
 #                                 time goes: `bench compile`'s cuts, and the one-site renderer's frames),
 #                                 onesite (the one-site renderer as a save's quick tier), swap (a new
-#                                 server's first frame asked for with its answer or after its import), ahead (effect pad hits through
+#                                 server's first frame asked for with its answer or after its import), split
+#                                 (the quick tier's build: field against renderer), ahead (effect pad hits through
 #                                 render processes, cold against built ahead).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
@@ -372,12 +373,25 @@ case "${1:-}" in
     if [ "$part" = swap ]; then
     # Session 41 (issue 12): a new render server's first frame asked for with its answer, drawn while
     # its images are imported (as shipped), against asked for once they are (before session 41:
-    # render-process-first-after-import). Structural saves, tiered, caches off, rounds interleaved.
+    # render-process-first-after-import); session 42: against a spare that does not make its images
+    # ahead (SDFVJ_SERVER_PREPARE_IMAGES=0). Structural saves, tiered, caches off, rounds interleaved.
     for s in ${SWAP_SCENES:-midi character}; do
       timeout 280 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered on --rounds ${SWAP_ROUNDS:-5} \
-        --modes render-process,render-process-first-after-import > "$out/reload_swap_$s.txt" 2>&1 || true
+        --modes ${SWAP_MODES:-render-process,render-process-first-after-import,render-process+SDFVJ_SERVER_PREPARE_IMAGES=0} > "$out/reload_swap_$s.txt" 2>&1 || true
       grep -h -A4 'modes side by side' "$out/reload_swap_$s.txt" | cut -c1-300 || tail -5 "$out/reload_swap_$s.txt"
       grep -h -E '^median' "$out/reload_swap_$s.txt" | cut -c1-300
+    done
+    fi
+    if [ "$part" = split ]; then
+    # Session 42 (issue 12): where the quick tier's build goes on NVIDIA: the scene's field against the
+    # renderer around it, with the scene's effects and with none (`bench compile`, caches off, cuts
+    # interleaved). SPLIT_CUTS replaces the cuts.
+    for s in ${SPLIT_SCENES:-midi character}; do
+      # shellcheck disable=SC2086
+      timeout 200 bash "$0" remote bench compile --scene $s --rounds ${SPLIT_ROUNDS:-3} --csv "$out/split_$s.csv" \
+        --cuts ${SPLIT_CUTS:-quick quick@sphere quick/none quick/none@sphere optimized@sphere optimized/none@sphere} \
+        > "$out/split_$s.txt" 2>&1 || true
+      sed -n '/^## medians/,$p' "$out/split_$s.txt" | cut -c1-300; tail -2 "$out/split_$s.txt"
     done
     fi
     if [ "$part" = define ]; then

@@ -111,13 +111,13 @@ std::string RenderProcessRun::Details() const {
                                         (importOptions_.freeThere ? ", freed there" : ", freed on the render thread")
                                   : std::string("and freed on the render thread")) +
                        (servers_.StandbyUsed() > 0 ? "; " + std::to_string(servers_.StandbyUsed()) + " loads taken by a standby holding the program (only the chain built)" : "") +
-                       "; each one on screen: compile + link / first use / first frame / hand-over set-up ms, the render thread's part of taking it ms" +
+                       "; each one on screen: compile + link / first use / first frame / hand-over set-up ms (\"ahead\": its images made while it waited, the first frame's copy left), the render thread's part of taking it ms" +
                        (importer_ ? " (+ the import thread's ms)" : "") + ":";
     char buf[200];
     for (size_t i = 1; i < servers_.Shown().size(); ++i) {   // [0]: the first program, before the rounds
         const RenderProcess::Ready& r = servers_.Shown()[i];
-        std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f / %.1f, %.2f", servers_.ShownQuick()[i] ? "quick " : "", r.buildMs, r.useMs,
-                      r.firstFrameMs, r.shareMs, r.importMs);
+        std::snprintf(buf, sizeof buf, " %s%.1f / %.1f / %.1f / %.1f%s, %.2f", servers_.ShownQuick()[i] ? "quick " : "", r.buildMs, r.useMs,
+                      r.firstFrameMs, r.shareMs, r.imagesAhead ? " ahead" : "", r.importMs);
         line += buf;
         if (r.importThreadMs >= 0) {
             std::snprintf(buf, sizeof buf, " (+%.2f)", r.importThreadMs);

@@ -147,6 +147,14 @@ bool RenderProcess::Load(const ServerLoad& load, FrameTransport transport, bool 
     return Send(Message(1, LoadPayload(load, transport, quick)));
 }
 
+bool RenderProcess::PrepareImages(int width, int height, FrameTransport transport) {
+    std::string p;
+    Put<int32_t>(&p, width);
+    Put<int32_t>(&p, height);
+    Put<uint32_t>(&p, transport == FrameTransport::Shm ? 0u : 1u);
+    return Send(Message(7, p));
+}
+
 bool RenderProcess::BuildAhead(const ServerLoad& load) { return Send(Message(4, LoadPayload(load, FrameTransport::Shm, false))); }
 
 bool RenderProcess::Answer(uint32_t* type, std::string* payload, int timeoutMs) {
@@ -282,7 +290,7 @@ bool RenderProcess::FinishImport(Ready* ready, int timeoutMs) {
 
 bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pending) {
     size_t at = 0;
-    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0, standby = 0, optimized = 0;
+    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0, standby = 0, optimized = 0, ahead = 0;
     uint64_t modifier = 0, memorySize = 0;
     int32_t stride = 0, offset = 0;
     if (!Take(payload, &at, &ok) || !Take(payload, &at, &transport) || !Take(payload, &at, &ready->buildMs) ||
@@ -290,7 +298,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
         !Take(payload, &at, &modifier) || !Take(payload, &at, &stride) || !Take(payload, &at, &offset) ||
         !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached) ||
         !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2) || !Take(payload, &at, &ready->shareMs) ||
-        !Take(payload, &at, &standby) || !Take(payload, &at, &optimized)) {
+        !Take(payload, &at, &standby) || !Take(payload, &at, &optimized) || !Take(payload, &at, &ahead)) {
         ready->text = "the render process's answer is malformed";
         return false;
     }
@@ -299,6 +307,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
     ready->fromCache = cached != 0;
     ready->fromStandby = standby != 0;
     ready->optimized = optimized != 0;
+    ready->imagesAhead = ahead != 0;
     if (!ready->ok) return false;
     if (fds_.empty()) {
         ready->text = "the render process sent no frame buffer";

@@ -45,13 +45,17 @@
 //                   6 audio: u32 n, n x f32 waveform, u32 m, m x f32 spectrum, for the post chain's
 //                            audio inputs from the next frame on (no answer); also before a load, whose
 //                            first draws of the chain then have it
+//                   7 prepare: i32 width, i32 height, u32 transport (0 shm, else the GPU): the hand-over's
+//                            images made ahead for a load of that size (before a load, once; no answer)
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
 //                            Vulkan memory or dma-buf); then u32 from the program cache (0/1),
 //                            u32 images (1, or 2: a second Vulkan image's fd rides along too),
 //                            f64 the hand-over's set-up ms (images made and exported, the first frame in),
-//                            u32 the program was the one a build ahead left in the server (0/1)
+//                            u32 the program was the one a build ahead left in the server (0/1),
+//                            u32 a quick load showing the optimized program from the cache (0/1),
+//                            u32 the images were made ahead (wire type 7) (0/1)
 //                   2 done:  f64 the server's draw + hand-over ms, u32 the image the frame is in
 //                   4 built: u32 ok, u32 it was in the program cache already, f64 ms, u32 len, the error
 //                   5 timed: f64 ms (a GL timer query; glFinish + wall clock on a software renderer; < 0 failed)
@@ -122,6 +126,7 @@ public:
         double importMs = 0;                               // here, the render thread: the answer read and its images imported (PollReady)
         double importThreadMs = -1;                        // on the import thread (SetImporter): its imports; -1: none there
         bool optimized = false;                            // a quick tier's load found the optimized program in the cache and shows it
+        bool imagesAhead = false;                          // its hand-over's images were made before the load (PrepareImages): shareMs is the first frame's copy
     };
     struct BuiltAhead {
         bool ok = false, fromCache = false;   // fromCache: it was there already
@@ -143,6 +148,10 @@ public:
     // Asks the server to build and draw a scene (from its file, as the show would). Never blocks.
     // quick: the quick first tier of the program (QuickTierText).
     bool Load(const ServerLoad& load, FrameTransport transport, bool quick = false);
+    // The hand-over's images (and the frame's target) made now for a later Load of this size and
+    // transport, while the server waits: that load then only hands its first frame over
+    // (Ready::imagesAhead). Before Load, once; a load of another size makes its own. Never blocks.
+    bool PrepareImages(int width, int height, FrameTransport transport);
     // Builds a load's program into the program cache (program_cache.h) and draws nothing, so that a
     // later Load of it, in any server, is a cache load. Only before Load; one at a time: the next
     // after PollBuiltAhead said it is done. Never blocks.

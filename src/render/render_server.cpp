@@ -42,6 +42,18 @@ struct ServerTarget {
     GLuint drawFbo = 0;   // tex attached: what a post chain's output is blitted into
     std::string note;
 
+    ServerTarget() = default;
+    ServerTarget(const ServerTarget&) = delete;
+    ServerTarget& operator=(const ServerTarget&) = delete;
+    ~ServerTarget() {   // GL's objects first (the context is current), then the Vulkan image they import
+        if (drawFbo) glDeleteFramebuffers(1, &drawFbo);
+        if (tex) glDeleteTextures(1, &tex);
+        if (memoryObject) glDeleteMemoryObjectsEXT(1, &memoryObject);
+        if (image != EGL_NO_IMAGE_KHR) eglDestroyImageKHR(eglGetCurrentDisplay(), image);
+        if (shm) ::munmap(shm, bytes);
+        if (fd >= 0) ::close(fd);
+    }
+
     bool ShareVulkan(int w, int h, std::string* why) {
         if (!shared.Create(w, h, why)) return false;
         const int mine = shared.ExportFd();
@@ -312,11 +324,31 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
     // Two images on the GPU (vkmem): frame N into one while the show may still read frame N - 1 from
     // the other, so the show never waits for its own read before it asks for the next frame.
     // SDFVJ_SERVER_IMAGES=1: one image (every request then waits for the show's read: measured).
-    ServerTarget targets[2];
-    ServerTarget& target = targets[0];
+    std::unique_ptr<ServerTarget> targets[2] = {std::make_unique<ServerTarget>(), std::make_unique<ServerTarget>()};
     int images = 1, current = 0;
     const char* imagesEnv = std::getenv("SDFVJ_SERVER_IMAGES");
     const bool oneImage = imagesEnv && std::string(imagesEnv) == "1";
+    // The frame's target and the hand-over's images for w x h (transport 0: shared memory; else the
+    // GPU's, falling back as it must). False only when not even shared memory could be had.
+    auto makeTargets = [&](int w, int h, uint32_t transport, std::string* error) {
+        ServerTarget& target = *targets[0];
+        std::string why, why2, whySecond;
+        if (transport != 0 && !target.ShareVulkan(w, h, &why) && !target.ExportDmaBuf(w, h, &why2))
+            target.note = "GPU hand-over refused (Vulkan image: " + why + "; dma-buf: " + why2 + "): shared memory instead";
+        else if (transport != 0 && target.transport == FrameTransport::DmaBuf)
+            target.note = "Vulkan image refused (" + why + "): dma-buf";
+        if (target.transport == FrameTransport::Shm && !target.MakeShm(w, h, error)) return false;
+        if (target.transport == FrameTransport::VkMemory && !oneImage) {
+            if (targets[1]->ShareVulkan(w, h, &whySecond)) images = 2;
+            else target.note = "one shared image (a second one failed: " + whySecond + "): each frame waits for the show's read";
+        }
+        return fr.Resize(w, h, error);
+    };
+    // Made ahead (wire type 7: a spare told the show's size while it waits), so that a load of that
+    // size and transport only hands its first frame over. SDFVJ_SERVER_PREPARE_IMAGES=0: not (measured).
+    struct { int w = 0, h = 0; uint32_t transport = 0; bool made = false; } prepared;
+    const char* prepareImages = std::getenv("SDFVJ_SERVER_PREPARE_IMAGES");
+    const bool prepareOn = !prepareImages || std::string(prepareImages) != "0";
     bool loaded = false;
     for (;;) {
         uint32_t header[2];
@@ -330,7 +362,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             fr.Draw(*program, frameScene(in), in);
             const GLuint read = drawPost(in);
             current = (current + 1) % images;
-            targets[current].HandOver(fr, read);
+            targets[current]->HandOver(fr, read);
             std::string p;
             Put(&p, MsSince(t0));
             Put<uint32_t>(&p, (uint32_t)current);
@@ -349,6 +381,20 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             std::string p;
             Put(&p, ms);
             if (!SendAll(fd, Message(5, p))) return 0;
+            continue;
+        }
+        if (header[0] == 7) {   // the hand-over made ahead: i32 width, i32 height, u32 transport (before a load; no answer)
+            size_t at = 0;
+            int32_t w = 0, h = 0;
+            uint32_t transport = 0;
+            if (!Take(payload, &at, &w) || !Take(payload, &at, &h) || !Take(payload, &at, &transport) || loaded || prepared.made) return 3;
+            std::string ignored;   // the load makes them again, and says what failed
+            if (glOk && prepareOn && w > 0 && h > 0 && w <= 16384 && h <= 16384 && makeTargets(w, h, transport, &ignored))
+                prepared = {w, h, transport, true};
+            else {
+                for (auto& t : targets) t = std::make_unique<ServerTarget>();
+                images = 1;
+            }
             continue;
         }
         if (header[0] == 6) {   // the post chain's sound (before a load too: its first draws have it)
@@ -437,23 +483,19 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             ok = post && post->Load(m.post, fr.Texture(), w, h, wave, spectrum, &error);
             buildMs += MsSince(t0);
         }
+        const bool madeAhead = ok && prepared.made && prepared.w == w && prepared.h == h && (prepared.transport != 0) == (transport != 0);
         if (ok) {
             t0 = Clock::now();
-            std::string why, why2;
-            if (transport != 0 && !target.ShareVulkan(w, h, &why) && !target.ExportDmaBuf(w, h, &why2))
-                target.note = "GPU hand-over refused (Vulkan image: " + why + "; dma-buf: " + why2 + "): shared memory instead";
-            else if (transport != 0 && target.transport == FrameTransport::DmaBuf)
-                target.note = "Vulkan image refused (" + why + "): dma-buf";
-            if (target.transport == FrameTransport::Shm && !target.MakeShm(w, h, &error)) ok = false;
-            std::string whySecond;
-            if (ok && target.transport == FrameTransport::VkMemory && !oneImage) {
-                if (targets[1].ShareVulkan(w, h, &whySecond)) images = 2;
-                else target.note = "one shared image (a second one failed: " + whySecond + "): each frame waits for the show's read";
+            if (!madeAhead) {   // none made ahead, or for another size: made now
+                for (auto& t : targets) t = std::make_unique<ServerTarget>();
+                images = 1;
+                ok = makeTargets(w, h, transport, &error);
             }
-            if (ok) target.HandOver(fr, drawPost(in));
+            if (ok) targets[0]->HandOver(fr, drawPost(in));
             shareMs = MsSince(t0);
         }
         std::string p;
+        ServerTarget& target = *targets[0];
         Put<uint32_t>(&p, ok ? 1 : 0);
         Put<uint32_t>(&p, (uint32_t)target.transport);
         Put(&p, buildMs);
@@ -470,12 +512,13 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         Put(&p, shareMs);
         Put<uint32_t>(&p, standby ? 1 : 0);
         Put<uint32_t>(&p, optimized ? 1 : 0);
-        if (!SendAll(fd, Message(1, p), ok ? target.fd : -1, ok && images == 2 ? targets[1].fd : -1)) return 0;
+        Put<uint32_t>(&p, madeAhead ? 1 : 0);
+        if (!SendAll(fd, Message(1, p), ok ? target.fd : -1, ok && images == 2 ? targets[1]->fd : -1)) return 0;
         if (!ok) return 1;
-        for (ServerTarget& t : targets)
-            if (t.transport != FrameTransport::Shm && t.fd >= 0) {
-                ::close(t.fd);   // the show holds it now
-                t.fd = -1;
+        for (auto& t : targets)
+            if (t->transport != FrameTransport::Shm && t->fd >= 0) {
+                ::close(t->fd);   // the show holds it now
+                t->fd = -1;
             }
         loaded = true;
     }

@@ -75,6 +75,9 @@ void ServerShow::SpawnLoop() {
         std::string ignored;
         auto p = Spawn(&ignored);
         lock.lock();
+        // Its images for the show's size made while it waits (RenderProcess::PrepareImages); the
+        // socket is this thread's alone until the spare is in spares_.
+        if (p && prepareW_ > 0) p->PrepareImages(prepareW_, prepareH_, transport_);
         --spawning_;
         if (p) spares_.push_back(std::move(p));   // ended by the destructor when the show is over
     }
@@ -135,6 +138,10 @@ bool ServerShow::Load(const ServerLoad& load, std::string* error, bool quickTier
     for (Candidate* c : {&next_, &quick_}) Drop(*c);   // superseded before they were shown
     building_ = load;
     deferred_ = false;
+    {
+        std::lock_guard<std::mutex> lock(spareMutex_);
+        prepareW_ = load.width, prepareH_ = load.height;   // the size the next spares make their images for
+    }
     if (tiered_ && quickTier && inTurn_) {   // the quick tier alone first; the optimized build once it is on screen (Poll)
         if (!Send(quick_, load, error)) return false;
         deferred_ = true;

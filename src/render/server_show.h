@@ -109,6 +109,11 @@ public:
 
     unsigned Texture() const;                  // the show context's texture of the frame on screen; 0: none
     unsigned ReadFramebuffer();                // a framebuffer reading Texture() (RenderProcess::ReadFramebuffer); 0: none
+    // Spares started and waiting (the spawner's; never blocks beyond its lock).
+    int SparesReady() {
+        std::lock_guard<std::mutex> lock(spareMutex_);
+        return (int)spares_.size();
+    }
     // Programs held ready off screen, each by a server of its own that a spare becomes, in slots:
     //   Literal  the literal tier (`lifted`: its numbers from uniforms); Poll never puts it on
     //            screen, PromotePrepared does, with new numbers, as a quick tier (an optimized build
@@ -208,6 +213,7 @@ private:
     std::thread spawner_;
     bool stopSpawner_ = false;
     int spawnWanted_ = 0, spawning_ = 0;                    // spares asked of the spawner; being spawned
+    int prepareW_ = 0, prepareH_ = 0;                       // the last load's size: a spare's images are made for it
     std::vector<std::unique_ptr<RenderProcess>> spares_;    // guarded by spareMutex_
     std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
     std::vector<std::unique_ptr<RenderProcess>> ending_;    // retired during this frame: ended at FrameDone

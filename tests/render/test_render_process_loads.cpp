@@ -2,7 +2,8 @@
 // binary its own `render-server`): a quick tier's load whose optimized program is in the program
 // cache shows that one and nothing follows; `live`'s servers send no quick tier for a program whose
 // optimized build was on screen once the cache serves; a newer load waits for the build in flight
-// instead of ending it before it was shown (a storm of pads and presets on 2 cores: docs/reliability.md).
+// instead of ending it before it was shown (a storm of pads and presets on 2 cores: docs/reliability.md);
+// a spare makes its hand-over images for the show's size while it waits.
 #include <catch2/catch.hpp>
 #include <epoxy/gl.h>
 #include <unistd.h>
@@ -157,4 +158,36 @@ TEST_CASE("render process: a newer load waits for the build in flight, which goe
     REQUIRE(servers.Frame(Inputs(scene, 1.0), &w, &h) != 0);
     const Image fogImage = RenderScene("midi", fog, RenderPath::Fragment, kW, kH, 1.0);
     CHECK(CompareImages(ReadTexture(servers.Servers().Texture()), fogImage, 1).fractionOver == 0.0);
+}
+
+TEST_CASE("render process: a spare makes its hand-over images for the show's size while it waits, so a load of that size only hands its first frame over, and a load of another size makes its own", "[render_process]") {
+    RequireGl();
+    SceneInfo midi, character;
+    std::string error;
+    REQUIRE(FindScene("midi", &midi, &error));
+    REQUIRE(FindScene("character", &character, &error));
+    for (const bool ahead : {true, false}) {
+        ServerShow show(FrameTransport::VkMemory, false, false);   // the GPU's images where the drivers can, else shared memory
+        if (!ahead) show.SetServerEnv({"SDFVJ_SERVER_PREPARE_IMAGES=0"});
+        INFO((ahead ? "made ahead" : "SDFVJ_SERVER_PREPARE_IMAGES=0") << ": " << error);
+        REQUIRE(show.Start(ServerLoad{midi.path, true, {}, RenderPath::Fragment, kW, kH}, &error));
+        CHECK_FALSE(show.Shown().back().imagesAhead);   // the first server was spawned for this load, told nothing before it
+        auto loadOnASpare = [&](const SceneInfo& scene, int w, int h) {
+            for (int i = 0; i < 30000 && show.SparesReady() == 0; ++i) ::usleep(2000);   // one that waited, as a save finds it
+            REQUIRE(show.SparesReady() > 0);
+            REQUIRE(show.Load(ServerLoad{scene.path, true, {}, RenderPath::Fragment, w, h}, &error));
+            REQUIRE(PollUntilChange(&show, &error));
+            REQUIRE(show.Frame(Inputs(scene, 1.0)));
+            INFO(scene.name << " at " << w << "x" << h << ", " << FrameTransportName(show.Shown().back().transport));
+            const Image want = RenderScene(scene.name, scene.effects, RenderPath::Fragment, w, h, 1.0);
+            CHECK(CompareImages(ReadTexture(show.Texture(), w, h), want, 1).fractionOver == 0.0);
+            return show.Shown().back();
+        };
+        // The spares were told kW x kH: a load of that size hands over in the images made ahead.
+        CHECK(loadOnASpare(character, kW, kH).imagesAhead == ahead);
+        // Another size: the spare's images are for the old one, so it makes its own, of the new size.
+        CHECK_FALSE(loadOnASpare(midi, 2 * kW, kH + 16).imagesAhead);
+        // And the spares started after that load were told its size.
+        CHECK(loadOnASpare(character, 2 * kW, kH + 16).imagesAhead == ahead);
+    }
 }
