@@ -373,11 +373,13 @@ case "${1:-}" in
     if [ "$part" = swap ]; then
     # Session 41 (issue 12): a new render server's first frame asked for with its answer, drawn while
     # its images are imported (as shipped), against asked for once they are (before session 41:
-    # render-process-first-after-import); session 42: against a spare that does not make its images
-    # ahead (SDFVJ_SERVER_PREPARE_IMAGES=0). Structural saves, tiered, caches off, rounds interleaved.
+    # render-process-first-after-import, which makes no images ahead either); session 42, as shipped: a
+    # spare's images made and imported ahead and the first frame drawn with the streamed inputs, shown
+    # with the answer, against session 41's (SDFVJ_SERVER_PREPARE_IMAGES=0). Structural saves, tiered,
+    # caches off, rounds interleaved.
     for s in ${SWAP_SCENES:-midi character}; do
       timeout 280 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered on --rounds ${SWAP_ROUNDS:-5} \
-        --modes ${SWAP_MODES:-render-process,render-process-first-after-import,render-process+SDFVJ_SERVER_PREPARE_IMAGES=0} > "$out/reload_swap_$s.txt" 2>&1 || true
+        --modes ${SWAP_MODES:-render-process,render-process+SDFVJ_SERVER_PREPARE_IMAGES=0,render-process-first-after-import} > "$out/reload_swap_$s.txt" 2>&1 || true
       grep -h -A4 'modes side by side' "$out/reload_swap_$s.txt" | cut -c1-300 || tail -5 "$out/reload_swap_$s.txt"
       grep -h -E '^median' "$out/reload_swap_$s.txt" | cut -c1-300
     done

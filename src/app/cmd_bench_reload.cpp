@@ -179,7 +179,8 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                 else return Fail("--modes: '" + modeName + "': expected render-process+NAME=VALUE");
             modeName = "render-process";
         }
-        if (modeName == "render-process-one-image") serverEnv.push_back("SDFVJ_SERVER_IMAGES=1");
+        if (modeName == "render-process-one-image" || modeName == "render-process-first-after-import")   // the latter: as before session 41
+            serverEnv.push_back(modeName == "render-process-one-image" ? "SDFVJ_SERVER_IMAGES=1" : "SDFVJ_SERVER_PREPARE_IMAGES=0");
         const bool inTurn = modeName == "render-process-in-turn";
         const bool importHere = modeName == "render-process-import-here";
         ImportOptions importOptions;

@@ -5,7 +5,10 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <linux/sockios.h>
+#include <sys/ioctl.h>
 #include <sys/mman.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -39,6 +42,10 @@ void RenderProcess::Stop() {
     fds_.clear();
     if (pid_ > 0 && !killed_) ::kill(pid_, SIGTERM);   // it may be in a compile of seconds; it has nothing to save
     killed_ = true;
+    FreeImages();
+}
+
+void RenderProcess::FreeImages() {
     if (importing_ && importing_->Abandon()) {   // done: its textures are ours to free (below)
         for (int i = 0; i < 2; ++i) {
             textures_[i] = importing_->textures[i];
@@ -148,11 +155,42 @@ bool RenderProcess::Load(const ServerLoad& load, FrameTransport transport, bool 
 }
 
 bool RenderProcess::PrepareImages(int width, int height, FrameTransport transport) {
+    if (prepareAsked_) return false;
+    width_ = width;
+    height_ = height;
+    prepareAsked_ = true;
     std::string p;
     Put<int32_t>(&p, width);
     Put<int32_t>(&p, height);
     Put<uint32_t>(&p, transport == FrameTransport::Shm ? 0u : 1u);
     return Send(Message(7, p));
+}
+
+bool RenderProcess::TakePrepared(int timeoutMs) {
+    if (!prepareAsked_ || prepareTaken_) return true;
+    uint32_t type = 0;
+    std::string payload;
+    if (!Answer(&type, &payload, timeoutMs)) return false;
+    prepareTaken_ = true;
+    if (type != 7) {   // a prepare is answered first
+        MarkDead();
+        return false;
+    }
+    Ready ignored;
+    bool pending = false;
+    prepared_ = Import(payload, &ignored, &pending);   // ok 0 (none made): nothing imported, and the load brings them
+    return true;
+}
+
+bool RenderProcess::SendInputsOfNow(const FrameInputs& in) {
+    int queued = 0;   // bytes the server has not read yet
+    if (!Usable() || ::ioctl(fd_, SIOCOUTQ, &queued) != 0 || queued > 16384) return false;
+    std::string p;
+    Put<uint32_t>(&p, inputsSeq_ + 1);
+    p += EncodeInputs(in);
+    if (!Send(Message(8, p))) return false;
+    ++inputsSeq_;
+    return true;
 }
 
 bool RenderProcess::BuildAhead(const ServerLoad& load) { return Send(Message(4, LoadPayload(load, FrameTransport::Shm, false))); }
@@ -172,7 +210,7 @@ bool RenderProcess::Answer(uint32_t* type, std::string* payload, int timeoutMs) 
 bool RenderProcess::PollBuiltAhead(BuiltAhead* built, int timeoutMs) {
     uint32_t type = 0;
     std::string payload;
-    if (!Answer(&type, &payload, timeoutMs)) {
+    if (!TakePrepared(timeoutMs) || !Answer(&type, &payload, timeoutMs)) {   // a prepare's answer comes first
         if (Usable()) return false;
         built->ok = false;
         built->text = "the render process ended while it built";
@@ -242,10 +280,10 @@ bool RenderProcess::TakeMessage(uint32_t* type, std::string* payload) {
 
 bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
     const auto start = Clock::now();
-    if (importing_) return FinishImport(ready, timeoutMs);
+    if (importing_ && loadAnswered_) return FinishImport(ready, timeoutMs);
     uint32_t type = 0;
     std::string payload;
-    if (!Answer(&type, &payload, timeoutMs)) {
+    if (!TakePrepared(timeoutMs) || !Answer(&type, &payload, timeoutMs - (int)MsSince(start))) {
         if (Usable()) return false;
         ready->ok = false;
         ready->text = "the render process ended before its program was ready";
@@ -257,6 +295,7 @@ bool RenderProcess::PollReady(Ready* ready, int timeoutMs) {
         ready->text = "the render process answered out of turn";
         return true;
     }
+    loadAnswered_ = true;
     const auto t0 = Clock::now();
     bool pending = false;
     if (!Import(payload, ready, &pending)) ready->ok = false;
@@ -290,7 +329,7 @@ bool RenderProcess::FinishImport(Ready* ready, int timeoutMs) {
 
 bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pending) {
     size_t at = 0;
-    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0, standby = 0, optimized = 0, ahead = 0;
+    uint32_t ok = 0, transport = 0, fourcc = 0, cached = 0, images = 0, standby = 0, optimized = 0, ahead = 0, seq = 0;
     uint64_t modifier = 0, memorySize = 0;
     int32_t stride = 0, offset = 0;
     if (!Take(payload, &at, &ok) || !Take(payload, &at, &transport) || !Take(payload, &at, &ready->buildMs) ||
@@ -298,7 +337,7 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
         !Take(payload, &at, &modifier) || !Take(payload, &at, &stride) || !Take(payload, &at, &offset) ||
         !Take(payload, &at, &memorySize) || !TakeText(payload, &at, &ready->text) || !Take(payload, &at, &cached) ||
         !Take(payload, &at, &images) || images < 1 || images > 2 || (images == 2 && transport != 2) || !Take(payload, &at, &ready->shareMs) ||
-        !Take(payload, &at, &standby) || !Take(payload, &at, &optimized) || !Take(payload, &at, &ahead)) {
+        !Take(payload, &at, &standby) || !Take(payload, &at, &optimized) || !Take(payload, &at, &ahead) || !Take(payload, &at, &seq)) {
         ready->text = "the render process's answer is malformed";
         return false;
     }
@@ -308,7 +347,21 @@ bool RenderProcess::Import(const std::string& payload, Ready* ready, bool* pendi
     ready->fromStandby = standby != 0;
     ready->optimized = optimized != 0;
     ready->imagesAhead = ahead != 0;
+    ready->firstSeq = seq;
     if (!ready->ok) return false;
+    if (ahead) {   // the images came with the prepare's answer (TakePrepared): imported, or still importing
+        if (!prepared_) {
+            ready->text = "the render process made its images ahead, but they could not be imported here";
+            return false;
+        }
+        shown_ = 0;
+        *pending = importing_ != nullptr;
+        return texture_ != 0 || *pending;
+    }
+    if (prepared_) {   // made ahead for another size: this load brings its own
+        FreeImages();
+        prepared_ = false;
+    }
     if (fds_.empty()) {
         ready->text = "the render process sent no frame buffer";
         return false;

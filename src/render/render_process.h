@@ -46,7 +46,9 @@
 //                            audio inputs from the next frame on (no answer); also before a load, whose
 //                            first draws of the chain then have it
 //                   7 prepare: i32 width, i32 height, u32 transport (0 shm, else the GPU): the hand-over's
-//                            images made ahead for a load of that size (before a load, once; no answer)
+//                            images made ahead for a load of that size (before a load, once; answered 7)
+//                   8 inputs of now: u32 number, FrameInputs (no answer): a load's first frame is drawn
+//                            with the last ones that came before it
 //   server -> show  1 ready: u32 ok, u32 transport, f64 build ms, f64 first use ms, f64 first frame
 //                            ms, u32 fourcc, u64 modifier, i32 stride, i32 offset, u64 memory size,
 //                            u32 len, text (the error, or a note); one fd rides along when ok (memfd,
@@ -55,7 +57,9 @@
 //                            f64 the hand-over's set-up ms (images made and exported, the first frame in),
 //                            u32 the program was the one a build ahead left in the server (0/1),
 //                            u32 a quick load showing the optimized program from the cache (0/1),
-//                            u32 the images were made ahead (wire type 7) (0/1)
+//                            u32 the images were made ahead (wire type 7: none ride along now) (0/1),
+//                            u32 the number of the streamed inputs (type 8) its first frame was drawn with (0: none)
+//                   7 prepared: a ready's payload (nothing built; ok 0: none made), its fds as a ready's
 //                   2 done:  f64 the server's draw + hand-over ms, u32 the image the frame is in
 //                   4 built: u32 ok, u32 it was in the program cache already, f64 ms, u32 len, the error
 //                   5 timed: f64 ms (a GL timer query; glFinish + wall clock on a software renderer; < 0 failed)
@@ -127,6 +131,7 @@ public:
         double importThreadMs = -1;                        // on the import thread (SetImporter): its imports; -1: none there
         bool optimized = false;                            // a quick tier's load found the optimized program in the cache and shows it
         bool imagesAhead = false;                          // its hand-over's images were made before the load (PrepareImages): shareMs is the first frame's copy
+        uint32_t firstSeq = 0;                             // its first frame (in the image shown) was drawn with the inputs SendInputsOfNow numbered so; 0: the scene's defaults
     };
     struct BuiltAhead {
         bool ok = false, fromCache = false;   // fromCache: it was there already
@@ -152,6 +157,16 @@ public:
     // transport, while the server waits: that load then only hands its first frame over
     // (Ready::imagesAhead). Before Load, once; a load of another size makes its own. Never blocks.
     bool PrepareImages(int width, int height, FrameTransport transport);
+    // The prepare's answer read and its images imported (on the import thread where there is one),
+    // so that the load that follows brings none; never blocks with timeoutMs 0. True once read (or
+    // none was asked for); false: not here yet (or the server is gone: Usable()).
+    bool TakePrepared(int timeoutMs = 0);
+    // The inputs of the show's frame now, sent to a server building a load (wire type 8): it draws its
+    // first frame with the last ones it has (Ready::firstSeq says which), so that frame can go on screen
+    // in the frame that reads its answer. Numbered from 1; skipped (false) while the socket holds more
+    // than a few frames' worth the server has not read (a build of seconds). Never blocks.
+    bool SendInputsOfNow(const FrameInputs& in);
+    uint32_t LastInputsSent() const { return inputsSeq_; }   // the number of the last SendInputsOfNow that went
     // Builds a load's program into the program cache (program_cache.h) and draws nothing, so that a
     // later Load of it, in any server, is a cache load. Only before Load; one at a time: the next
     // after PollBuiltAhead said it is done. Never blocks.
@@ -171,7 +186,7 @@ public:
     bool PollReady(Ready* ready, int timeoutMs = 0);
     // The thread that imports this server's images (vkmem); null: the render thread does. Before Load.
     void SetImporter(ImportThread* importer) { importer_ = importer; }
-    bool Importing() const { return importing_ != nullptr; }   // its images are on the import thread
+    bool Importing() const { return importing_ != nullptr && loadAnswered_; }   // its load answered, its images on the import thread
     // One frame: sends the inputs, waits for the server (up to timeoutMs), makes the frame this
     // process's Texture(). False when the server died or timed out: the caller keeps what it had.
     bool DrawFrame(const FrameInputs& in, int timeoutMs = 5000, int deadMs = -1) { return Request(in) && Collect(timeoutMs, deadMs); }
@@ -243,6 +258,10 @@ private:
     ImportThread* importer_ = nullptr;
     std::shared_ptr<ImportThread::Job> importing_;   // the images being imported there
     Ready importingReady_;                           // the answer they came with
+    bool loadAnswered_ = false;                      // PollReady read the load's answer
+    bool prepareAsked_ = false, prepareTaken_ = false, prepared_ = false;   // PrepareImages: asked, answered, imported (or importing)
+    uint32_t inputsSeq_ = 0;                         // SendInputsOfNow's last number
+    void FreeImages();                               // the images imported here (or being imported), and what reads them
 };
 
 // The child's main: a headless context of its own, then Load and frames from `fd` until it closes.

@@ -2,6 +2,7 @@
 // scene built, used and drawn on request, each frame handed over to the show.
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <deque>
 #include <cstring>
 
 #include "render/compile_worker.h"
@@ -16,6 +18,7 @@
 #include "render/live_program.h"
 #include "render/render_process.h"
 #include "render/render_wire.h"
+#include "render/server_target.h"
 #include "render/shared_image.h"
 #include "scene/scene.h"
 #include "shader/shader.h"
@@ -25,159 +28,6 @@ namespace sdfvj {
 using namespace render_wire;
 
 namespace {
-
-struct ServerTarget {
-    FrameTransport transport = FrameTransport::Shm;
-    GLuint tex = 0;
-    EGLImageKHR image = EGL_NO_IMAGE_KHR;
-    void* shm = nullptr;
-    size_t bytes = 0;
-    int fd = -1;
-    uint32_t fourcc = 0;
-    uint64_t modifier = kModInvalid;
-    int32_t stride = 0, offset = 0;
-    uint64_t memorySize = 0;
-    SharedImage shared;
-    GLuint memoryObject = 0;
-    GLuint drawFbo = 0;   // tex attached: what a post chain's output is blitted into
-    std::string note;
-
-    ServerTarget() = default;
-    ServerTarget(const ServerTarget&) = delete;
-    ServerTarget& operator=(const ServerTarget&) = delete;
-    ~ServerTarget() {   // GL's objects first (the context is current), then the Vulkan image they import
-        if (drawFbo) glDeleteFramebuffers(1, &drawFbo);
-        if (tex) glDeleteTextures(1, &tex);
-        if (memoryObject) glDeleteMemoryObjectsEXT(1, &memoryObject);
-        if (image != EGL_NO_IMAGE_KHR) eglDestroyImageKHR(eglGetCurrentDisplay(), image);
-        if (shm) ::munmap(shm, bytes);
-        if (fd >= 0) ::close(fd);
-    }
-
-    bool ShareVulkan(int w, int h, std::string* why) {
-        if (!shared.Create(w, h, why)) return false;
-        const int mine = shared.ExportFd();
-        if (mine < 0) {
-            *why = "vkGetMemoryFdKHR failed";
-            return false;
-        }
-        tex = ImportSharedTexture(mine, shared.Size(), w, h, &memoryObject, why);
-        fd = tex ? shared.ExportFd() : -1;
-        if (!tex || fd < 0) {
-            if (why->empty()) *why = "vkGetMemoryFdKHR failed";
-            return false;
-        }
-        memorySize = shared.Size();
-        transport = FrameTransport::VkMemory;
-        return true;
-    }
-
-    bool ExportDmaBuf(int w, int h, std::string* why) {
-        EGLDisplay dpy = eglGetCurrentDisplay();
-        for (const char* ext : {"EGL_KHR_gl_texture_2D_image", "EGL_MESA_image_dma_buf_export"})
-            if (!epoxy_has_egl_extension(dpy, ext)) {
-                *why = std::string("the driver's EGL has no ") + ext;
-                return false;
-            }
-        glGenTextures(1, &tex);
-        glBindTexture(GL_TEXTURE_2D, tex);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-        glFinish();
-        const EGLint attrs[] = {EGL_GL_TEXTURE_LEVEL_KHR, 0, EGL_NONE};
-        image = eglCreateImageKHR(dpy, eglGetCurrentContext(), EGL_GL_TEXTURE_2D_KHR, (EGLClientBuffer)(uintptr_t)tex, attrs);
-        int fcc = 0, planes = 0;
-        EGLuint64KHR mod = 0;
-        if (image == EGL_NO_IMAGE_KHR) *why = "eglCreateImageKHR of the texture failed";
-        else if (!eglExportDMABUFImageQueryMESA(dpy, image, &fcc, &planes, &mod)) *why = "eglExportDMABUFImageQueryMESA failed";
-        else if (planes != 1) *why = "the texture exports as " + std::to_string(planes) + " planes, expected 1";
-        else if (!eglExportDMABUFImageMESA(dpy, image, &fd, &stride, &offset) || fd < 0) *why = "eglExportDMABUFImageMESA failed (EGL error " + std::to_string(eglGetError()) + ")";
-        else {
-            fourcc = (uint32_t)fcc;
-            modifier = mod;
-            transport = FrameTransport::DmaBuf;
-            return true;
-        }
-        return false;
-    }
-    bool MakeShm(int w, int h, std::string* why) {
-        bytes = (size_t)w * (size_t)h * 4;
-        fd = memfd_create("sdfvj-frame", MFD_CLOEXEC);
-        if (fd < 0 || ::ftruncate(fd, (off_t)bytes) != 0) {
-            *why = std::string("memfd: ") + std::strerror(errno);
-            return false;
-        }
-        shm = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-        if (shm == MAP_FAILED) {
-            shm = nullptr;
-            *why = std::string("mmap: ") + std::strerror(errno);
-            return false;
-        }
-        transport = FrameTransport::Shm;
-        return true;
-    }
-    // The frame in `fr` handed over, or where a post chain drew it over the frame, its output
-    // (postRead: a framebuffer reading it, of the frame's size; RGBA8 or RGBA32F, so blitted, not
-    // copied); done on the GPU when this returns.
-    void HandOver(const FrameRenderer& fr, GLuint postRead = 0) {
-        if (transport != FrameTransport::Shm && postRead) {
-            if (!drawFbo) {
-                glGenFramebuffers(1, &drawFbo);
-                glBindFramebuffer(GL_DRAW_FRAMEBUFFER, drawFbo);
-                glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-            }
-            glBindFramebuffer(GL_READ_FRAMEBUFFER, postRead);
-            glBindFramebuffer(GL_DRAW_FRAMEBUFFER, drawFbo);
-            glBlitFramebuffer(0, 0, fr.Width(), fr.Height(), 0, 0, fr.Width(), fr.Height(), GL_COLOR_BUFFER_BIT, GL_NEAREST);
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            glFinish();
-            return;
-        }
-        if (transport != FrameTransport::Shm) {
-            glCopyImageSubData(fr.Texture(), GL_TEXTURE_2D, 0, 0, 0, 0, tex, GL_TEXTURE_2D, 0, 0, 0, 0, fr.Width(), fr.Height(), 1);
-            glFinish();
-            return;
-        }
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, postRead ? postRead : fr.Framebuffer());
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glReadPixels(0, 0, fr.Width(), fr.Height(), GL_RGBA, GL_UNSIGNED_BYTE, shm);   // waits for the frame
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    }
-};
-
-// The driver's compiler is loaded and set up at a process's first compile (NVIDIA: 100-200 ms):
-// a spare server compiles, links and runs a small program first, so a save pays only its own.
-void WarmCompiler() {
-    static const char* kText =
-        "#version 430\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
-        "layout(rgba8, binding = 0) uniform writeonly image2D u_out;\nuniform float u_t;\n"
-        "float f(vec3 p) { return length(p) - 1.0 + 0.1 * sin(p.x * u_t); }\n"
-        "void main() { vec3 p = vec3(gl_GlobalInvocationID, u_t); float d = 0.0;\n"
-        "  for (int i = 0; i < 16; ++i) d += f(p + d);\n"
-        "  imageStore(u_out, ivec2(gl_GlobalInvocationID.xy), vec4(d)); }\n";
-    const GLuint sh = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(sh, 1, &kText, nullptr);
-    glCompileShader(sh);
-    const GLuint prog = glCreateProgram();
-    glAttachShader(prog, sh);
-    glLinkProgram(prog);
-    GLint linked = 0;
-    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-    if (linked) {
-        GLuint tex = 0;
-        glGenTextures(1, &tex);
-        glBindTexture(GL_TEXTURE_2D, tex);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, 8, 8);
-        glBindImageTexture(0, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-        glUseProgram(prog);
-        glDispatchCompute(1, 1, 1);
-        glFinish();
-        glUseProgram(0);
-        glDeleteTextures(1, &tex);
-    }
-    glDeleteProgram(prog);
-    glDeleteShader(sh);
-}
 
 // A load or a build ahead (wire types 1 and 4: the same payload).
 struct LoadMessage {
@@ -344,17 +194,82 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         }
         return fr.Resize(w, h, error);
     };
+    // The answer to a load (wire type 1), or to a prepare (7: the images alone, nothing built).
+    auto readyPayload = [&](bool ok, const std::string& text, double buildMs, double useMs, double frameMs, bool cached, double shareMs,
+                            bool standby, bool optimized, bool ahead, uint32_t seq) {
+        const ServerTarget& target = *targets[0];
+        std::string p;
+        Put<uint32_t>(&p, ok ? 1 : 0);
+        Put<uint32_t>(&p, (uint32_t)target.transport);
+        Put(&p, buildMs);
+        Put(&p, useMs);
+        Put(&p, frameMs);
+        Put<uint32_t>(&p, target.fourcc);
+        Put<uint64_t>(&p, target.modifier);
+        Put<int32_t>(&p, target.stride);
+        Put<int32_t>(&p, target.offset);
+        Put<uint64_t>(&p, target.memorySize);
+        PutText(&p, ok ? target.note : text);
+        Put<uint32_t>(&p, cached ? 1 : 0);
+        Put<uint32_t>(&p, (uint32_t)images);
+        Put(&p, shareMs);
+        Put<uint32_t>(&p, standby ? 1 : 0);
+        Put<uint32_t>(&p, optimized ? 1 : 0);
+        Put<uint32_t>(&p, ahead ? 1 : 0);
+        Put<uint32_t>(&p, seq);
+        return p;
+    };
     // Made ahead (wire type 7: a spare told the show's size while it waits), so that a load of that
     // size and transport only hands its first frame over. SDFVJ_SERVER_PREPARE_IMAGES=0: not (measured).
     struct { int w = 0, h = 0; uint32_t transport = 0; bool made = false; } prepared;
     const char* prepareImages = std::getenv("SDFVJ_SERVER_PREPARE_IMAGES");
     const bool prepareOn = !prepareImages || std::string(prepareImages) != "0";
     bool loaded = false;
+    // The show's inputs of now (wire type 8), streamed while a load builds: its first frame is drawn
+    // with the last ones, so the show can put it on screen in the frame that reads the answer.
+    FrameInputs latest;
+    uint32_t latestSeq = 0;   // 0: none came
+    std::deque<std::pair<uint32_t, std::string>> queued;   // read while a load drained type 8s; answered after it
+    auto readMessage = [&](uint32_t* type, std::string* payload) {
+        uint32_t header[2];
+        if (!ReadAll(fd, header, sizeof header) || header[1] > kMaxPayload) return false;
+        *type = header[0];
+        payload->assign(header[1], '\0');
+        return ReadAll(fd, payload->data(), payload->size());
+    };
+    auto takeLatest = [&](const std::string& payload) {
+        size_t at = 0;
+        uint32_t seq = 0;
+        FrameInputs in;
+        if (!Take(payload, &at, &seq) || !DecodeInputs(payload.substr(at), &in)) return false;
+        latest = std::move(in), latestSeq = seq;
+        return true;
+    };
+    auto drainWaiting = [&]() {   // what the show sent meanwhile, without waiting; false: it is gone, or not ours
+        for (;;) {
+            pollfd pf{fd, POLLIN, 0};
+            if (::poll(&pf, 1, 0) <= 0 || !(pf.revents & POLLIN)) return true;
+            uint32_t type = 0;
+            std::string payload;
+            if (!readMessage(&type, &payload)) return false;
+            if (type != 8) queued.emplace_back(type, std::move(payload));
+            else if (!takeLatest(payload)) return false;
+        }
+    };
     for (;;) {
         uint32_t header[2];
-        if (!ReadAll(fd, header, sizeof header) || header[1] > kMaxPayload) return 0;
-        std::string payload(header[1], '\0');
-        if (!ReadAll(fd, payload.data(), payload.size())) return 0;
+        std::string payload;
+        if (!queued.empty()) {
+            header[0] = queued.front().first;
+            payload = std::move(queued.front().second);
+            queued.pop_front();
+        } else if (!readMessage(&header[0], &payload)) {
+            return 0;
+        }
+        if (header[0] == 8) {   // inputs of now: kept for a load's first frame
+            if (!takeLatest(payload)) return 3;
+            continue;
+        }
         if (header[0] == 2 && loaded) {
             FrameInputs in;
             if (!DecodeInputs(payload, &in)) return 3;
@@ -389,12 +304,20 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             uint32_t transport = 0;
             if (!Take(payload, &at, &w) || !Take(payload, &at, &h) || !Take(payload, &at, &transport) || loaded || prepared.made) return 3;
             std::string ignored;   // the load makes them again, and says what failed
+            const auto t0 = Clock::now();
             if (glOk && prepareOn && w > 0 && h > 0 && w <= 16384 && h <= 16384 && makeTargets(w, h, transport, &ignored))
                 prepared = {w, h, transport, true};
             else {
                 for (auto& t : targets) t = std::make_unique<ServerTarget>();
                 images = 1;
             }
+            // Answered with them (the show imports them while this server waits), or ok 0: none made.
+            const ServerTarget& target = *targets[0];
+            if (!SendAll(fd, Message(7, readyPayload(prepared.made, "", 0, 0, 0, false, MsSince(t0), false, false, false, 0)),
+                         prepared.made ? target.fd : -1, prepared.made && images == 2 ? targets[1]->fd : -1))
+                return 0;
+            for (auto& t : targets)
+                if (t->transport != FrameTransport::Shm && t->fd >= 0) ::close(t->fd), t->fd = -1;   // the show holds them now
             continue;
         }
         if (header[0] == 6) {   // the post chain's sound (before a load too: its first draws have it)
@@ -463,6 +386,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         buildMs = MsSince(t0);
         FrameInputs in;
         for (const ParamDecl& d : frameScene(in).params) in.params.emplace_back(d.name, d.defaultValue);
+        uint32_t firstSeq = 0;   // the streamed inputs the first frame was drawn with (0: the defaults)
         if (ok) ok = fr.Resize(w, h, &error);
         if (ok) {
             t0 = Clock::now();
@@ -470,6 +394,8 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             glFinish();
             useMs = MsSince(t0);
             t0 = Clock::now();
+            if (!drainWaiting()) return 0;
+            if (latestSeq != 0) in = latest, firstSeq = latestSeq;   // the show's last inputs: its frame of now
             fr.SetStrips(FirstFrameStrips());
             fr.Draw(*program, frameScene(in), in);
             fr.SetStrips(1);
@@ -494,26 +420,11 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             if (ok) targets[0]->HandOver(fr, drawPost(in));
             shareMs = MsSince(t0);
         }
-        std::string p;
-        ServerTarget& target = *targets[0];
-        Put<uint32_t>(&p, ok ? 1 : 0);
-        Put<uint32_t>(&p, (uint32_t)target.transport);
-        Put(&p, buildMs);
-        Put(&p, useMs);
-        Put(&p, frameMs);
-        Put<uint32_t>(&p, target.fourcc);
-        Put<uint64_t>(&p, target.modifier);
-        Put<int32_t>(&p, target.stride);
-        Put<int32_t>(&p, target.offset);
-        Put<uint64_t>(&p, target.memorySize);
-        PutText(&p, ok ? target.note : error);
-        Put<uint32_t>(&p, ok && program->FromCache() ? 1 : 0);
-        Put<uint32_t>(&p, (uint32_t)images);
-        Put(&p, shareMs);
-        Put<uint32_t>(&p, standby ? 1 : 0);
-        Put<uint32_t>(&p, optimized ? 1 : 0);
-        Put<uint32_t>(&p, madeAhead ? 1 : 0);
-        if (!SendAll(fd, Message(1, p), ok ? target.fd : -1, ok && images == 2 ? targets[1]->fd : -1)) return 0;
+        const ServerTarget& target = *targets[0];
+        const std::string p = readyPayload(ok, error, buildMs, useMs, frameMs, ok && program->FromCache(), shareMs, standby, optimized,
+                                           madeAhead, firstSeq);
+        // Images made ahead went with the prepare's answer: none ride along now.
+        if (!SendAll(fd, Message(1, p), ok && !madeAhead ? target.fd : -1, ok && !madeAhead && images == 2 ? targets[1]->fd : -1)) return 0;
         if (!ok) return 1;
         for (auto& t : targets)
             if (t->transport != FrameTransport::Shm && t->fd >= 0) {

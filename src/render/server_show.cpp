@@ -77,7 +77,7 @@ void ServerShow::SpawnLoop() {
         lock.lock();
         // Its images for the show's size made while it waits (RenderProcess::PrepareImages); the
         // socket is this thread's alone until the spare is in spares_.
-        if (p && prepareW_ > 0) p->PrepareImages(prepareW_, prepareH_, transport_);
+        if (p && prepareW_ > 0) p->PrepareImages(prepareW_, prepareH_, prepareTransport_);
         --spawning_;
         if (p) spares_.push_back(std::move(p));   // ended by the destructor when the show is over
     }
@@ -110,6 +110,7 @@ bool ServerShow::Send(Candidate& c, const ServerLoad& load, std::string* error) 
     c.Clear();
     for (int attempt = 0; attempt < 2; ++attempt) {   // a spare may have died while it waited: then a new one
         c.process = attempt == 0 ? TakeFor(c, load, error) : Spawn(error);
+        if (c.process) c.process->TakePrepared();   // a spare's images made ahead: imported while it builds
         if (c.process && !load.post.empty() && (!wave_.empty() || !spectrum_.empty())) c.process->SetAudio(wave_, spectrum_);   // its chain's first draws with it
         if (c.process && c.process->Load(load, transport_, c.quick)) return true;
         Retire(std::move(c.process));
@@ -141,6 +142,7 @@ bool ServerShow::Load(const ServerLoad& load, std::string* error, bool quickTier
     {
         std::lock_guard<std::mutex> lock(spareMutex_);
         prepareW_ = load.width, prepareH_ = load.height;   // the size the next spares make their images for
+        prepareTransport_ = transport_;
     }
     if (tiered_ && quickTier && inTurn_) {   // the quick tier alone first; the optimized build once it is on screen (Poll)
         if (!Send(quick_, load, error)) return false;
@@ -185,7 +187,12 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         c.optimized = c.quick && r.optimized;
         shown_.push_back(r);
         shownQuick_.push_back(c.quick && !c.optimized);
-        if (pipelined_ && !c.asked) {   // its first frame with the inputs of now, drawn while the one on screen goes on
+        if (pipelined_ && !c.asked && !firstAfterImport_ && r.firstSeq != 0 && r.firstSeq == c.process->LastInputsSent() &&
+            c.process->Texture()) {
+            // Its first frame is in the image shown, drawn with the last frame's inputs (streamed while it
+            // built), as a pipelined frame is: on screen in this frame, the one that read the answer.
+            fresh_ = true;
+        } else if (pipelined_ && !c.asked) {   // its first frame with the inputs of now, drawn while the one on screen goes on
             c.asked = c.process->Request(FirstFrameInputs());
             if (c.asked) return false;
         }
@@ -422,6 +429,9 @@ FrameInputs ServerShow::FirstFrameInputs() const {
 bool ServerShow::Frame(const FrameInputs& in, int timeoutMs, int deadMs) {
     previousTime_ = lastInputs_.time;
     lastInputs_ = in;
+    if (pipelined_ && !firstAfterImport_)   // a build's first frame drawn with these if they are the last it has
+        for (Candidate* c : {&next_, &quick_})
+            if (c->process && !c->ready && !c->asked && c->answeredAt < 0) c->process->SendInputsOfNow(in);
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;
     if (!fresh_ && !p.Outstanding()) SendAudio(p);

@@ -213,7 +213,8 @@ private:
     std::thread spawner_;
     bool stopSpawner_ = false;
     int spawnWanted_ = 0, spawning_ = 0;                    // spares asked of the spawner; being spawned
-    int prepareW_ = 0, prepareH_ = 0;                       // the last load's size: a spare's images are made for it
+    int prepareW_ = 0, prepareH_ = 0;                       // the last load's size and transport: a spare's images are made for them
+    FrameTransport prepareTransport_ = FrameTransport::Shm;
     std::vector<std::unique_ptr<RenderProcess>> spares_;    // guarded by spareMutex_
     std::vector<std::unique_ptr<RenderProcess>> retired_;   // ended, not yet reaped
     std::vector<std::unique_ptr<RenderProcess>> ending_;    // retired during this frame: ended at FrameDone
