@@ -211,7 +211,7 @@ TEST_CASE("render process gap: a new server's images are imported after the fram
     CHECK_FALSE(Running(old));
 }
 
-TEST_CASE("render process swap: a new server's first frame, drawn with the frame's inputs streamed while it built, goes on screen in the frame that reads its answer; without images made ahead, in the frame after", "[render_process]") {
+TEST_CASE("render process swap: a new server's first frame, drawn with the frame's inputs streamed while it built, goes on screen in the frame that reads its answer, and without images made ahead in the frame after", "[render_process]") {
     // Pipelined, as `live --render-process` runs: the frame shown is the one asked for a frame
     // before. A swap once took three frames from the server's answer: the answer read (its images
     // queued for the import thread), the images taken and the first frame asked for, that frame
