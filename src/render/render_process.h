@@ -164,9 +164,12 @@ public:
     // The inputs of the show's frame now, sent to a server building a load (wire type 8): it draws its
     // first frame with the last ones it has (Ready::firstSeq says which), so that frame can go on screen
     // in the frame that reads its answer. Numbered from 1; skipped (false) while the socket holds more
-    // than a few frames' worth the server has not read (a build of seconds). Never blocks.
+    // than 96 KB the server has not read (some 2 s of frames: a longer build's first frame is asked for). Never blocks.
     bool SendInputsOfNow(const FrameInputs& in);
     uint32_t LastInputsSent() const { return inputsSeq_; }   // the number of the last SendInputsOfNow that went
+    // The load's first frame (drawn with Ready::firstSeq's inputs) as Texture(), uncollected: shared
+    // memory copied in, as Collect does. False when there are no images.
+    bool ShowFirstFrame();
     // Builds a load's program into the program cache (program_cache.h) and draws nothing, so that a
     // later Load of it, in any server, is a cache load. Only before Load; one at a time: the next
     // after PollBuiltAhead said it is done. Never blocks.
@@ -262,6 +265,7 @@ private:
     bool prepareAsked_ = false, prepareTaken_ = false, prepared_ = false;   // PrepareImages: asked, answered, imported (or importing)
     uint32_t inputsSeq_ = 0;                         // SendInputsOfNow's last number
     void FreeImages();                               // the images imported here (or being imported), and what reads them
+    void UploadShm();                                // shared memory's frame into Texture()
 };
 
 // The child's main: a headless context of its own, then Load and frames from `fd` until it closes.

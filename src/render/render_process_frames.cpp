@@ -95,13 +95,21 @@ bool RenderProcess::Collect(int timeoutMs, int deadMs) {
     }
     shown_ = (int)image;
     texture_ = textures_[shown_];
-    if (transport_ == FrameTransport::Shm) {
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        glBindTexture(GL_TEXTURE_2D, texture_);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, shm_);
-    }
+    if (transport_ == FrameTransport::Shm) UploadShm();
     return true;
+}
+
+bool RenderProcess::ShowFirstFrame() {
+    if (!texture_ || outstanding_) return false;
+    if (transport_ == FrameTransport::Shm) UploadShm();
+    return true;
+}
+
+void RenderProcess::UploadShm() {
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, shm_);
 }
 
 unsigned RenderProcess::ReadFramebuffer() {

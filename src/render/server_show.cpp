@@ -188,7 +188,7 @@ bool ServerShow::Promote(Candidate& c, std::string* error) {
         shown_.push_back(r);
         shownQuick_.push_back(c.quick && !c.optimized);
         if (pipelined_ && !c.asked && !firstAfterImport_ && r.firstSeq != 0 && r.firstSeq == c.process->LastInputsSent() &&
-            c.process->Texture()) {
+            c.process->ShowFirstFrame()) {
             // Its first frame is in the image shown, drawn with the last frame's inputs (streamed while it
             // built), as a pipelined frame is: on screen in this frame, the one that read the answer.
             fresh_ = true;

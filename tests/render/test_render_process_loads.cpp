@@ -3,11 +3,14 @@
 // cache shows that one and nothing follows; `live`'s servers send no quick tier for a program whose
 // optimized build was on screen once the cache serves; a newer load waits for the build in flight
 // instead of ending it before it was shown (a storm of pads and presets on 2 cores: docs/reliability.md);
-// a spare makes its hand-over images for the show's size while it waits.
+// a spare makes its hand-over images for the show's size while it waits; the inputs a show streams
+// to a build never block it, and the first frame is drawn with the last that went.
 #include <catch2/catch.hpp>
 #include <epoxy/gl.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -190,4 +193,65 @@ TEST_CASE("render process: a spare makes its hand-over images for the show's siz
         // And the spares started after that load were told its size.
         CHECK(loadOnASpare(character, 2 * kW, kH + 16).imagesAhead == ahead);
     }
+}
+
+TEST_CASE("render process: the inputs a show streams to a build stop at 96 KB unread, no send waits for the build, and its first frame is drawn with the last that went, shared memory too", "[render_process]") {
+    RequireGl();
+    SceneInfo character, midi;
+    std::string error;
+    REQUIRE(FindScene("character", &character, &error));
+    REQUIRE(FindScene("midi", &midi, &error));
+    auto timeOf = [](uint32_t seq) { return 0.5 + 0.05 * seq; };
+    {
+        RenderProcess proc;   // shared memory: the frame reaches the texture only when copied in
+        REQUIRE(proc.Start(&error));
+        REQUIRE(proc.Load(ServerLoad{character.path, true, {}, RenderPath::Fragment, kW, kH}, FrameTransport::Shm));
+        // The server reads nothing while it starts and builds (seconds on llvmpipe): the show's sends
+        // pile up in the socket until the cap, and none of them waits.
+        int tried = 0;
+        double longestMs = 0;
+        for (bool sent = true; sent && tried < 100000; ++tried) {
+            const auto t0 = std::chrono::steady_clock::now();
+            sent = proc.SendInputsOfNow(Inputs(character, timeOf(proc.LastInputsSent() + 1)));
+            longestMs = std::max(longestMs, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        }
+        INFO(tried << " sends tried, " << proc.LastInputsSent() << " went, the longest " << longestMs << " ms");
+        CHECK(tried < 100000);                   // the cap stopped them
+        CHECK(proc.LastInputsSent() >= 60);      // 96 KB of the socket's memory: some 120 frames' inputs
+        CHECK(longestMs < 50.0);                 // a send that waited would wait for the build
+        RenderProcess::Ready ready;
+        bool answered = false;
+        for (int i = 0; i < 1200 && !answered; ++i) answered = proc.PollReady(&ready, 100);
+        REQUIRE(answered);
+        REQUIRE(ready.ok);
+        CHECK(ready.firstSeq == proc.LastInputsSent());   // every one read after the build, the last drawn
+        REQUIRE(proc.ShowFirstFrame());
+        const Image want = RenderScene("character", character.effects, RenderPath::Fragment, kW, kH, timeOf(ready.firstSeq));
+        CHECK(CompareImages(ReadTexture(proc.Texture()), want, 1).fractionOver == 0.0);
+        CHECK(CompareImages(ReadTexture(proc.Texture()), RenderScene("character", character.effects, RenderPath::Fragment, kW, kH, timeOf(1)), 1)
+                  .fractionOver > 0.0);   // not the first inputs: the times differ on screen
+    }
+    // A show on shared memory swaps in the frame that reads the answer too, with that frame's image.
+    ServerShow show(FrameTransport::Shm, true, false);
+    REQUIRE(show.Start(ServerLoad{midi.path, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    double time = 1.0;
+    auto frame = [&](const SceneInfo& scene) {
+        const bool swapped = show.Poll(&error);
+        REQUIRE(show.Frame(Inputs(scene, time)));
+        ReadFramebufferImage(show.ReadFramebuffer());
+        show.AfterRead(Inputs(scene, time));
+        show.FrameDone();
+        ::usleep(100000);
+        return swapped;
+    };
+    for (int i = 0; i < 30 && show.SparesReady() == 0; ++i) frame(midi), time += 0.25;
+    REQUIRE(show.Load(ServerLoad{character.path, true, {}, RenderPath::Fragment, kW, kH}, &error));
+    bool swapped = false;
+    double swapTime = 0;
+    for (int i = 0; i < 600 && !swapped; ++i) swapTime = time, swapped = frame(character), time += 0.25;
+    REQUIRE(swapped);
+    INFO("polls from the answer to the swap: " << show.LastSwapPolls());
+    CHECK(show.LastSwapPolls() <= 1);
+    const Image want = RenderScene("character", character.effects, RenderPath::Fragment, kW, kH, swapTime - 0.25);
+    CHECK(CompareImages(ReadFramebufferImage(show.ReadFramebuffer()), want, 1).fractionOver == 0.0);
 }
