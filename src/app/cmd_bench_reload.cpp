@@ -179,8 +179,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                 else return Fail("--modes: '" + modeName + "': expected render-process+NAME=VALUE");
             modeName = "render-process";
         }
-        if (modeName == "render-process-one-image" || modeName == "render-process-first-after-import")   // the latter: as before session 41
-            serverEnv.push_back(modeName == "render-process-one-image" ? "SDFVJ_SERVER_IMAGES=1" : "SDFVJ_SERVER_PREPARE_IMAGES=0");
+        if (const char* env = modeName == "render-process-one-image" ? "SDFVJ_SERVER_IMAGES=1" : modeName == "render-process-first-after-import" ? "SDFVJ_SERVER_PREPARE_IMAGES=0" : nullptr) serverEnv.push_back(env);   // the latter: as before session 41
         const bool inTurn = modeName == "render-process-in-turn";
         const bool importHere = modeName == "render-process-import-here";
         ImportOptions importOptions;

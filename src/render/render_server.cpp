@@ -219,6 +219,14 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
         Put<uint32_t>(&p, seq);
         return p;
     };
+    // An answer, with the images' fds when withImages: the show holds them from then on, so the GPU
+    // images' are closed here (shared memory's stays: this side writes through it). False: the show is gone.
+    auto answer = [&](uint32_t type, const std::string& p, bool withImages) {
+        if (!SendAll(fd, Message(type, p), withImages ? targets[0]->fd : -1, withImages && images == 2 ? targets[1]->fd : -1)) return false;
+        for (auto& t : targets)
+            if (withImages && t->transport != FrameTransport::Shm && t->fd >= 0) ::close(t->fd), t->fd = -1;
+        return true;
+    };
     // Made ahead (wire type 7: a spare told the show's size while it waits), so that a load of that
     // size and transport only hands its first frame over. SDFVJ_SERVER_PREPARE_IMAGES=0: not (measured).
     struct { int w = 0, h = 0; uint32_t transport = 0; bool made = false; } prepared;
@@ -312,12 +320,7 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
                 images = 1;
             }
             // Answered with them (the show imports them while this server waits), or ok 0: none made.
-            const ServerTarget& target = *targets[0];
-            if (!SendAll(fd, Message(7, readyPayload(prepared.made, "", 0, 0, 0, false, MsSince(t0), false, false, false, 0)),
-                         prepared.made ? target.fd : -1, prepared.made && images == 2 ? targets[1]->fd : -1))
-                return 0;
-            for (auto& t : targets)
-                if (t->transport != FrameTransport::Shm && t->fd >= 0) ::close(t->fd), t->fd = -1;   // the show holds them now
+            if (!answer(7, readyPayload(prepared.made, "", 0, 0, 0, false, MsSince(t0), false, false, false, 0), prepared.made)) return 0;
             continue;
         }
         if (header[0] == 6) {   // the post chain's sound (before a load too: its first draws have it)
@@ -420,17 +423,11 @@ int RunRenderServer(int fd, ServerPostFactory makePost) {
             if (ok) targets[0]->HandOver(fr, drawPost(in));
             shareMs = MsSince(t0);
         }
-        const ServerTarget& target = *targets[0];
         const std::string p = readyPayload(ok, error, buildMs, useMs, frameMs, ok && program->FromCache(), shareMs, standby, optimized,
                                            madeAhead, firstSeq);
         // Images made ahead went with the prepare's answer: none ride along now.
-        if (!SendAll(fd, Message(1, p), ok && !madeAhead ? target.fd : -1, ok && !madeAhead && images == 2 ? targets[1]->fd : -1)) return 0;
+        if (!answer(1, p, ok && !madeAhead)) return 0;
         if (!ok) return 1;
-        for (auto& t : targets)
-            if (t->transport != FrameTransport::Shm && t->fd >= 0) {
-                ::close(t->fd);   // the show holds it now
-                t->fd = -1;
-            }
         loaded = true;
     }
 }

@@ -2,6 +2,7 @@
 // scene's inputs at a time, a texture or read framebuffer of this context read back, a show polled
 // until its server on screen changes.
 #pragma once
+#include <catch2/catch.hpp>
 #include <epoxy/gl.h>
 #include <unistd.h>
 
@@ -16,6 +17,17 @@
 namespace sdfvj::test {
 
 constexpr int kW = 64, kH = 48;
+
+// A shipped scene by name, with the GL context the tests draw references in.
+inline SceneInfo ShippedScene(const char* name) {
+    RequireGl();
+    SceneInfo scene;
+    std::string error;
+    const bool found = FindScene(name, &scene, &error);
+    INFO(name << ": " << error);
+    REQUIRE(found);
+    return scene;
+}
 
 inline FrameInputs Inputs(const SceneInfo& scene, double time) {
     FrameInputs in;

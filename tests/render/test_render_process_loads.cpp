@@ -164,11 +164,8 @@ TEST_CASE("render process: a newer load waits for the build in flight, which goe
 }
 
 TEST_CASE("render process: a spare makes its hand-over images for the show's size while it waits, so a load of that size only hands its first frame over, and a load of another size makes its own", "[render_process]") {
-    RequireGl();
-    SceneInfo midi, character;
+    const SceneInfo midi = ShippedScene("midi"), character = ShippedScene("character");
     std::string error;
-    REQUIRE(FindScene("midi", &midi, &error));
-    REQUIRE(FindScene("character", &character, &error));
     for (const bool ahead : {true, false}) {
         ServerShow show(FrameTransport::VkMemory, false, false);   // the GPU's images where the drivers can, else shared memory
         if (!ahead) show.SetServerEnv({"SDFVJ_SERVER_PREPARE_IMAGES=0"});
@@ -196,11 +193,8 @@ TEST_CASE("render process: a spare makes its hand-over images for the show's siz
 }
 
 TEST_CASE("render process: the inputs a show streams to a build stop at 96 KB unread, no send waits for the build, and its first frame is drawn with the last that went, shared memory too", "[render_process]") {
-    RequireGl();
-    SceneInfo character, midi;
+    const SceneInfo midi = ShippedScene("midi"), character = ShippedScene("character");
     std::string error;
-    REQUIRE(FindScene("character", &character, &error));
-    REQUIRE(FindScene("midi", &midi, &error));
     auto timeOf = [](uint32_t seq) { return 0.5 + 0.05 * seq; };
     {
         RenderProcess proc;   // shared memory: the frame reaches the texture only when copied in
