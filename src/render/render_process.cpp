@@ -183,10 +183,12 @@ bool RenderProcess::TakePrepared(int timeoutMs) {
 }
 
 bool RenderProcess::SendInputsOfNow(const FrameInputs& in) {
-    // The socket's memory of what the server has not read (about 800 bytes a message): 96 KB is some
-    // 120 frames, 2 s at 60 Hz, and half of Linux's default send buffer (208 KB), so a send never waits.
+    // The socket's memory of what the server has not read (about 800 bytes a message): 16 KB is some 20
+    // frames, a tenth of Linux's default send buffer (208 KB), so a send never waits; a longer build's
+    // first frame is asked for. 96 KB (2 s of frames) made `soak.sh --quick --render-process` fail in
+    // 2 of 3 runs on llvmpipe (docs/performance.md, "Session 42"): kept at 16 KB.
     int queued = 0;
-    if (!Usable() || ::ioctl(fd_, SIOCOUTQ, &queued) != 0 || queued > 96 * 1024) return false;
+    if (!Usable() || ::ioctl(fd_, SIOCOUTQ, &queued) != 0 || queued > 16 * 1024) return false;
     std::string p;
     Put<uint32_t>(&p, inputsSeq_ + 1);
     p += EncodeInputs(in);

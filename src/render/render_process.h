@@ -164,7 +164,7 @@ public:
     // The inputs of the show's frame now, sent to a server building a load (wire type 8): it draws its
     // first frame with the last ones it has (Ready::firstSeq says which), so that frame can go on screen
     // in the frame that reads its answer. Numbered from 1; skipped (false) while the socket holds more
-    // than 96 KB the server has not read (some 2 s of frames: a longer build's first frame is asked for). Never blocks.
+    // than 16 KB the server has not read (some 20 frames: a longer build's first frame is asked for). Never blocks.
     bool SendInputsOfNow(const FrameInputs& in);
     uint32_t LastInputsSent() const { return inputsSeq_; }   // the number of the last SendInputsOfNow that went
     // The load's first frame (drawn with Ready::firstSeq's inputs) as Texture(), uncollected: shared
