@@ -16,7 +16,8 @@
 #                                 time goes: `bench compile`'s cuts, and the one-site renderer's frames),
 #                                 onesite (the one-site renderer as a save's quick tier), swap (a new
 #                                 server's first frame asked for with its answer or after its import), split
-#                                 (the quick tier's build: field against renderer), ahead (effect pad hits through
+#                                 (the quick tier's build: field against renderer), s43 (swap + split + knobs
+#                                 of the quick tier's link, one call), ahead (effect pad hits through
 #                                 render processes, cold against built ahead).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
@@ -383,6 +384,23 @@ case "${1:-}" in
       grep -h -A4 'modes side by side' "$out/reload_swap_$s.txt" | cut -c1-300 || tail -5 "$out/reload_swap_$s.txt"
       grep -h -E '^median' "$out/reload_swap_$s.txt" | cut -c1-300
     done
+    fi
+    if [ "$part" = s43 ]; then
+    # Session 43 (issue 12), one call: the swap (sessions 41-42 on NVIDIA), the split, then knobs that
+    # might shorten the quick tier's link (a scene's own #ifndef switches, an optionNV hint, the
+    # fragment path). Each step's files land in $OUT as it ends, so a call cut short keeps them.
+    SWAP_ROUNDS=${SWAP_ROUNDS:-4} SWAP_SCENES=midi bash "$0" measure swap
+    SWAP_ROUNDS=${SWAP_ROUNDS_CHARACTER:-3} SWAP_SCENES=character bash "$0" measure swap
+    SPLIT_ROUNDS=${SPLIT_ROUNDS:-3} bash "$0" measure split
+    knobs() {   # SCENE PATH CUTS..
+      local s=$1 p=$2; shift 2
+      timeout 100 bash "$0" remote bench compile --scene "$s" --path "$p" --rounds 3 --csv "$out/knobs_${s}_$p.csv" --cuts "$@" \
+        > "$out/knobs_${s}_$p.txt" 2>&1 || true
+      sed -n '/^## medians/,$p' "$out/knobs_${s}_$p.txt" | cut -c1-220
+    }
+    knobs character compute quick quick+CHARACTER_SKIP=0 quick+CHARACTER_CAPSULE_INV=0 'quick!ifcvt-none' quick+MARCH_OBJECT_STEP=0
+    knobs midi compute quick 'quick!ifcvt-none' quick+OVERRELAX=0 quick+BOUNDS=0
+    knobs midi fragment quick optimized
     fi
     if [ "$part" = split ]; then
     # Session 42 (issue 12): where the quick tier's build goes on NVIDIA: the scene's field against the
