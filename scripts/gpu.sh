@@ -390,7 +390,6 @@ case "${1:-}" in
     # might shorten the quick tier's link (a scene's own #ifndef switches, an optionNV hint, the
     # fragment path). Each step's files land in $OUT as it ends, so a call cut short keeps them.
     SWAP_ROUNDS=${SWAP_ROUNDS:-4} SWAP_SCENES=midi bash "$0" measure swap
-    SWAP_ROUNDS=${SWAP_ROUNDS_CHARACTER:-3} SWAP_SCENES=character bash "$0" measure swap
     SPLIT_ROUNDS=${SPLIT_ROUNDS:-3} bash "$0" measure split
     knobs() {   # SCENE PATH CUTS..
       local s=$1 p=$2; shift 2
@@ -401,6 +400,7 @@ case "${1:-}" in
     knobs character compute quick quick+CHARACTER_SKIP=0 quick+CHARACTER_CAPSULE_INV=0 'quick!ifcvt-none' quick+MARCH_OBJECT_STEP=0
     knobs midi compute quick 'quick!ifcvt-none' quick+OVERRELAX=0 quick+BOUNDS=0
     knobs midi fragment quick optimized
+    SWAP_ROUNDS=${SWAP_ROUNDS_CHARACTER:-3} SWAP_SCENES=character bash "$0" measure swap
     fi
     if [ "$part" = split ]; then
     # Session 42 (issue 12): where the quick tier's build goes on NVIDIA: the scene's field against the
