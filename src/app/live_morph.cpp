@@ -151,10 +151,10 @@ bool LiveSession::DrawServerFieldFade(double now) {
     unsigned texture = 0;
     if (fade_.waiting) {   // the scene before holds, drawn by its own server
         in.params = fade_.params;
-        texture = servers_->PreviousFrame(in);
+        Guard("draw: the scene before's frame", [&] { texture = servers_->PreviousFrame(in); });
     } else {
         in.params = MorphParamValues(fade_.params, in_.params, Ease(fade_.easing, t));
-        texture = servers_->MorphFrame(in);
+        Guard("draw: the morph's frame", [&] { texture = servers_->MorphFrame(in); });
     }
     if (!texture) return false;
     const ServerLoad& size = fade_.waiting ? servers_->Servers().PreviousLoad() : servers_->Servers().PreparedLoad(ServerShow::Held::Morph);

@@ -75,10 +75,14 @@ void LiveSession::DrawServerScene(double now, int rw, int rh) {
     if (t < 1.0) {
         FrameInputs old = in_;
         old.params = fade_.params;
-        if (const unsigned before = servers_->PreviousFrame(old)) {
+        unsigned before = 0;
+        Guard("draw: the scene before's frame", [&] { before = servers_->PreviousFrame(old, true); });
+        if (before) {
             std::string error;
             const bool post = ShowDrawsPost() && postInput_.Resize(rw, rh, &error);
-            crossfade_.Draw(before, texture, Ease(fade_.easing, t), post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);
+            Guard("draw: crossfade", [&] {
+                crossfade_.Draw(before, texture, Ease(fade_.easing, t), post ? postInput_.Framebuffer() : 0, post ? rw : fbw_, post ? rh : fbh_);
+            });
             if (post) DrawPost(postInput_.Texture(), rw, rh, now);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             servers_->AfterRead(in_);

@@ -273,14 +273,19 @@ void LiveServers::SayBuiltAhead(std::vector<std::string>* say) {
     aheadSaid_ = built.size();
 }
 
-unsigned LiveServers::Frame(const FrameInputs& in, int* w, int* h) {
-    // A server's frame later than three of its draws (at least 50 ms) is not waited for: the last
-    // image is shown again and the loop goes on (the overlay, the input, the post chain in this
-    // process), collecting it at a later frame; silent for a second, the server is replaced.
-    // SDFVJ_SERVER_LATE=0: wait for every frame up to the second, as before (measured: docs/reliability.md).
+// A server's frame later than three of its draws (at least 50 ms, at most 120 ms) is not waited
+// for: the last image is shown again and the loop goes on (the overlay, the input, the post chain in
+// this process), collecting it at a later frame; silent for a second, the server is replaced.
+// SDFVJ_SERVER_LATE=0: wait for every frame up to the second, as before; SDFVJ_SERVER_LATE_MAX_MS:
+// the 120 ms (1000: no cap, as before session 43; measured: docs/reliability.md).
+int LiveServers::LateMs(double serverMs) {
     static const bool notWaited = EnvSwitch("SDFVJ_SERVER_LATE", true);
-    const int lateMs = notWaited ? (int)std::clamp(3.0 * show_.LastServerMs(), 50.0, (double)kServerDeadMs) : kServerDeadMs;
-    show_.Frame(in, lateMs, kServerDeadMs);
+    static const int capMs = EnvInt("SDFVJ_SERVER_LATE_MAX_MS", 120, 50, kServerDeadMs);
+    return notWaited ? (int)std::clamp(3.0 * serverMs, 50.0, (double)capMs) : kServerDeadMs;
+}
+
+unsigned LiveServers::Frame(const FrameInputs& in, int* w, int* h) {
+    show_.Frame(in, LateMs(show_.LastServerMs()), kServerDeadMs);
     *w = show_.OnScreenLoad().width;
     *h = show_.OnScreenLoad().height;
     return show_.Texture();

@@ -61,6 +61,8 @@ public:
     // new size is on screen). 0 when there is none yet.
     // How long a server on screen may stay silent before it is replaced (a late frame is not waited for: Frame).
     static constexpr int kServerDeadMs = 1000;
+    // How long a frame of a server that draws in serverMs is waited for (Frame).
+    static int LateMs(double serverMs);
     unsigned Frame(const FrameInputs& in, int* w, int* h);
     unsigned FrameReadFramebuffer() { return show_.ReadFramebuffer(); }   // one reading Frame()'s texture, kept per image
     void AfterRead(const FrameInputs& in) { show_.AfterRead(in); }
@@ -70,7 +72,12 @@ public:
     // DropPrevious. A build of the same scene ends the one it replaced at once.
     bool TakeSceneChange() { return std::exchange(sceneChanged_, false); }
     const SceneInfo& PreviousScene() const { return previousScene_; }
-    unsigned PreviousFrame(const FrameInputs& in) { return show_.PreviousFrame(in) ? show_.PreviousTexture() : 0; }
+    // The scene before's frame, waited for as the one on screen's (Frame): not when late. Under a
+    // crossfade (`behind`) not at all: its image fades out a frame behind its inputs, and the frame's
+    // wait is the new scene's alone.
+    unsigned PreviousFrame(const FrameInputs& in, bool behind = false) {
+        return show_.PreviousFrame(in, behind ? 0 : LateMs(show_.PreviousServerMs()), kServerDeadMs) ? show_.PreviousTexture() : 0;
+    }
     void DropPrevious() { show_.DropPrevious(); }
 
     // A field morph (render/field_morph.h) from the scene on screen to `to`'s: a spare builds the two
@@ -81,7 +88,10 @@ public:
     Morph MorphState();   // never blocks
     bool MorphFor(const std::string& fromPath, const std::string& toPath) const;
     const std::string& MorphError() const { return show_.PreparedError(ServerShow::Held::Morph); }
-    unsigned MorphFrame(const FrameInputs& in) { return show_.HeldFrame(ServerShow::Held::Morph, in) ? show_.HeldTexture(ServerShow::Held::Morph) : 0; }
+    unsigned MorphFrame(const FrameInputs& in) {
+        const ServerShow::Held morph = ServerShow::Held::Morph;
+        return show_.HeldFrame(morph, in, LateMs(show_.HeldServerMs(morph)), kServerDeadMs) ? show_.HeldTexture(morph) : 0;
+    }
     void DropMorph() { show_.DropHeld(ServerShow::Held::Morph); }
     // Builds these variants ahead (ServerShow::BuildAhead) at the size on screen; the one on screen
     // is left out. Returns how many are queued. When all are done, Update says so once.

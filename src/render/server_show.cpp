@@ -262,8 +262,15 @@ bool ServerShow::PromotePrepared(const std::vector<float>& literals) {
     return true;
 }
 
-bool ServerShow::HeldFrame(Held slot, const FrameInputs& in, int timeoutMs) {
-    return PreparedReady(slot) && held_[(int)slot].c.process->DrawFrame(in, timeoutMs);
+bool ServerShow::HeldFrame(Held slot, const FrameInputs& in, int timeoutMs, int deadMs) {
+    return PreparedReady(slot) && SideFrame(*held_[(int)slot].c.process, in, timeoutMs, deadMs);
+}
+
+bool ServerShow::SideFrame(RenderProcess& p, const FrameInputs& in, int timeoutMs, int deadMs) {
+    if (!p.LastFrameStable()) timeoutMs = std::max(timeoutMs, deadMs);   // its one image is being written: not shown again
+    if (timeoutMs <= 0) p.Arrived();   // not waited for at all: what has come is read
+    const bool ok = p.Outstanding() ? p.Collect(timeoutMs, deadMs) : p.DrawFrame(in, timeoutMs, deadMs);
+    return ok || (p.Outstanding() && p.Texture() != 0);
 }
 
 void ServerShow::DropHeld(Held slot) {

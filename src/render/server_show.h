@@ -127,8 +127,8 @@ public:
     bool PreparedReady(Held slot = Held::Literal);   // never blocks; one that failed or died is dropped (*PreparedError says why)
     const std::string& PreparedError(Held slot = Held::Literal) const { return held_[(int)slot].error; }
     bool PromotePrepared(const std::vector<float>& literals);
-    // A ready held server's frame for `in` into HeldTexture(slot); false when it failed.
-    bool HeldFrame(Held slot, const FrameInputs& in, int timeoutMs = 1000);
+    // A ready held server's frame for `in` into HeldTexture(slot), as SideFrame; false when it failed.
+    bool HeldFrame(Held slot, const FrameInputs& in, int timeoutMs = 1000, int deadMs = -1);
     unsigned HeldTexture(Held slot) const { return HasPrepared(slot) ? held_[(int)slot].c.process->Texture() : 0; }
     void DropHeld(Held slot);
     // Variants built ahead (issue 12: what an effect pad or a preset reaches next): a server of their
@@ -148,8 +148,16 @@ public:
     void SetKeepPrevious(bool on) { keepPrevious_ = on; }
     bool HasPrevious() const { return previous_ && previous_->Usable(); }
     const ServerLoad& PreviousLoad() const { return previousLoad_; }
-    // The previous server's frame for `in` into PreviousTexture(); false when it failed.
-    bool PreviousFrame(const FrameInputs& in, int timeoutMs = 1000) { return HasPrevious() && previous_->DrawFrame(in, timeoutMs); }
+    // The previous server's frame for `in` into PreviousTexture(), as SideFrame; false when it failed.
+    bool PreviousFrame(const FrameInputs& in, int timeoutMs = 1000, int deadMs = -1) { return HasPrevious() && SideFrame(*previous_, in, timeoutMs, deadMs); }
+    // A frame of a server beside the one on screen (the scene before in a crossfade, a held morph),
+    // waited for as Frame waits for the one on screen's: one later than timeoutMs is not waited for
+    // (its last image is used again, and the frame collected by a later call) until deadMs after it was
+    // asked for, when the server is taken for dead (timeoutMs 0: not waited for at all, each frame
+    // asked for one call and shown from the next). false when it failed; true when late.
+    static bool SideFrame(RenderProcess& p, const FrameInputs& in, int timeoutMs, int deadMs);
+    double PreviousServerMs() const { return previous_ ? previous_->LastServerMs() : 0.0; }
+    double HeldServerMs(Held slot) const { return HasPrepared(slot) ? held_[(int)slot].c.process->LastServerMs() : 0.0; }
     unsigned PreviousTexture() const { return previous_ ? previous_->Texture() : 0; }
     void DropPrevious() { Retire(std::move(previous_)); }
     // The program on screen drawn once more offscreen by its server, timed there (RenderProcess::TimeDraw).

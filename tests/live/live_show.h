@@ -4,13 +4,16 @@
 #pragma once
 #include <catch2/catch.hpp>
 
+#include <dirent.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -179,6 +182,28 @@ inline std::string MidiWithGlow(const std::string& midi) {
     return MidiWithTwistLine(midi,
         "    {\"NAME\": \"twist\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": -3.0, \"MAX\": 3.0, \"LABEL\": \"Twist\"},\n"
         "    {\"NAME\": \"glow\", \"TYPE\": \"float\", \"DEFAULT\": 0.25, \"MIN\": 0.0, \"MAX\": 1.0, \"LABEL\": \"Glow\"},");
+}
+
+// The longest gap between two frames logged in [from, to], seconds.
+inline double LongestGap(const std::vector<Frame>& frames, size_t from, size_t to) {
+    double gap = 0;
+    for (size_t i = from + 1; i <= to && i < frames.size(); ++i) gap = std::max(gap, frames[i].first - frames[i - 1].first);
+    return gap;
+}
+
+// The processes `sdfvj live` started (its children: render servers, with --render-process).
+inline std::vector<pid_t> Children(pid_t parent) {
+    std::vector<pid_t> out;
+    const std::string task = "/proc/" + std::to_string(parent) + "/task";
+    if (DIR* d = opendir(task.c_str())) {
+        while (dirent* e = readdir(d)) {
+            if (e->d_name[0] == '.') continue;
+            std::istringstream words(ReadText(task + "/" + e->d_name + "/children"));
+            for (long pid = 0; words >> pid;) out.push_back((pid_t)pid);
+        }
+        closedir(d);
+    }
+    return out;
 }
 
 }  // namespace sdfvj::test
