@@ -57,12 +57,20 @@ std::string QuickTierPragmas() {
     return pragmas;
 }
 
+// QUICK_TIER 1 in the quick tier's text: a scene may pick code that builds sooner there, the same
+// field (character.glsl: no part skip, a division per capsule: NVIDIA's link 0.85x, session 43).
+// SDFVJ_QUICK_SCENE=0: not defined, for measuring.
+bool QuickTierSceneDefine() {
+    static const bool on = EnvSwitch("SDFVJ_QUICK_SCENE", true);
+    return on;
+}
+
 std::string QuickTierText(const std::string& text) {
     const size_t eol = text.find('\n');
     if (text.rfind("#version", 0) != 0 || eol == std::string::npos) return text;
     // No cone pre-pass either (main_comp.glsl): its march is one more map() call site to compile.
     return text.substr(0, eol + 1) + QuickTierPragmas() + "#define CONE_PREPASS 0\n" + (QuickTierOneSite() ? "#define ONE_SITE 1\n" : "") +
-           text.substr(eol + 1);
+           (QuickTierSceneDefine() ? "#define QUICK_TIER 1\n" : "") + text.substr(eol + 1);
 }
 
 bool Program::Build(const ShaderSource& src, RenderPath path, std::string* log) {

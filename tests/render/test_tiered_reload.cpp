@@ -186,14 +186,14 @@ TEST_CASE("reload: NudgeFirstConstant changes the first literal in a function bo
     CHECK_FALSE(found);
 }
 
-TEST_CASE("tiered: the quick tier's source has the NVIDIA hint right after #version, no cone pre-pass, and the one-site renderer", "[tiered]") {
+TEST_CASE("tiered: the quick tier's source has the NVIDIA hint right after #version, no cone pre-pass, the one-site renderer and QUICK_TIER for the scene", "[tiered]") {
     const std::string text = "#version 450 core\n#define X 1\n#line 1 1\nvoid main() {}\n";
     if (QuickTierOneSite()) {   // the default
         CHECK(QuickTierText(text) == "#version 450 core\n#pragma optionNV(unroll none)\n#define CONE_PREPASS 0\n#define ONE_SITE 1\n"
-                                     "#define X 1\n#line 1 1\nvoid main() {}\n");
+                                     "#define QUICK_TIER 1\n#define X 1\n#line 1 1\nvoid main() {}\n");
     } else {   // SDFVJ_QUICK_ONE_SITE=0 (ctest tiered_inline_none)
         CHECK(QuickTierText(text) ==
-              "#version 450 core\n#pragma optionNV(inline none)\n#define CONE_PREPASS 0\n#define X 1\n#line 1 1\nvoid main() {}\n");
+              "#version 450 core\n#pragma optionNV(inline none)\n#define CONE_PREPASS 0\n#define QUICK_TIER 1\n#define X 1\n#line 1 1\nvoid main() {}\n");
     }
     CHECK(QuickTierText("no version line") == "no version line");
 }
