@@ -512,6 +512,15 @@ TEST_CASE("render: the one-site renderer draws the picture the renderer's own fu
             ImageDiff d = CompareImages(shipped, oneSite, 2);
             INFO("compute, the show: " << d.fractionOver * 100 << " % of pixels past 2/255, max " << d.maxAbs);
             CHECK(d.fractionOver <= 0.001);
+            // A save's quick tier also defines QUICK_TIER, for which a scene may pick code that builds
+            // sooner (character.glsl): the same picture.
+            const fs::path quick = dir / (scene + "_quick_tier.glsl");
+            REQUIRE(WriteSceneCopy(scene, "#define ONE_SITE 1\n#define QUICK_TIER 1", quick));
+            ImageDiff q = CompareImages(RenderScene(scene, info.effects, RenderPath::Fragment, 96, 54),
+                                        RenderScene(quick.string(), info.effects, RenderPath::Fragment, 96, 54), 2);
+            INFO("the quick tier's scene, own effects: " << q.fractionOver * 100 << " % of pixels past 2/255, max " << q.maxAbs);
+            CHECK(q.fractionOver <= 0.001);
+            CHECK(q.meanAbs <= 0.05);
         }
     }
 }
