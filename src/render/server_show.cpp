@@ -266,11 +266,14 @@ bool ServerShow::HeldFrame(Held slot, const FrameInputs& in, int timeoutMs, int 
     return PreparedReady(slot) && SideFrame(*held_[(int)slot].c.process, in, timeoutMs, deadMs);
 }
 
-bool ServerShow::SideFrame(RenderProcess& p, const FrameInputs& in, int timeoutMs, int deadMs) {
+bool ServerShow::WaitFrame(RenderProcess& p, const FrameInputs& in, int timeoutMs, int deadMs) {
     if (!p.LastFrameStable()) timeoutMs = std::max(timeoutMs, deadMs);   // its one image is being written: not shown again
     if (timeoutMs <= 0) p.Arrived();   // not waited for at all: what has come is read
-    const bool ok = p.Outstanding() ? p.Collect(timeoutMs, deadMs) : p.DrawFrame(in, timeoutMs, deadMs);
-    return ok || (p.Outstanding() && p.Texture() != 0);
+    return p.Outstanding() ? p.Collect(timeoutMs, deadMs) : p.DrawFrame(in, timeoutMs, deadMs);
+}
+
+bool ServerShow::SideFrame(RenderProcess& p, const FrameInputs& in, int timeoutMs, int deadMs) {
+    return WaitFrame(p, in, timeoutMs, deadMs) || (p.Outstanding() && p.Texture() != 0);
 }
 
 void ServerShow::DropHeld(Held slot) {
@@ -442,9 +445,8 @@ bool ServerShow::Frame(const FrameInputs& in, int timeoutMs, int deadMs) {
     if (!onScreen_) return false;
     RenderProcess& p = *onScreen_;
     if (!fresh_ && !p.Outstanding()) SendAudio(p);
-    if (!p.LastFrameStable()) timeoutMs = std::max(timeoutMs, deadMs);   // its one image is being written: not shown again
     // A server just put on screen: its first frame is here already (pipelined), or drawn now.
-    const bool ok = fresh_ || (p.Outstanding() ? p.Collect(timeoutMs, deadMs) : p.DrawFrame(in, timeoutMs, deadMs));
+    const bool ok = fresh_ || WaitFrame(p, in, timeoutMs, deadMs);
     fresh_ = false;
     lateNow_ = !ok && p.Outstanding();
     if (lateNow_) {   // late, still asked for: the last frame is shown again

@@ -156,6 +156,9 @@ public:
     // asked for, when the server is taken for dead (timeoutMs 0: not waited for at all, each frame
     // asked for one call and shown from the next). false when it failed; true when late.
     static bool SideFrame(RenderProcess& p, const FrameInputs& in, int timeoutMs, int deadMs);
+    // p's frame for `in` (or the one asked for already), waited for up to timeoutMs (deadMs if its one
+    // image is being written); false when late or failed. Frame and SideFrame.
+    static bool WaitFrame(RenderProcess& p, const FrameInputs& in, int timeoutMs, int deadMs);
     double PreviousServerMs() const { return previous_ ? previous_->LastServerMs() : 0.0; }
     double HeldServerMs(Held slot) const { return HasPrepared(slot) ? held_[(int)slot].c.process->LastServerMs() : 0.0; }
     unsigned PreviousTexture() const { return previous_ ? previous_->Texture() : 0; }

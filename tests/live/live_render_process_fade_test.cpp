@@ -5,7 +5,6 @@
 #include <signal.h>
 
 #include <chrono>
-#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -17,15 +16,9 @@ using namespace sdfvj::test;
 TEST_CASE("live render process: in a crossfade, a render process that stops answering for 0.8 s stops neither the frames nor the fade") {
     const std::string dir = FreshDir(SDFVJ_LIVE_OUT, "render-process-fade-late");
     const std::string root = CopyDataRoot(dir);
-    std::ofstream(root + "/presets/to_primitives.json")
-        << R"({"scene": "primitives", "params": {"spin": 0.8}, "morph": {"seconds": 6.0, "easing": "linear", "scenes": "crossfade"}})";
+    WriteCrossfadePreset(root, "6.0");
     LiveShow show(dir, {"--scene", "midi", "--render-process"}, root);
-    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
-    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
-    REQUIRE_LIVE(show, PollFor(20, [&] { return Children(show.pid).size() == 2; }));   // on screen, and a spare
-    REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "to_primitives"}, dir + "/oscsend.log", 10) == 0);
-    REQUIRE_LIVE(show, show.WaitForLog("scene morph: midi -> primitives, a crossfade of their render processes' frames over 6.00 s", 1, 60));
-    REQUIRE_LIVE(show, show.WaitForValues({{"spin", 0.8f}}, kDeadline));
+    StartCrossfade(show, dir, "6.00");
     REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 5, kDeadline));   // fading
 
     // Every render process stopped (alive, silent) for 0.8 s, under the 1 s after which one is taken

@@ -157,6 +157,13 @@ inline const double kDeadline = 10.0;   // generous: software GL on a loaded mac
             REQUIRE(ok_);                                                                          \
         }                                                                                          \
     } while (0)
+// A preset that crossfades to primitives over `seconds` (root/presets/to_primitives.json).
+inline void WriteCrossfadePreset(const std::string& root, const std::string& seconds) {
+    std::ofstream(root + "/presets/to_primitives.json")
+        << R"({"scene": "primitives", "params": {"spin": 0.8}, "morph": {"seconds": )" << seconds
+        << R"(, "easing": "linear", "scenes": "crossfade"}})";
+}
+
 // A copy of the repository's data (shaders, presets, mappings) that a test may edit.
 inline std::string CopyDataRoot(const std::string& dir) {
     const std::filesystem::path root = std::filesystem::path(dir) / "root";
@@ -204,6 +211,17 @@ inline std::vector<pid_t> Children(pid_t parent) {
         closedir(d);
     }
     return out;
+}
+
+// Hands a `live --scene midi --render-process` show, started on a root with WriteCrossfadePreset,
+// that preset by OSC, and returns once the crossfade is said ("over SAID s") and the new values drawn.
+inline void StartCrossfade(LiveShow& show, const std::string& dir, const std::string& said) {
+    REQUIRE_LIVE(show, show.WaitForLog("the scene is drawn by a render process", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"twist", 0.5f}}, kDeadline));
+    REQUIRE_LIVE(show, PollFor(20, [&] { return Children(show.pid).size() == 2; }));   // on screen, and a spare
+    REQUIRE(Run({"oscsend", "localhost", std::to_string(show.oscPort), "/sdfvj/preset", "s", "to_primitives"}, dir + "/oscsend.log", 10) == 0);
+    REQUIRE_LIVE(show, show.WaitForLog("scene morph: midi -> primitives, a crossfade of their render processes' frames over " + said + " s", 1, 60));
+    REQUIRE_LIVE(show, show.WaitForValues({{"spin", 0.8f}}, kDeadline));
 }
 
 }  // namespace sdfvj::test
