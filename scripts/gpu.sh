@@ -18,7 +18,8 @@
 #                                 server's first frame asked for with its answer or after its import), split
 #                                 (the quick tier's build: field against renderer), s43 (swap + split + knobs
 #                                 of the quick tier's link, one call), ahead (effect pad hits through
-#                                 render processes, cold against built ahead).
+#                                 render processes, cold against built ahead), eval (a save drawn
+#                                 by the scene's evaluator program against the quick tier).
 #                                 Issue 13 (frames): frames, field, cone, lit, ab (against `prepare-ab
 #                                 REV`), loops (and compiles, against `prepare-rev REV`), ssaa, wg,
 #                                 overrelax, s13 (needs `AB_RENDER_OK=1 prepare-ab REV`), final13, s22 (normals),
@@ -401,6 +402,18 @@ case "${1:-}" in
     knobs midi compute quick 'quick!ifcvt-none' quick+OVERRELAX=0 quick+BOUNDS=0
     knobs midi fragment quick optimized
     SWAP_ROUNDS=${SWAP_ROUNDS_CHARACTER:-3} SWAP_SCENES=character bash "$0" measure swap
+    fi
+    if [ "$part" = eval ]; then
+    # Session 44 (issue 12): a structural save drawn by the scene's evaluator program (built ahead;
+    # the save translated on the CPU, no driver build) against the compile process with its quick
+    # tier, rounds interleaved, caches off; then the evaluator program's frames against the compiled
+    # program's at 1920x1080 and 3840x2160 (`render --evaluator`'s timing) where it prints them.
+    for s in ${EVAL_SCENES:-midi character}; do
+      timeout 250 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered on --rounds ${EVAL_ROUNDS:-5} \
+        --modes ${EVAL_MODES:-process,process-evaluator} > "$out/reload_eval_$s.txt" 2>&1 || true
+      grep -h -A4 'modes side by side' "$out/reload_eval_$s.txt" | cut -c1-300 || tail -5 "$out/reload_eval_$s.txt"
+      grep -h -E '^evaluator tier|evaluator tier:' "$out/reload_eval_$s.txt" | cut -c1-300
+    done
     fi
     if [ "$part" = split ]; then
     # Session 42 (issue 12): where the quick tier's build goes on NVIDIA: the scene's field against the

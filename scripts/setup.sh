@@ -9,7 +9,7 @@ PACKAGES=(build-essential cmake pkg-config
   jackd2 libjack-jackd2-dev libaubio-dev libfftw3-dev
   libtomlplusplus-dev nlohmann-json3-dev libstb-dev libcli11-dev libmuparser-dev ffmpeg parallel python3
   clang-14 libclang-rt-14-dev
-  libvulkan-dev mesa-vulkan-drivers glslang-tools)
+  libvulkan-dev mesa-vulkan-drivers glslang-tools glslang-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

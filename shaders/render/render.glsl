@@ -122,7 +122,9 @@
 #define SCENE_STATE_FRAME 0   // set by the blocks src/shader/shader.cpp generates (SCENE_SETUP_FRAME)
 #endif
 void callSceneSetup() {
-#if SCENE_SETUP && !SCENE_STATE_FRAME
+#if defined(SCENE_EVALUATOR) && SCENE_EVALUATOR
+    evalPrepare();   // the evaluator program (render/eval.glsl): the scene's setup and its argument-less hooks, run once
+#elif SCENE_SETUP && !SCENE_STATE_FRAME
     sceneSetup();
 #endif
 }

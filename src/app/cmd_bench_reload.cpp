@@ -129,6 +129,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
     struct ModeRun {
         int mode = 0;
         bool standby = false;   // render-process-standby: ServerShow::SetStandby
+        bool evaluator = false;   // MODE-evaluator
         int entry = 0;   // its place in --modes, from 1: what each save's nudge is made of
         std::string name;
         std::unique_ptr<CompileProcess> process;
@@ -172,6 +173,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         // render-process+NAME=VALUE[+NAME=VALUE..]: render-process with these in its servers' environment
         std::vector<std::string> serverEnv;
         std::string shownName = modeName;
+        // MODE-evaluator: the mode with LiveProgram's evaluator tier on (a save drawn by the built
+        // evaluator program with the save's code, no build; live_program_eval.cpp).
+        const bool evaluator = modeName.size() > 10 && modeName.compare(modeName.size() - 10, 10, "-evaluator") == 0;
+        if (evaluator) modeName.resize(modeName.size() - 10);
         if (modeName.rfind("render-process+", 0) == 0) {
             std::stringstream entries(modeName.substr(15));
             for (std::string e; std::getline(entries, e, '+');)
@@ -206,8 +211,10 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                         "render-process-first-after-import, render-process+NAME=VALUE or "
                         "render-process-shm");
         if (!post.empty() && mode < 9) return Fail("--post: render-process modes only (`bench post` times the chain in the show's process)");
+        if (evaluator && mode >= 9) return Fail("--modes: '" + shownName + "': the evaluator tier is not in the render processes yet");
         ModeRun m;
         m.name = shownName;
+        m.evaluator = evaluator;
         // process: `sdfvj compile-server` compiles, the render thread loads its binary. warm: the
         // same, but a loader thread (shared context) loads the binary and uses it once before the
         // hand-over. A driver without binaries cannot serve either: measured as the fallback.
@@ -258,6 +265,13 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         m.live->Wait();
         if (!m.live->Current()) return Fail(m.live->Error(), 1);
         // Built (and used once) before the steady frames, as it is between saves in `live`.
+        m.live->SetEvaluatorTier(m.evaluator);
+        if (m.evaluator && !m.live->WaitEvaluatorTier())
+            m.note = "the evaluator tier could not be built: saves compile (" + m.live->EvaluatorError() + ")";
+        else if (m.evaluator)
+            m.note = "evaluator tier: its program compiled in " + std::to_string((int)m.live->EvaluatorBuildMs()) + " ms, used once in " +
+                     std::to_string((int)m.live->EvaluatorPrimeMs()) + " ms; the scene translated in " +
+                     std::to_string(m.live->EvaluatorTranslateMs()).substr(0, 5) + " ms";
         if (retune && !m.live->WaitLiteralTier()) m.note = "the literal tier could not be built: retunes compile";
         else if (retune)
             m.note = "literal tier: compiled in " + std::to_string((int)m.live->LiteralBuildMs()) + " ms, its one use on the render thread " +
@@ -421,9 +435,13 @@ int RunReloadBench(const ReloadBenchOptions& o) {
         LiveProgram& live = *m.live;
         const char* how = ReloadModeHow(m.mode, m.process != nullptr);
         if (!m.note.empty()) std::printf("\n%s\n", m.note.c_str());
-        std::printf("\n## %s: %s, %s path, compile %s; tiered: %s%s\n", m.name.c_str(), scene.name.c_str(), RenderPathName(m.path),
+        char evaluated[160] = "";
+        if (live.EvaluatorSwaps() > 0)
+            std::snprintf(evaluated, sizeof evaluated, "; evaluator tier: %d saves drawn with no build (the last translated in %.1f ms)",
+                          live.EvaluatorSwaps(), live.EvaluatorTranslateMs());
+        std::printf("\n## %s: %s, %s path, compile %s; tiered: %s%s%s\n", m.name.c_str(), scene.name.c_str(), RenderPathName(m.path),
                     how, live.Tiered() ? "yes (quick tier first)" : "no",
-                    live.LiteralTierReady() ? "; literal tier: yes (a retune is drawn from uniforms at once)" : "");
+                    live.LiteralTierReady() ? "; literal tier: yes (a retune is drawn from uniforms at once)" : "", evaluated);
         std::printf("| round | first tier on screen ms | optimized on screen ms | frames | longest frame ms | "
                     "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
                     "compile ms (its own) | used before the hand-over (load + first use ms) | from program cache |\n"

@@ -82,6 +82,11 @@ bool LiveSession::Start(std::string* error) {
     // beside the show: by default where the GPU compiles beside the frame, not on llvmpipe, where
     // it would take the CPU the frames need (SDFVJ_LITERAL_TIER=1|0 forces it).
     live_.SetLiteralTier(!softwareGl_);
+    // A save that edits what the scene's functions compute shows in the next frame too, drawn by
+    // the scene's evaluator program (built behind the show; live_program_eval.cpp) until its
+    // optimized program is built. Off until it is measured on a GPU (SDFVJ_EVALUATOR_TIER=1 turns it
+    // on); on llvmpipe its program's first draw JITs for seconds (docs/performance.md "Session 44").
+    live_.SetEvaluatorTier(false);
     live_.SetPrimePrefetched(o_.warmAhead);   // --warm-ahead: a pad hit shows its variant in one frame
     if (o_.renderProcess && !state_.show.isfScene) StartServers();
     if (!servers_ && !state_.show.isfScene) {   // an ISF generator is the post chain's first stage instead
@@ -286,6 +291,15 @@ void LiveSession::UpdateProgram() {
     if (live_.LiteralSwaps() != literalSwaps_) {
         literalSwaps_ = live_.LiteralSwaps();
         state_.report.Say("shader retuned: the new numbers are on screen, its optimized program compiles behind them");
+    }
+    const bool evalReady = live_.EvaluatorTierReady();
+    if (evalReady && !evalReady_)
+        std::fprintf(stderr, "sdfvj live: %s: a save that edits its functions shows at once (evaluator tier)\n",
+                     DisplayPath(live_.Key().scenePath).c_str());
+    evalReady_ = evalReady;
+    if (live_.EvaluatorSwaps() != evalSwaps_) {
+        evalSwaps_ = live_.EvaluatorSwaps();
+        state_.report.Say("shader edited: drawn by its evaluator at once, its optimized program compiles behind it");
     }
 }
 

@@ -17,6 +17,8 @@
 #include "app/replay_driver.h"
 #include "isf/isf.h"
 #include "render/field_morph.h"
+#include "shader/eval_program.h"
+#include "shader/evaluator.h"
 
 extern char** environ;
 
@@ -210,6 +212,46 @@ bool HasFeedback(IsfChain& chain) {
     return false;
 }
 
+// --evaluator: the scene's evaluator program (shader/eval_program.h) drawing the scene's code
+// (shader/evaluator.h), as a save's first tier draws it, in place of the compiled program. 0, or
+// the exit code with its message printed: 2 when the scene cannot be evaluated.
+int BuildEvaluatorShow(Show* show, const std::string& pathOption, bool verbose) {
+    if (pathOption == "compute") show->path = RenderPath::Compute;
+    else if (pathOption == "fragment") show->path = RenderPath::Fragment;
+    else {
+        std::string log;
+        show->path = ProbeRenderPath(show->scene, &log);
+        if (verbose) std::fprintf(stderr, "%s\n", log.c_str());
+    }
+    const VariantKey key{show->scene.path, show->effects, show->path};
+    const auto t0 = std::chrono::steady_clock::now();
+    ShaderSource src;
+    std::string unit, error;
+    std::vector<std::string> slots;
+    eval::Program code;
+    // llvmpipe stops a shader's loops after 65535 iterations in all: the machine's loop unrolled there.
+    if (!AssembleEvaluatorProgram(show->scene, key, &src, &error, IsSoftwareRenderer() ? kEvaluatorUnrollSoftware : 1) ||
+        !eval::AssembleEvaluatorUnit(show->scene, key, &unit, &slots, &error) || !eval::Translate(unit, slots, &code, &error)) {
+        std::fprintf(stderr, "sdfvj render: --evaluator: %s cannot be evaluated: %s\n", DisplayPath(show->scene.path).c_str(),
+                     error.substr(0, error.find('\n')).c_str());
+        return 2;
+    }
+    const double translateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    auto program = std::make_unique<Program>();
+    if (!program->Build(src, show->path, &error)) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return 1;
+    }
+    program->SetEvaluatorCode(eval::PackCode(code), code.constants);
+    program->MarkEvaluatorTier();
+    if (verbose)
+        std::fprintf(stderr, "evaluator: %zu instructions, %zu constants, %u registers, translated in %.1f ms; its program %s in %.0f ms\n",
+                     code.code.size(), code.constants.size(), code.registers, translateMs,
+                     program->FromCache() ? "loaded from the program cache" : "built", program->Origin().buildMs);
+    show->program = std::move(program);
+    return 0;
+}
+
 }  // namespace
 
 int RunRender(const RenderOptions& o) {
@@ -225,6 +267,10 @@ int RunRender(const RenderOptions& o) {
     Show show;
     if (!PrepareShow(o.show, &show, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
     const bool isfScene = show.isfScene;
+    if (o.evaluator && isfScene) {
+        std::fprintf(stderr, "sdfvj render: --evaluator draws a raymarched scene's hooks, not an ISF generator\n");
+        return 2;
+    }
     const std::vector<std::string> isfPaths = SplitIsfList(show.post);   // the generator first
 
     // Replay: a take drives the parameters through the mapping, exactly as live input does.
@@ -255,7 +301,12 @@ int RunRender(const RenderOptions& o) {
 
     if (!gl.Create(&error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
     if (!o.quiet) std::fprintf(stderr, "GL: %s\n", gl.Description().c_str());
-    if (!isfScene && !BuildShow(&show, o.show.path, &error, !o.quiet)) { std::fprintf(stderr, "%s\n", error.c_str()); return 1; }
+    if (o.evaluator) {
+        if (const int rc = BuildEvaluatorShow(&show, o.show.path, !o.quiet)) return rc;
+    } else if (!isfScene && !BuildShow(&show, o.show.path, &error, !o.quiet)) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return 1;
+    }
     FrameRenderer fr;
     if (!isfScene && !fr.Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj render: %s\n", error.c_str()); return 2; }
     IsfChain isf;   // the generator (if any), then the post effects

@@ -22,6 +22,7 @@ struct RenderOptions {
     std::string frameRange;    // "A:B" (inclusive), "A:" to the end: only these frames, the same bytes
                                // as in the whole render (docs/farm.md)
     bool countFrames = false;  // print the whole render's frame count and exit (no GL)
+    bool evaluator = false;    // draw the scene through its evaluator program (shader/eval_program.h)
 };
 int RunRender(const RenderOptions& o);
 

@@ -342,6 +342,8 @@ private:
     std::string shownError_;
     bool literalReady_ = false;   // the literal tier's readiness and retunes, as last reported
     int literalSwaps_ = 0;
+    bool evalReady_ = false;      // the evaluator tier's readiness and saves drawn by it, as last reported
+    int evalSwaps_ = 0;
     bool overlay_ = true, tabWasDown_ = false, shotWritten_ = false, shotWaitSaid_ = false;
     // The overlay's memory (monitor, frame graph, learn) and the keys it reads.
     OverlayUi ui_;

@@ -99,6 +99,8 @@ int main(int argc, char** argv) {
                           "A:B (0-based, B included) or A: to the end: only these frames, byte-identical to the same "
                           "frames of the whole render; files keep their absolute index (docs/farm.md)");
     cmdRender->add_flag("--count-frames", render.countFrames, "print how many frames the whole render has and exit");
+    cmdRender->add_flag("--evaluator", render.evaluator,
+                        "draw the scene through the evaluator (the interpreter a save's first tier uses) instead of its compiled program");
 
     BenchOptions bench;
     auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
@@ -212,7 +214,7 @@ int main(int argc, char** argv) {
                           "processes import (two, by turns) on a thread of their own, or a dma-buf; by shared memory where the driver offers neither; the frame shown one behind its inputs, so the server draws while "
                           "the show waits for the display), render-process-import-here (a new server's images imported and freed by the render thread, in a frame), render-process-no-touch (not used once on the import thread), render-process-free-here (freed by the render thread), render-process-reattach (each frame's image attached to one read framebuffer, not read through one kept per image), render-process-sync (the same, every frame a round trip), render-process-one-image (pipelined through one "
                           "image: each request waits for the show's read of the frame before), render-process-in-turn (tiered: the optimized build starts once the quick tier is on screen), render-process-standby (a spare holds the program on screen built, used and drawn, and a load of the same program, such as a --post save, takes it and builds only the chain), render-process-first-after-import (a new server's first frame asked for once its images are imported, which are made after its build: the way before session 41, two refreshes later), render-process+NAME=VALUE[+..] (render-process, these in its servers' "
-                          "environment: SDFVJ_SERVER_PREPARE=0, no Vulkan device made ahead), render-process-shm (by shared memory always); comma-separated, rounds interleaved; "
+                          "environment: SDFVJ_SERVER_PREPARE=0, no Vulkan device made ahead), render-process-shm (by shared memory always); MODE-evaluator for the modes that are not render-process (process-evaluator: a save is drawn at once by the scene's evaluator program, built ahead, with the save translated on the CPU, no driver build; the optimized program follows); comma-separated, rounds interleaved; "
                           "--first-frame: warm = with the loader")
         ->capture_default_str();
     cmdReload->add_option("--tiered", reloadBench.tiered, "quick tier first: auto (NVIDIA), on or off")->capture_default_str();

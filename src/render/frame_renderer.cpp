@@ -167,6 +167,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
     p.Set("u_normalEps", q.normalEps);
     p.Set("u_effectsOff", (float)in.effectsOff);
     if (!p.Literals().empty()) p.SetFloats("u_lit", p.Literals());
+    p.BindEvaluator();   // an evaluator program's code (shader/evaluator.h), where it has one
     for (const ParamDecl& d : scene.params) {
         float v = d.defaultValue;
         for (const auto& [name, value] : in.params)

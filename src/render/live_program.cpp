@@ -82,7 +82,7 @@ void LiveProgram::WantLifted(const SceneInfo& scene) {
 }
 
 void LiveProgram::StartLifted(bool force) {
-    if (!literalTier_ || liftedPending_.Active() || pending_.Active() || quick_.Active() || !current_ ||
+    if (!literalTier_ || liftedPending_.Active() || evalPending_.Active() || pending_.Active() || quick_.Active() || !current_ ||
         !error_.empty() || liftedWantKey_ != key_ || liftedWant_.hash == 0 || LiteralTierReady() ||
         std::find(liftedFailed_.begin(), liftedFailed_.end(), liftedWant_.hash) != liftedFailed_.end())
         return;
@@ -135,7 +135,7 @@ void LiveProgram::RequeuePrefetch() {
 
 void LiveProgram::StartPrefetch() {
     while (!prefetch_.empty() && !prefetchPending_.Active() && !pending_.Active() && !quick_.Active() &&
-           !liftedPending_.Active() && cache_.size() + 2 <= cacheLimit_) {
+           !liftedPending_.Active() && !evalPending_.Active() && cache_.size() + 2 <= cacheLimit_) {
         const VariantKey k = prefetch_.front();
         prefetch_.erase(prefetch_.begin());
         if (k == key_ || cache_.count(k)) continue;
@@ -197,6 +197,10 @@ void LiveProgram::Request(const VariantKey& key) {
             liftedPending_.Cancel();
             WantLifted(scene_);   // the cached variant's header: current, a save evicts it
         }
+        if (evalTier_ && evalWantKey_ != key) {
+            evalPending_.Cancel();
+            WantEvaluator(scene_);
+        }
         return;
     }
     Rebuild();
@@ -238,7 +242,11 @@ void LiveProgram::Rebuild() {
         error_.clear();
         ++literalSwaps_;
     }
+    // A structural save the evaluator program can draw: on screen now, no build (live_program_eval.cpp).
+    const bool evaluated = !retuned && TryEvaluator(scene);
+    if (!evaluated) WantEvaluator(scene);
     liftedPending_.Cancel();   // a real build goes first
+    evalPending_.Cancel();
     RequeuePrefetch();
     if (pending_.BeginFromCache(src, key_.path)) {
         quick_.Cancel();
@@ -249,7 +257,7 @@ void LiveProgram::Rebuild() {
     pending_.SetProcess(process);
     // The quick tier is queued first: on a compile worker (one job at a time) it must not wait
     // behind the optimized build. Not needed when the literal tier is on screen.
-    if (Tiered() && !retuned) quick_.Begin(src, key_.path, BuildTier::Quick);
+    if (Tiered() && !retuned && !evaluated) quick_.Begin(src, key_.path, BuildTier::Quick);
     else quick_.Cancel();
     pending_.Begin(src, key_.path);
     ++compiles_;
@@ -320,6 +328,7 @@ void LiveProgram::Trim() {
 bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     const Program* before = current_.get();
     const int swapsBefore = literalSwaps_;
+    const int evalSwapsBefore = evalSwaps_;
     if (!changedFiles.empty()) {
         RequeuePrefetch();   // assembled before the save: built again from the new files
         bool affectsCurrent = false;
@@ -352,12 +361,17 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     } else {
         StartLifted();
     }
+    if (evalPending_.Active()) {
+        if (evalPending_.Ready()) FinishEvaluator();
+    } else if (!liftedPending_.Active()) {
+        StartEvaluator();
+    }
     if (prefetchPending_.Active()) {
         if (prefetchPending_.Ready()) FinishPrefetch();
     } else {
         StartPrefetch();
     }
-    return current_.get() != before || literalSwaps_ != swapsBefore;
+    return current_.get() != before || literalSwaps_ != swapsBefore || evalSwaps_ != evalSwapsBefore;
 }
 
 void LiveProgram::Wait() {

@@ -18,6 +18,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <future>
 #include <map>
 #include <memory>
 #include <string>
@@ -106,6 +107,21 @@ public:
     // render thread (PrimeProgram, glFinish): on NVIDIA a frame that long after a structural save.
     double LiteralBuildMs() const { return literalBuildMs_; }
     double LiteralPrimeMs() const { return literalPrimeMs_; }
+    // The evaluator tier (live_program_eval.cpp; off by default: `bench reload --modes MODE-evaluator`
+    // turns it on; SDFVJ_EVALUATOR_TIER=0|1 overrides, also in `live`): once the variant on screen is
+    // built, its scene's evaluator program (shader/eval_program.h) is built behind it at the lowest
+    // priority and used once; a later save whose text outside the hooks' bodies is the same is
+    // translated on the CPU (shader/evaluator.h) and drawn by that program in the same Update(),
+    // no build; the save's optimized program compiles behind it and replaces it.
+    void SetEvaluatorTier(bool on);
+    bool EvaluatorTier() const { return evalTier_; }
+    bool EvaluatorTierReady() const;
+    bool WaitEvaluatorTier();   // blocks until the variant on screen's evaluator program is built
+    int EvaluatorSwaps() const { return evalSwaps_; }   // saves put on screen by the evaluator tier
+    double EvaluatorBuildMs() const { return evalBuildMs_; }
+    double EvaluatorPrimeMs() const { return evalPrimeMs_; }
+    double EvaluatorTranslateMs() const { return evalTranslateMs_; }   // the last save's translation
+    const std::string& EvaluatorError() const { return evalError_; }   // why the last save could not be evaluated
 
 private:
     // Programs are shared between the cache and the screen: evicting a cache entry (its files
@@ -125,6 +141,11 @@ private:
     void StartLifted(bool force = false);      // build liftedWant_ when nothing else compiles (and, unless forced, kLiteralDelayMs after the last change)
     void FinishLifted();
     void StartPrefetch();
+    void WantEvaluator(const SceneInfo& scene);   // assemble key_'s evaluator program into evalWant_
+    void StartEvaluator(bool force = false);
+    void FinishEvaluator();
+    bool TryEvaluator(const SceneInfo& scene);    // a save drawn by the built evaluator program
+    bool UploadEvaluatorCode(const SceneInfo& scene, const VariantKey& key, Program* program);
     void RequeuePrefetch();   // a prefetch in flight is cancelled and asked for again first
     void FinishPrefetch();
     CompileProcess* Process() const;
@@ -160,6 +181,18 @@ private:
     static constexpr double kLiteralDelayMs = 2000.0;
     double settledAt_ = 0.0;               // steady ms of the last change on screen or build in flight
     double literalBuildMs_ = 0.0, literalPrimeMs_ = 0.0;
+    // The evaluator tier: one program, for the variant on screen's scene shape.
+    bool evalTier_ = false;
+    std::shared_ptr<Program> evalProgram_;
+    VariantKey evalKey_, evalWantKey_, evalPendingKey_;
+    uint64_t evalHash_ = 0, evalPendingHash_ = 0;
+    ShaderSource evalWant_;
+    PendingProgram evalPending_;
+    std::vector<uint64_t> evalFailed_;
+    int evalSwaps_ = 0;
+    double evalBuildMs_ = 0.0, evalPrimeMs_ = 0.0, evalTranslateMs_ = 0.0;
+    std::string evalError_;
+    std::future<void> evalPrepared_;   // glslang set up ahead (SetEvaluatorTier)
     // Variants built ahead (Prefetch).
     std::vector<VariantKey> prefetch_;     // still to build, first first
     PendingProgram prefetchPending_;

@@ -16,6 +16,27 @@ namespace sdfvj {
 
 Program::~Program() {
     if (id_) glDeleteProgram(id_);
+    if (evalCode_) glDeleteBuffers(1, &evalCode_);
+    if (evalConst_) glDeleteBuffers(1, &evalConst_);
+}
+
+void Program::SetEvaluatorCode(const std::vector<std::array<uint32_t, 4>>& packed, const std::vector<std::array<float, 4>>& constants) {
+    if (!evalCode_) glCreateBuffers(1, &evalCode_);
+    if (!evalConst_) glCreateBuffers(1, &evalConst_);
+    // glNamedBufferData each time: the driver orphans the old store a frame in flight still reads.
+    // An empty list still gets one element (a zero-sized buffer cannot be bound).
+    const std::array<uint32_t, 4> noCode{};
+    const std::array<float, 4> noConst{};
+    glNamedBufferData(evalCode_, (GLsizeiptr)(std::max<size_t>(packed.size(), 1) * sizeof noCode), packed.empty() ? noCode.data() : packed[0].data(),
+                      GL_STATIC_DRAW);
+    glNamedBufferData(evalConst_, (GLsizeiptr)(std::max<size_t>(constants.size(), 1) * sizeof noConst),
+                      constants.empty() ? noConst.data() : constants[0].data(), GL_STATIC_DRAW);
+}
+
+void Program::BindEvaluator() const {
+    if (!evalCode_) return;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEvalCodeBinding, evalCode_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEvalConstBinding, evalConst_);
 }
 
 namespace {

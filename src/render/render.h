@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,7 @@ struct ProgramOrigin {
     bool fromCache = false;   // loaded from the on-disk program cache (program_cache.h): nothing compiled
     bool quickTier = false;   // the quickly built first tier of a tiered compile (an optimized one follows)
     bool literalTier = false; // the scene's literals as uniforms (LiveProgram's literal tier; quickTier too)
+    bool evaluatorTier = false; // the scene's evaluator program (shader/eval_program.h; quickTier too)
     bool fromProcess = false; // compiled in the compile process, loaded here as its binary
     double buildMs = 0.0;     // wall time of its compile + link (+ the worker's priming draw), on whichever thread built it
     double beginCallMs = 0.0;   // time the render thread spent in PendingProgram::Begin (driver calls that block show here)
@@ -141,6 +143,13 @@ public:
     bool FromCache() const { return origin_.fromCache; }
     bool QuickTier() const { return origin_.quickTier; }
     void MarkLiteralTier() { origin_.quickTier = origin_.literalTier = true; }
+    void MarkEvaluatorTier() { origin_.quickTier = origin_.evaluatorTier = true; }
+    // An evaluator program's code (shader/evaluator.h PackCode, and its constants): uploaded to
+    // buffers this program owns, bound (BindEvaluator) wherever it is drawn. A later call replaces
+    // the code (a save's translation) without a build.
+    void SetEvaluatorCode(const std::vector<std::array<uint32_t, 4>>& packed, const std::vector<std::array<float, 4>>& constants);
+    bool HasEvaluator() const { return evalCode_ != 0; }
+    void BindEvaluator() const;
     // Active uniform names (after the compiler dropped unused ones).
     std::vector<std::string> ActiveUniforms() const;
     // Sets a uniform only if the program declares it; converts to its declared type.
@@ -163,6 +172,7 @@ private:
     ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;
     std::vector<float> literals_;
+    unsigned evalCode_ = 0, evalConst_ = 0;   // GL buffers (SetEvaluatorCode)
 };
 
 // A program being compiled and linked. Where GL_KHR_parallel_shader_compile exists the driver

@@ -27,6 +27,10 @@ constexpr int kDirectReflectionSteps = 48;
 // storage) of the blocks AssembleProgram generates from a scene's SCENE_STATE globals, and the size
 // FrameRenderer gives it (std140; 16 KB, the smallest GL_MAX_UNIFORM_BLOCK_SIZE GL allows).
 constexpr int kSceneStateBinding = 2;
+// The evaluator program's storage buffers (render/eval.glsl): its code and its constants
+// (shader/evaluator.h), bound by Program::BindEvaluator.
+constexpr int kEvalCodeBinding = 5;
+constexpr int kEvalConstBinding = 6;
 constexpr int kSceneStateBytes = 16384;
 
 struct EffectSet {

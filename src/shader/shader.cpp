@@ -194,6 +194,12 @@ static bool ExpandRenderer(const fs::path& root, RenderPath path, ShaderSource* 
     return true;
 }
 
+std::string SceneInputUniforms(const SceneInfo& scene) {
+    std::string text;
+    for (const ParamDecl& p : scene.params) text += "uniform float u_" + p.name + ";\n";  // bool and int params are floats too
+    return text;
+}
+
 bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource* out, std::string* error,
                      bool liftLiterals) {
     ShaderSource s;
@@ -204,8 +210,7 @@ bool AssembleProgram(const SceneInfo& scene, const VariantKey& key, ShaderSource
     if (!ExpandIncludes((root / "render" / "uniforms.glsl").string(), &s, error)) return false;
     // Scene parameters: declared once, in the scene header.
     s.text += LineDirective(1, 0);
-    for (const ParamDecl& p : scene.params)
-        s.text += "uniform float u_" + p.name + ";\n";  // bool and int params are floats too
+    s.text += SceneInputUniforms(scene);
     const size_t literalsAt = s.text.size();
     if (!ExpandIncludes(scene.path, &s, error, liftLiterals)) return false;
     if (liftLiterals) {

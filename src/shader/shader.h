@@ -36,6 +36,11 @@ struct ShaderSource {
 // their values go to out->literals.
 bool ExpandIncludes(const std::string& path, ShaderSource* out, std::string* error, bool liftLiterals = false);
 
+// The scene's input uniforms as every program declares them: `uniform float u_<NAME>;` per header
+// input, in header order (bool and int inputs are floats too). AssembleProgram and the evaluator's
+// unit (evaluator.h AssembleEvaluatorUnit) share it, so both read the same uniforms.
+std::string SceneInputUniforms(const SceneInfo& scene);
+
 // Builds the program source for a variant: version, effect #defines, built-in uniforms, the
 // scene's generated parameter uniforms, the scene, render.glsl and the path's main().
 // liftLiterals: the scene file's float literals become `uniform float u_lit[N]` (literals.h): two

@@ -281,3 +281,58 @@ TEST_CASE("prefetch: variants built ahead are on screen at once when asked for, 
     rig.live.Wait();
     CHECK(rig.live.Error().empty());
 }
+
+TEST_CASE("evaluator tier: a structural save is on screen in its first reload step with no build, and the optimized program follows with the same image", "[tiered][evaluator]") {
+    WorkerRig rig("evaluator", "midi", false);
+    rig.SaveText(rig.original);
+    rig.live.Update({rig.sceneFile.string()});
+    rig.live.SetEvaluatorTier(true);
+    INFO(rig.live.EvaluatorError());
+    REQUIRE(rig.live.WaitEvaluatorTier());
+    bool swapped = false;
+    rig.Frame(&swapped);
+    const Image before = rig.Pixels();
+    const int compiles = rig.live.CompilesStarted();
+
+    // A structural edit inside a helper (midiBlob): the box becomes a sphere, the torus goes.
+    std::string text = rig.original;
+    for (auto [from, to] : {std::pair<std::string, std::string>{"fRoundBox(pTranslate(q, vec3(0.75f, -0.1f, 0.0f)), vec3(0.4f), 0.05f)",
+                                                                "fSphere(pTranslate(q, vec3(0.75f, 0.1f, 0.0f)), 0.5f)"},
+                           {"res = fOpUnionSmoothColor(res, vec4(0.95f, 0.80f, 0.15f,", "if (u_time < -1.0f) res = fOpUnionSmoothColor(res, vec4(0.95f, 0.80f, 0.15f,"}}) {
+        const size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), to);
+    }
+    rig.SaveText(text);
+    rig.Frame(&swapped, true);
+    CHECK(swapped);
+    REQUIRE(rig.live.Current() != nullptr);
+    CHECK(rig.live.Current()->Origin().evaluatorTier);
+    CHECK(rig.live.EvaluatorSwaps() == 1);
+    CHECK(rig.live.Error().empty());
+    const Image evaluated = rig.Pixels();
+    // A person sees the edit: a sphere where the box was, no torus.
+    CHECK(CompareImages(before, evaluated, 8).fractionOver > 0.01);
+
+    rig.live.Wait();   // the optimized program of the same save
+    CHECK(rig.live.CompilesStarted() == compiles + 1);
+    rig.Frame(&swapped);
+    REQUIRE(rig.live.Current() != nullptr);
+    CHECK_FALSE(rig.live.Current()->QuickTier());
+    // The same field, interpreted or compiled (and the one-site renderer): within the accuracy report's 8/255.
+    const ImageDiff d = CompareImages(evaluated, rig.Pixels(), 8);
+    INFO("evaluated vs optimized: max " << d.maxAbs << ", mean " << d.meanAbs << ", over 8/255 " << d.fractionOver);
+    CHECK(d.fractionOver < 0.005);
+    CHECK(d.meanAbs < 0.5);
+
+    // A save that changes the header (a new input) changes the evaluator program: it compiles as before.
+    std::string header = text;
+    const size_t at = header.find("{\"NAME\": \"spin\"");
+    REQUIRE(at != std::string::npos);
+    header.insert(at, "{\"NAME\": \"extra\", \"TYPE\": \"float\", \"DEFAULT\": 0.5, \"MIN\": 0.0, \"MAX\": 1.0},\n    ");
+    rig.SaveText(header);
+    rig.Frame(&swapped, true);
+    CHECK(rig.live.EvaluatorSwaps() == 1);
+    rig.live.Wait();
+    CHECK(rig.live.Error().empty());
+}
