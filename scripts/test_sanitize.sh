@@ -53,7 +53,8 @@ cd "$BUILD"
 status=0
 # Labelled tests: MIDI/OSC input and mapping (control), scene headers and presets (scene, when
 # that label exists), the live window including live_reload (live). Then by name: the take
-# tests (take/...) and the hot-reload tests of test_reload and test_watch (reload...).
+# tests (take/...), the hot-reload tests of test_reload and test_watch (reload...) and the
+# evaluator's translator and CPU machine (evaluator: ..., test_evaluator: a save's text is untrusted).
 ctest --output-on-failure -j"$JOBS" --timeout 900 -L '^(control|input|mapping|scene|take|live)$' "$@" || status=1
 # The second run's records replace the first's in Testing/Temporary: keep the first's beside them,
 # as a folder scripts/ci_failures.py reads like a build (build-asan/labelled).
@@ -62,6 +63,6 @@ rm -rf labelled && mkdir -p labelled/Testing && cp -r Testing/Temporary labelled
 # asserts. It holds when Mesa's idle-priority disk-cache thread has written the worker's JIT before
 # the render context's first draw looks it up; under the sanitizers' slowdown that race was lost in
 # 2 of 3 saves once (session 32's CI), while its code paths run in the other reload tests here.
-ctest --output-on-failure -j"$JOBS" --timeout 900 -R '^(take/|reload)' -E '^reload: on llvmpipe no frame waits for the compile' "$@" || status=1
+ctest --output-on-failure -j"$JOBS" --timeout 900 -R '^(take/|reload|evaluator: )' -E '^reload: on llvmpipe no frame waits for the compile' "$@" || status=1
 echo "sanitize: tests took $(( $(date +%s) - built )) s"
 exit $status

@@ -24,8 +24,9 @@ vec4 ev_R[EV_MAX_REGISTERS];
 const uint EV_REGISTER_MASK = EV_MAX_REGISTERS - 1u;   // a power of two: an index out of range wraps, never leaves the array
 
 // Instructions an invocation may execute in all its calls: code that loops for ever (a bad buffer,
-// a translator's bug) ends the pixel's calls, not the GPU's work. A pixel with every effect and a
-// mirror bounce makes a few hundred calls of some hundred instructions: far below this.
+// a translator's bug) ends the pixel's calls, not the GPU's work. The heaviest pixel of a shipped
+// scene runs 210,000 (field50, its own effects; 325,000 with a mirror bounce): 50 times below this.
+// (llvmpipe's own bound comes first there: EV_UNROLL.)
 const uint EV_MAX_STEPS = 1u << 24;
 uint ev_steps = 0u;
 

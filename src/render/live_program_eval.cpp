@@ -42,7 +42,8 @@ void LiveProgram::WantEvaluator(const SceneInfo& scene) {
     ShaderSource src;
     std::string error;
     evalWantKey_ = key_;
-    if (!AssembleEvaluatorProgram(scene, key_, &src, &error)) {
+    // On llvmpipe the machine's loop is unrolled (its 65,535 loop iterations a shader, eval_program.h).
+    if (!AssembleEvaluatorProgram(scene, key_, &src, &error, IsSoftwareRenderer() ? kEvaluatorUnrollSoftware : 1)) {
         evalWant_ = ShaderSource{};   // this scene's top level cannot be stubbed: saves compile as before
         evalError_ = error;
         return;

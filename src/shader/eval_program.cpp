@@ -48,6 +48,7 @@ const std::pair<const char*, uint32_t> kOps[] = {
 };
 #undef SDFVJ_EV_OP
 static_assert(sizeof kOps / sizeof kOps[0] == eval::kOpCount, "every op of evaluator.h needs its GLSL constant here");
+static_assert((eval::kMaxRegisters & (eval::kMaxRegisters - 1)) == 0, "eval.glsl keeps register indices in range with a mask");
 
 // The hooks as the renderer declares them, and what a stub's body calls (render/eval.glsl).
 struct Hook {
