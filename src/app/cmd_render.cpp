@@ -216,13 +216,7 @@ bool HasFeedback(IsfChain& chain) {
 // (shader/evaluator.h), as a save's first tier draws it, in place of the compiled program. 0, or
 // the exit code with its message printed: 2 when the scene cannot be evaluated.
 int BuildEvaluatorShow(Show* show, const std::string& pathOption, bool verbose) {
-    if (pathOption == "compute") show->path = RenderPath::Compute;
-    else if (pathOption == "fragment") show->path = RenderPath::Fragment;
-    else {
-        std::string log;
-        show->path = ProbeRenderPath(show->scene, &log);
-        if (verbose) std::fprintf(stderr, "%s\n", log.c_str());
-    }
+    PickRenderPath(show, pathOption, verbose);
     const VariantKey key{show->scene.path, show->effects, show->path};
     const auto t0 = std::chrono::steady_clock::now();
     ShaderSource src;

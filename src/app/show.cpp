@@ -156,7 +156,7 @@ bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error) {
     return true;
 }
 
-bool BuildShow(Show* show, const std::string& pathOption, std::string* error, bool verbose) {
+void PickRenderPath(Show* show, const std::string& pathOption, bool verbose) {
     if (pathOption == "compute") show->path = RenderPath::Compute;
     else if (pathOption == "fragment") show->path = RenderPath::Fragment;
     else {
@@ -164,6 +164,10 @@ bool BuildShow(Show* show, const std::string& pathOption, std::string* error, bo
         show->path = ProbeRenderPath(show->scene, &log);
         if (verbose) std::fprintf(stderr, "%s\n", log.c_str());
     }
+}
+
+bool BuildShow(Show* show, const std::string& pathOption, std::string* error, bool verbose) {
+    PickRenderPath(show, pathOption, verbose);
     VariantKey key{show->scene.path, show->effects, show->path};
     ShaderSource src;
     if (!AssembleProgram(show->scene, key, &src, error)) return false;

@@ -48,6 +48,8 @@ std::vector<ParamDecl> ShowDecls(const Show& show);
 // Resolves scene and preset and parses every option (no GL needed). Errors are one line.
 bool PrepareShow(const ShowOptions& opts, Show* show, std::string* error);
 // Picks the render path (probe when "auto") and builds the program. Needs a current GL context.
+// --path: compute, fragment, or probed (the probe's log printed when verbose).
+void PickRenderPath(Show* show, const std::string& pathOption, bool verbose);
 bool BuildShow(Show* show, const std::string& pathOption, std::string* error, bool verbose);
 
 // Parses "WxH".
