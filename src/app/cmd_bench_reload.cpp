@@ -24,6 +24,7 @@
 
 #include "app/bench_adopt.h"
 #include "app/bench_first_frame.h"
+#include "app/bench_reload_report.h"
 #include "app/bench_render_process.h"
 #include "app/bench_stage.h"
 #include "app/bench_support.h"
@@ -43,21 +44,6 @@ namespace sdfvj {
 namespace {
 
 int Fail(const std::string& what, int code = 2) { return ReloadBenchFail(what, code); }
-
-struct Round {
-    double beginCall = 0, finishCall = 0;   // the optimized program's Begin and Finish on the render thread
-    double longestBefore = 0;   // longest frame before the first swap (the program built or loaded elsewhere)
-    double longestAt = 0;       // when the longest frame began, ms after the save
-    double firstMs = 0, optimizedMs = 0, longestFrame = 0, longestUpdate = 0, firstDraw = 0, compileMs = 0;
-    int frames = 0;
-    std::vector<double> quickFrames;   // frame times while the quick tier was on screen
-    bool quickSeen = false, fromCache = false, ok = false;
-    bool usedBefore = false;   // a program on screen this round was used on the loader before the hand-over
-    double loadMs = 0;         // ... its load + first use there
-    std::vector<double> around;   // the 3 frames before the swap to the optimized program, its own, the 3 after
-    double longestAfter = 0;      // the longest frame in the 300 ms after that swap (what it replaced is retired then)
-    int missed = 0;               // display refreshes missed from the save to 300 ms after the swap (paced frames)
-};
 
 }  // namespace
 
@@ -429,8 +415,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
             else m.failedRounds.push_back(round);
         }
 
-    struct Summary { std::string mode; double first, optimized, longest, ratio, steady, after, missed; };
-    std::vector<Summary> summary;
+    std::vector<ReloadSummary> summary;
     for (ModeRun& m : runs) {
         LiveProgram& live = *m.live;
         const char* how = ReloadModeHow(m.mode, m.process != nullptr);
@@ -446,72 +431,19 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
                     "compile ms (its own) | used before the hand-over (load + first use ms) | from program cache |\n"
                     "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
-        std::vector<double> first, optimized, longest, compile, before, at, atShare, pastBuild;
         for (int round : m.failedRounds)
             std::printf("| %d | no new program on screen: %s |\n", round,
                         !adoptError.empty() && m.handover ? adoptError.c_str()
                         : live.Error().empty()         ? "timed out after 120 s"
                                                        : live.Error().c_str());
-        int round = 0;
-        for (const Round& r : m.rounds) {
-            ++round;
-            first.push_back(r.firstMs);
-            optimized.push_back(r.optimizedMs);
-            longest.push_back(r.longestFrame);
-            before.push_back(r.longestBefore);
-            at.push_back(r.longestAt);
-            atShare.push_back(r.firstMs > 0 ? r.longestAt / r.firstMs : 0.0);
-            compile.push_back(r.compileMs);
-            if (r.compileMs > 0) pastBuild.push_back(r.optimizedMs - r.compileMs);
-            char quick[32] = "-";
-            if (!r.quickFrames.empty()) std::snprintf(quick, sizeof quick, "%.2f", MedianMs(r.quickFrames));
-            char used[48] = "no";
-            if (r.usedBefore) std::snprintf(used, sizeof used, "yes (%.1f)", r.loadMs);
-            std::printf("| %d | %.1f%s | %.1f | %d | %.1f | %.1f (%.1f / %.1f) | %.1f | %s | %.1f | %s | %s |\n", round,
-                        r.firstMs, r.quickSeen ? " (quick)" : "", r.optimizedMs, r.frames, r.longestFrame,
-                        r.longestUpdate, r.beginCall, r.finishCall, r.firstDraw, quick, r.compileMs, used,
-                        r.fromCache ? "yes" : "no");
-        }
-        if (first.empty()) return Fail("no round put a new program on screen (" + m.name + ")", 1);
-        const double worst = MedianMs(longest);
-        const double ratio = m.steadyMedian > 0 ? worst / m.steadyMedian : 0.0;
-        std::printf("median: save -> first tier %.1f ms, -> optimized %.1f ms; longest frame during a reload %.1f ms "
-                    "= %.1fx the steady median %.2f ms (target <= 2x); compile %.1f ms\n",
-                    MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(compile));
-        if (!pastBuild.empty())   // what a save waits for besides its build
-            std::printf("past the build (save -> optimized less its compile: polls, hand-over, import, frames): median %.1f ms\n", MedianMs(pastBuild));
-        std::vector<double> miss;   // what a display at --fps shows: a frame past its refresh shows the one before again
-        for (const Round& r : m.rounds) miss.push_back(r.missed);
-        if (o.fps > 0) {
-            std::printf("display refreshes missed at %.0f Hz from a save to 300 ms after its swap: median %.0f, most %.0f "
-                        "(%d in the last 20 steady frames)\n", o.fps, MedianMs(miss), *std::max_element(miss.begin(), miss.end()), m.steadyMissed);
-        }
-        std::printf("longest frame before the first swap (while it was built or loaded elsewhere): %.1f ms median of rounds; "
-                    "the longest frame began %.1f ms after the save (%.2f of the way to the first swap), medians of rounds\n",
-                    MedianMs(before), MedianMs(at), MedianMs(atShare));
-        std::vector<double> after;
-        std::vector<std::vector<double>> around(7);
-        for (const Round& r : m.rounds) {
-            after.push_back(std::max(r.longestFrame, r.longestAfter));
-            for (size_t i = 0; i < r.around.size() && i < around.size(); ++i) around[i].push_back(r.around[i]);
-        }
-        std::printf("frames around the swap, medians of rounds (ms): -3 %.2f, -2 %.2f, -1 %.2f, the swap %.2f, +1 %.2f, +2 %.2f, +3 %.2f; "
-                    "longest frame with the 300 ms after the swap %.1f ms = %.1fx the steady median\n",
-                    MedianMs(around[0]), MedianMs(around[1]), MedianMs(around[2]), MedianMs(around[3]), MedianMs(around[4]),
-                    MedianMs(around[5]), MedianMs(around[6]), MedianMs(after),
-                    m.steadyMedian > 0 ? MedianMs(after) / m.steadyMedian : 0.0);
+        for (size_t i = 0; i < m.rounds.size(); ++i) PrintReloadRound((int)i + 1, m.rounds[i]);
+        if (m.rounds.empty()) return Fail("no round put a new program on screen (" + m.name + ")", 1);
+        const ReloadSummary sum = ReportReloadRounds(m.name, m.rounds, m.steadyMedian, m.steadyMissed, o.fps);
         if (m.handover && !m.handover->Details().empty()) std::printf("%s\n", m.handover->Details().c_str());
-        summary.push_back({m.name, MedianMs(first), MedianMs(optimized), worst, ratio, m.steadyMedian, MedianMs(after), MedianMs(miss)});
+        summary.push_back(sum);
     }
     if (o.driverCache == "fresh") std::printf("%s", DriverCacheContents(root / "driver-cache").c_str());
-    if (summary.size() > 1) {
-        std::printf("\n## modes side by side (rounds interleaved; medians)\n| mode | save -> first tier ms | save -> optimized ms | "
-                    "longest frame ms | x steady median | steady median ms | longest with the 300 ms after the swap ms | x steady | "
-                    "display refreshes missed a save |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-        for (const Summary& s : summary)
-            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.1f | %.1f | %s |\n", s.mode.c_str(), s.first, s.optimized, s.longest, s.ratio,
-                        s.steady, s.after, s.steady > 0 ? s.after / s.steady : 0.0, o.fps > 0 ? std::to_string((int)s.missed).c_str() : "-");
-    }
+    PrintModesSideBySide(summary, o.fps);
     return 0;
 }
 
