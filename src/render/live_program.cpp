@@ -77,46 +77,64 @@ void LiveProgram::WantLifted(const SceneInfo& scene) {
     ShaderSource lifted;
     std::string error;
     if (!AssembleProgram(scene, key_, &lifted, &error, true)) return;
-    liftedWant_ = std::move(lifted);
-    liftedWantKey_ = key_;
+    lifted_.want = std::move(lifted);
+    lifted_.wantKey = key_;
+}
+
+bool BackgroundTier::ToBuild(const VariantKey& onScreen) const {
+    return !pending.Active() && wantKey == onScreen && want.hash != 0 && !Ready(onScreen) &&
+           std::find(failed.begin(), failed.end(), want.hash) == failed.end();
+}
+
+void BackgroundTier::Start(const VariantKey& onScreen, CompileProcess* process) {
+    pendingKey = onScreen;
+    pendingHash = want.hash;
+    pending.SetProcess(process);
+    if (!pending.BeginFromCache(want, onScreen.path)) pending.Begin(want, onScreen.path);
+}
+
+std::shared_ptr<Program> BackgroundTier::Finish(std::string* log) {
+    auto built = std::make_shared<Program>();
+    if (pending.Finish(built.get(), log)) return built;
+    failed.push_back(pendingHash);
+    return nullptr;
+}
+
+void BackgroundTier::Keep(std::shared_ptr<Program> built, double prime) {
+    primeMs = prime;
+    buildMs = built->Origin().buildMs;
+    program = std::move(built);
+    key = pendingKey;
+    hash = pendingHash;
+}
+
+// Nothing else compiles, the variant on screen is good, and (unless forced) kLiteralDelayMs have
+// passed since the last change: the show gets its frames (and the CPU, on llvmpipe) first.
+bool LiveProgram::BackgroundIdle(bool force) const {
+    return !lifted_.pending.Active() && !eval_.pending.Active() && !pending_.Active() && !quick_.Active() && current_ &&
+           error_.empty() && (force || SteadyMs() - settledAt_ >= kLiteralDelayMs);
 }
 
 void LiveProgram::StartLifted(bool force) {
-    if (!literalTier_ || liftedPending_.Active() || evalPending_.Active() || pending_.Active() || quick_.Active() || !current_ ||
-        !error_.empty() || liftedWantKey_ != key_ || liftedWant_.hash == 0 || LiteralTierReady() ||
-        std::find(liftedFailed_.begin(), liftedFailed_.end(), liftedWant_.hash) != liftedFailed_.end())
-        return;
-    // Not right after a build lands: the show gets its frames (and the CPU, on llvmpipe) first.
-    if (!force && SteadyMs() - settledAt_ < kLiteralDelayMs) return;
-    liftedPendingKey_ = key_;
-    liftedPendingHash_ = liftedWant_.hash;
-    liftedPending_.SetProcess(Process());
-    if (!liftedPending_.BeginFromCache(liftedWant_, key_.path)) liftedPending_.Begin(liftedWant_, key_.path);
+    if (literalTier_ && BackgroundIdle(force) && lifted_.ToBuild(key_)) lifted_.Start(key_, Process());
 }
 
 void LiveProgram::FinishLifted() {
-    auto program = std::make_shared<Program>();
     std::string log;
-    if (!liftedPending_.Finish(program.get(), &log)) {
-        // A literal in a place that wants a constant expression, say: saves compile as before.
-        liftedFailed_.push_back(liftedPendingHash_);
-        Trim();
-        return;
+    // null: a literal in a place that wants a constant expression, say: saves compile as before.
+    std::shared_ptr<Program> program = lifted_.Finish(&log);
+    if (program) {
+        program->MarkLiteralTier();
+        // Used once here, now, so the driver's lazy finishing at a program's first draw (NVIDIA) falls
+        // between saves rather than on the frame that shows a retuned save.
+        const double primeStart = SteadyMs();
+        // Not on llvmpipe: with Mesa's disk cache on its first draw is quick anyway (11-20 ms at
+        // 320x180), and with the cache off this use would JIT on the render thread (690 ms) after
+        // every structural save instead of at the first retune. (With the cache on, the use cost
+        // 711-943 ms: the 1x1 target's draw state is another llvmpipe variant.)
+        if (!IsSoftwareRenderer()) PrimeProgram(program->Id(), lifted_.pendingKey.path, false);
+        lifted_.Keep(std::move(program), SteadyMs() - primeStart);
     }
-    program->MarkLiteralTier();
-    // Used once here, now, so the driver's lazy finishing at a program's first draw (NVIDIA) falls
-    // between saves rather than on the frame that shows a retuned save.
-    const auto primeStart = std::chrono::steady_clock::now();
-    // Not on llvmpipe: with Mesa's disk cache on its first draw is quick anyway (11-20 ms at
-    // 320x180), and with the cache off this use would JIT on the render thread (690 ms) after
-    // every structural save instead of at the first retune. (With the cache on, the use cost
-    // 711-943 ms: the 1x1 target's draw state is another llvmpipe variant.)
-    if (!IsSoftwareRenderer()) PrimeProgram(program->Id(), liftedPendingKey_.path, false);
-    literalPrimeMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - primeStart).count();
-    literalBuildMs_ = program->Origin().buildMs;
-    lifted_ = std::move(program);
-    liftedKey_ = liftedPendingKey_;
-    liftedHash_ = liftedPendingHash_;
     Trim();
 }
 
@@ -135,7 +153,7 @@ void LiveProgram::RequeuePrefetch() {
 
 void LiveProgram::StartPrefetch() {
     while (!prefetch_.empty() && !prefetchPending_.Active() && !pending_.Active() && !quick_.Active() &&
-           !liftedPending_.Active() && !evalPending_.Active() && cache_.size() + 2 <= cacheLimit_) {
+           !lifted_.pending.Active() && !eval_.pending.Active() && cache_.size() + 2 <= cacheLimit_) {
         const VariantKey k = prefetch_.front();
         prefetch_.erase(prefetch_.begin());
         if (k == key_ || cache_.count(k)) continue;
@@ -175,7 +193,7 @@ bool LiveProgram::WaitLiteralTier() {
     if (!literalTier_) return false;
     Wait();
     StartLifted(true);
-    if (liftedPending_.Active()) FinishLifted();
+    if (lifted_.pending.Active()) FinishLifted();
     return LiteralTierReady();
 }
 
@@ -193,12 +211,12 @@ void LiveProgram::Request(const VariantKey& key) {
         current_ = it->second.program;
         scene_ = it->second.scene;
         error_.clear();
-        if (literalTier_ && liftedWantKey_ != key) {
-            liftedPending_.Cancel();
+        if (literalTier_ && lifted_.wantKey != key) {
+            lifted_.pending.Cancel();
             WantLifted(scene_);   // the cached variant's header: current, a save evicts it
         }
-        if (evalTier_ && evalWantKey_ != key) {
-            evalPending_.Cancel();
+        if (evalTier_ && eval_.wantKey != key) {
+            eval_.pending.Cancel();
             WantEvaluator(scene_);
         }
         return;
@@ -236,8 +254,8 @@ void LiveProgram::Rebuild() {
     // Only numbers changed: the literal tier shows them now, the optimized program follows.
     const bool retuned = LiteralTierReady();
     if (retuned) {
-        lifted_->SetLiterals(liftedWant_.literals);
-        current_ = lifted_;
+        lifted_.program->SetLiterals(lifted_.want.literals);
+        current_ = lifted_.program;
         scene_ = scene;
         error_.clear();
         ++literalSwaps_;
@@ -245,8 +263,8 @@ void LiveProgram::Rebuild() {
     // A structural save the evaluator program can draw: on screen now, no build (live_program_eval.cpp).
     const bool evaluated = !retuned && TryEvaluator(scene);
     if (!evaluated) WantEvaluator(scene);
-    liftedPending_.Cancel();   // a real build goes first
-    evalPending_.Cancel();
+    lifted_.pending.Cancel();   // a real build goes first
+    eval_.pending.Cancel();
     RequeuePrefetch();
     if (pending_.BeginFromCache(src, key_.path)) {
         quick_.Cancel();
@@ -356,14 +374,14 @@ bool LiveProgram::Update(const std::vector<std::string>& changedFiles) {
     if (quick_.Active() && quick_.Ready()) FinishQuick();
     if (pending_.Active() && pending_.Ready()) Finish();
     if (current_.get() != before || pending_.Active() || quick_.Active()) settledAt_ = SteadyMs();
-    if (liftedPending_.Active()) {
-        if (liftedPending_.Ready()) FinishLifted();
+    if (lifted_.pending.Active()) {
+        if (lifted_.pending.Ready()) FinishLifted();
     } else {
         StartLifted();
     }
-    if (evalPending_.Active()) {
-        if (evalPending_.Ready()) FinishEvaluator();
-    } else if (!liftedPending_.Active()) {
+    if (eval_.pending.Active()) {
+        if (eval_.pending.Ready()) FinishEvaluator();
+    } else if (!lifted_.pending.Active()) {
         StartEvaluator();
     }
     if (prefetchPending_.Active()) {

@@ -33,6 +33,34 @@ bool EnvSwitch(const char* name, bool fallback);
 // An integer environment setting: NAME's value when it is a whole number in [lo, hi], else `fallback`.
 int EnvInt(const char* name, int fallback, int lo, int hi);
 
+// One program LiveProgram builds behind the show for the variant on screen, at the lowest
+// priority (the literal tier, the evaluator tier): the source it wants, the build in flight, the
+// program built, and the sources the driver refused (not tried again).
+struct BackgroundTier {
+    ShaderSource want;                  // the latest source assembled for wantKey
+    VariantKey wantKey;
+    PendingProgram pending;
+    VariantKey pendingKey;
+    uint64_t pendingHash = 0;
+    std::shared_ptr<Program> program;   // built from `hash`'s source, for `key`
+    VariantKey key;
+    uint64_t hash = 0;
+    std::vector<uint64_t> failed;
+    double buildMs = 0.0, primeMs = 0.0;
+
+    // The program is built for what `onScreen` wants now.
+    bool Ready(const VariantKey& onScreen) const { return program && key == onScreen && hash == want.hash && want.hash != 0; }
+    // True when `want` is for `onScreen` and still to build: not built, in flight or refused before.
+    bool ToBuild(const VariantKey& onScreen) const;
+    // Begins building `want` (from the program cache when it has it).
+    void Start(const VariantKey& onScreen, CompileProcess* process);
+    // The build in flight, finished (blocks until it is); null when the driver refused it (`log`
+    // says why; its source is not tried again).
+    std::shared_ptr<Program> Finish(std::string* log);
+    // `built` (from Finish) becomes the program; primeMs: its first use, timed by the caller.
+    void Keep(std::shared_ptr<Program> built, double primeMs);
+};
+
 class LiveProgram {
 public:
     // Switches to a variant: from the cache at once, else compiled asynchronously while the
@@ -86,7 +114,7 @@ public:
     void SetLiteralTier(bool on);
     bool LiteralTier() const { return literalTier_; }
     // The literal tier of the variant on screen is built (tests, the bench wait for it).
-    bool LiteralTierReady() const { return lifted_ && liftedKey_ == key_ && liftedHash_ == liftedWant_.hash; }
+    bool LiteralTierReady() const { return lifted_.Ready(key_); }
     // Blocks until the literal tier of the variant on screen is built (false: it cannot be).
     bool WaitLiteralTier();
     // Variants the performer can reach next (the effect pads' toggles, the presets' variants),
@@ -105,8 +133,8 @@ public:
     int LiteralSwaps() const { return literalSwaps_; }   // saves put on screen by the literal tier
     // The literal tier's last build: its compile (ProgramOrigin::buildMs) and its one use on the
     // render thread (PrimeProgram, glFinish): on NVIDIA a frame that long after a structural save.
-    double LiteralBuildMs() const { return literalBuildMs_; }
-    double LiteralPrimeMs() const { return literalPrimeMs_; }
+    double LiteralBuildMs() const { return lifted_.buildMs; }
+    double LiteralPrimeMs() const { return lifted_.primeMs; }
     // The evaluator tier (live_program_eval.cpp; off by default: `bench reload --modes MODE-evaluator`
     // turns it on; SDFVJ_EVALUATOR_TIER=0|1 overrides, also in `live`): once the variant on screen is
     // built, its scene's evaluator program (shader/eval_program.h) is built behind it at the lowest
@@ -118,8 +146,8 @@ public:
     bool EvaluatorTierReady() const;
     bool WaitEvaluatorTier();   // blocks until the variant on screen's evaluator program is built
     int EvaluatorSwaps() const { return evalSwaps_; }   // saves put on screen by the evaluator tier
-    double EvaluatorBuildMs() const { return evalBuildMs_; }
-    double EvaluatorPrimeMs() const { return evalPrimeMs_; }
+    double EvaluatorBuildMs() const { return eval_.buildMs; }
+    double EvaluatorPrimeMs() const { return eval_.primeMs; }
     double EvaluatorTranslateMs() const { return evalTranslateMs_; }   // the last save's translation
     const std::string& EvaluatorError() const { return evalError_; }   // why the last save could not be evaluated
 
@@ -137,11 +165,12 @@ private:
     void CancelBuilds();
     void Evict();     // drop least recently used variants down to cacheLimit_ (never key_)
     void Trim();      // hand the heap a compile freed back to the system (glibc malloc_trim; SDFVJ_MALLOC_TRIM=0: off)
-    void WantLifted(const SceneInfo& scene);   // assemble key_'s lifted source into liftedWant_
-    void StartLifted(bool force = false);      // build liftedWant_ when nothing else compiles (and, unless forced, kLiteralDelayMs after the last change)
+    void WantLifted(const SceneInfo& scene);   // assemble key_'s lifted source into lifted_.want
+    bool BackgroundIdle(bool force) const;     // a background tier may start building (and, unless forced, kLiteralDelayMs after the last change)
+    void StartLifted(bool force = false);      // build lifted_.want when BackgroundIdle(force)
     void FinishLifted();
     void StartPrefetch();
-    void WantEvaluator(const SceneInfo& scene);   // assemble key_'s evaluator program into evalWant_
+    void WantEvaluator(const SceneInfo& scene);   // assemble key_'s evaluator program into eval_.want
     void StartEvaluator(bool force = false);
     void FinishEvaluator();
     bool TryEvaluator(const SceneInfo& scene);    // a save drawn by the built evaluator program
@@ -166,31 +195,17 @@ private:
     int compiles_ = 0;
     size_t cacheLimit_ = kDefaultCacheLimit;
     uint64_t useClock_ = 0;
-    // The literal tier: one program, for the variant on screen.
+    // The literal tier: one program, for the variant on screen (built from the skeleton of its source).
     bool literalTier_ = false;
-    std::shared_ptr<Program> lifted_;      // built from liftedHash_'s skeleton, for liftedKey_
-    VariantKey liftedKey_;
-    uint64_t liftedHash_ = 0;
-    ShaderSource liftedWant_;              // the skeleton of the latest source assembled for key_
-    VariantKey liftedWantKey_;
-    PendingProgram liftedPending_;
-    VariantKey liftedPendingKey_;
-    uint64_t liftedPendingHash_ = 0;
-    std::vector<uint64_t> liftedFailed_;   // skeletons the driver refused: not tried again
+    BackgroundTier lifted_;
     int literalSwaps_ = 0;
     static constexpr double kLiteralDelayMs = 2000.0;
     double settledAt_ = 0.0;               // steady ms of the last change on screen or build in flight
-    double literalBuildMs_ = 0.0, literalPrimeMs_ = 0.0;
     // The evaluator tier: one program, for the variant on screen's scene shape.
     bool evalTier_ = false;
-    std::shared_ptr<Program> evalProgram_;
-    VariantKey evalKey_, evalWantKey_, evalPendingKey_;
-    uint64_t evalHash_ = 0, evalPendingHash_ = 0;
-    ShaderSource evalWant_;
-    PendingProgram evalPending_;
-    std::vector<uint64_t> evalFailed_;
+    BackgroundTier eval_;
     int evalSwaps_ = 0;
-    double evalBuildMs_ = 0.0, evalPrimeMs_ = 0.0, evalTranslateMs_ = 0.0;
+    double evalTranslateMs_ = 0.0;
     std::string evalError_;
     std::future<void> evalPrepared_;   // glslang set up ahead (SetEvaluatorTier)
     // Variants built ahead (Prefetch).

@@ -33,35 +33,25 @@ void LiveProgram::SetEvaluatorTier(bool on) {
     if (evalTier_ && !evalPrepared_.valid()) evalPrepared_ = std::async(std::launch::async, [] { eval::PrepareTranslator(); });
 }
 
-bool LiveProgram::EvaluatorTierReady() const {
-    return evalProgram_ && evalKey_ == key_ && evalHash_ == evalWant_.hash && evalWant_.hash != 0;
-}
+bool LiveProgram::EvaluatorTierReady() const { return eval_.Ready(key_); }
 
 void LiveProgram::WantEvaluator(const SceneInfo& scene) {
     if (!evalTier_) return;
     ShaderSource src;
     std::string error;
-    evalWantKey_ = key_;
+    eval_.wantKey = key_;
     // On llvmpipe the machine's loop is unrolled (its 65,535 loop iterations a shader, eval_program.h).
     if (!AssembleEvaluatorProgram(scene, key_, &src, &error, IsSoftwareRenderer() ? kEvaluatorUnrollSoftware : 1)) {
-        evalWant_ = ShaderSource{};   // this scene's top level cannot be stubbed: saves compile as before
+        eval_.want = ShaderSource{};   // this scene's top level cannot be stubbed: saves compile as before
         evalError_ = error;
         return;
     }
-    evalWant_ = std::move(src);
+    eval_.want = std::move(src);
 }
 
 void LiveProgram::StartEvaluator(bool force) {
-    if (evalTier_ && current_ && evalWantKey_ != key_) WantEvaluator(scene_);   // turned on after the variant was asked for
-    if (!evalTier_ || evalPending_.Active() || pending_.Active() || quick_.Active() || liftedPending_.Active() ||
-        !current_ || !error_.empty() || evalWantKey_ != key_ || evalWant_.hash == 0 || EvaluatorTierReady() ||
-        std::find(evalFailed_.begin(), evalFailed_.end(), evalWant_.hash) != evalFailed_.end())
-        return;
-    if (!force && NowMs() - settledAt_ < kLiteralDelayMs) return;
-    evalPendingKey_ = key_;
-    evalPendingHash_ = evalWant_.hash;
-    evalPending_.SetProcess(Process());
-    if (!evalPending_.BeginFromCache(evalWant_, key_.path)) evalPending_.Begin(evalWant_, key_.path);
+    if (evalTier_ && current_ && eval_.wantKey != key_) WantEvaluator(scene_);   // turned on after the variant was asked for
+    if (evalTier_ && BackgroundIdle(force) && eval_.ToBuild(key_)) eval_.Start(key_, Process());
 }
 
 // Translates `scene` (as saved now) into `program`'s code. false: the machine cannot run it.
@@ -81,27 +71,25 @@ bool LiveProgram::UploadEvaluatorCode(const SceneInfo& scene, const VariantKey& 
 }
 
 void LiveProgram::FinishEvaluator() {
-    auto program = std::make_shared<Program>();
     std::string log;
-    if (!evalPending_.Finish(program.get(), &log) || !UploadEvaluatorCode(scene_, evalPendingKey_, program.get())) {
-        if (evalError_.empty()) evalError_ = log;
-        evalFailed_.push_back(evalPendingHash_);
-        Trim();
-        return;
+    std::shared_ptr<Program> program = eval_.Finish(&log);
+    if (program && !UploadEvaluatorCode(scene_, eval_.pendingKey, program.get())) {
+        eval_.failed.push_back(eval_.pendingHash);
+        program.reset();
+    } else if (!program && evalError_.empty()) {
+        evalError_ = log;
     }
-    program->MarkEvaluatorTier();
-    // Used once now (with the scene's code bound), so NVIDIA's finishing of a program at its first
-    // draw falls between saves, not on the frame that shows one (as for the literal tier).
-    const double t0 = NowMs();
-    if (!IsSoftwareRenderer()) {
-        program->BindEvaluator();
-        PrimeProgram(program->Id(), evalPendingKey_.path, false);
+    if (program) {
+        program->MarkEvaluatorTier();
+        // Used once now (with the scene's code bound), so NVIDIA's finishing of a program at its first
+        // draw falls between saves, not on the frame that shows one (as for the literal tier).
+        const double t0 = NowMs();
+        if (!IsSoftwareRenderer()) {
+            program->BindEvaluator();
+            PrimeProgram(program->Id(), eval_.pendingKey.path, false);
+        }
+        eval_.Keep(std::move(program), NowMs() - t0);
     }
-    evalPrimeMs_ = NowMs() - t0;
-    evalBuildMs_ = program->Origin().buildMs;
-    evalProgram_ = std::move(program);
-    evalKey_ = evalPendingKey_;
-    evalHash_ = evalPendingHash_;
     Trim();
 }
 
@@ -109,17 +97,17 @@ bool LiveProgram::WaitEvaluatorTier() {
     if (!evalTier_) return false;
     Wait();
     StartEvaluator(true);
-    if (evalPending_.Active()) FinishEvaluator();
+    if (eval_.pending.Active()) FinishEvaluator();
     return EvaluatorTierReady();
 }
 
 bool LiveProgram::TryEvaluator(const SceneInfo& scene) {
     if (!EvaluatorTierReady()) return false;
-    const uint64_t built = evalHash_;
+    const uint64_t built = eval_.hash;
     WantEvaluator(scene);   // the save's top level: the same evaluator program?
-    if (evalWant_.hash != built) return false;
-    if (!UploadEvaluatorCode(scene, key_, evalProgram_.get())) return false;
-    current_ = evalProgram_;
+    if (eval_.want.hash != built) return false;
+    if (!UploadEvaluatorCode(scene, key_, eval_.program.get())) return false;
+    current_ = eval_.program;
     scene_ = scene;
     error_.clear();
     ++evalSwaps_;
