@@ -53,6 +53,13 @@ bool AllocateRegisters(std::vector<VInstr>& code, std::vector<Group>& groups,
 void RemoveDeadCode(std::vector<VInstr>& code, const std::vector<Group>& groups, std::vector<uint32_t>& labelPc,
                     const std::vector<uint32_t*>& pcs);
 
+// Removes the copies kMov makes, within basic blocks, where exact (evaluator_copies.cpp): a copy's
+// later reads read its source; a temporary read only by the copy after it is written to the copy's
+// register instead. Copies nothing reads any more are left for RemoveDeadCode. labelPc and `pcs`
+// (entry points) mark where blocks start.
+void PropagateCopies(std::vector<VInstr>& code, const std::vector<Group>& groups, const std::vector<uint32_t>& labelPc,
+                     const std::vector<uint32_t*>& pcs);
+
 bool TranslateSpirv(const std::vector<uint32_t>& words, const std::vector<std::string>& uniformSlots,
                     const UnitFiles& files, Program* out, std::string* error);
 

@@ -7,6 +7,8 @@
 
 #include <cstring>
 
+#include <cstdlib>
+
 #include "shader/evaluator_translator.h"
 
 namespace sdfvj::eval {
@@ -306,7 +308,15 @@ bool Translator::Run(const std::vector<uint32_t>& words, const std::vector<std::
         std::vector<uint32_t*> pcs;
         for (Entry& e : program.entries) pcs.push_back(&e.pc);
         for (auto& pin : pins) pcs.push_back(&pin.second);
-        RemoveDeadCode(code, groups, labelPc, pcs);
+        // SDFVJ_EVAL_COPIES=0 keeps the copies (for measuring what their removal gains).
+        static const bool removeCopies = [] {
+            const char* v = std::getenv("SDFVJ_EVAL_COPIES");
+            return !(v && std::string(v) == "0");
+        }();
+        for (int pass = 0; pass < 2; ++pass) {   // a second pass finds the copies the first one's removals exposed
+            if (removeCopies) PropagateCopies(code, groups, labelPc, pcs);
+            RemoveDeadCode(code, groups, labelPc, pcs);
+        }
         if (!AllocateRegisters(code, groups, pins, labelPc, globalRegs, &program, error)) {
             *error = "evaluator: " + files.name + ": " + *error;
             return false;
