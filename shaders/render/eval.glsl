@@ -8,7 +8,7 @@
 // opcodes as `const uint EV_<OP>` (from the C++ enum, so the two cannot drift apart), the hooks'
 // header slots EV_HOOK_<NAME> (evaluator.h HookNames() order), EV_HOOKS (the header's length),
 // EV_CODE_BINDING / EV_CONST_BINDING (scene.h kEvalCodeBinding, kEvalConstBinding),
-// EV_MAX_REGISTERS, EV_NONE, EV_CONST_FLAG and `vec4 evalUniform(uint slot)` (the scene's uniform
+// EV_MAX_REGISTERS, EV_NONE, EV_CONST_FLAG, EV_LANE_SHIFT and `vec4 evalUniform(uint slot)` (the scene's uniform
 // slot table: eval::UniformSlots order).
 #ifndef SDF_RENDER_EVAL_GLSL
 #define SDF_RENDER_EVAL_GLSL
@@ -30,15 +30,19 @@ const uint EV_REGISTER_MASK = EV_MAX_REGISTERS - 1u;   // a power of two: an ind
 const uint EV_MAX_STEPS = 1u << 24;
 uint ev_steps = 0u;
 
-// An operand: a register, a constant (bit 15), or none (0xffff, read as 0). Indices are kept in
-// range, so a bad buffer reads wrong values rather than memory outside the arrays.
+// An operand: a register (one lane of it in all four when bits 12-14 name one), a constant (bit
+// 15), or none (0xffff, read as 0). Indices are kept in range, so a bad buffer reads wrong values
+// rather than memory outside the arrays.
 vec4 evalOperand(uint o, uint constants) {
     if (o == EV_NONE) return vec4(0.0);
     if ((o & EV_CONST_FLAG) != 0u) {
         uint k = o & 0x7fffu;
         return k < constants ? ev_const[k] : vec4(0.0);
     }
-    return ev_R[o & EV_REGISTER_MASK];
+    vec4 v = ev_R[o & EV_REGISTER_MASK];
+    uint lane = (o >> EV_LANE_SHIFT) & 7u;   // the same for every invocation at this instruction
+    if (lane != 0u) v = vec4(v[(lane - 1u) & 3u]);
+    return v;
 }
 
 // One instruction at `pc` (which it moves on); false when the call has ended (kReturn, or a pc

@@ -49,6 +49,7 @@ const std::pair<const char*, uint32_t> kOps[] = {
 #undef SDFVJ_EV_OP
 static_assert(sizeof kOps / sizeof kOps[0] == eval::kOpCount, "every op of evaluator.h needs its GLSL constant here");
 static_assert((eval::kMaxRegisters & (eval::kMaxRegisters - 1)) == 0, "eval.glsl keeps register indices in range with a mask");
+static_assert(eval::kMaxRegisters <= (1u << eval::kLaneShift), "a register operand's lane bits are above its index");
 
 // The hooks as the renderer declares them, and what a stub's body calls (render/eval.glsl).
 struct Hook {
@@ -334,6 +335,7 @@ std::string MachineConstants() {
     s += "const uint EV_MAX_REGISTERS = " + std::to_string(eval::kMaxRegisters) + "u;\n";
     s += "const uint EV_NONE = " + std::to_string(eval::kNone) + "u;\n";
     s += "const uint EV_CONST_FLAG = " + std::to_string(eval::kConstFlag) + "u;\n";
+    s += "const uint EV_LANE_SHIFT = " + std::to_string(eval::kLaneShift) + "u;\n";
     s += "#define EV_CODE_BINDING " + std::to_string(kEvalCodeBinding) + "\n";
     s += "#define EV_CONST_BINDING " + std::to_string(kEvalConstBinding) + "\n";
     return s;

@@ -13,7 +13,9 @@
 // - Registers R[0..kMaxRegisters) are vec4 of float. A scalar lives in .x. Ints and uints are
 //   floats holding the integer value (exact below 2^24); bools are 1.0 / 0.0.
 // - Constants K[] are vec4 too. An operand is 16 bits: bit 15 set reads K[operand & 0x7fff], else
-//   R[operand]. kNone (0xffff): no operand.
+//   a register: R[operand & (kMaxRegisters - 1)], or with a lane in bits 12-14 (kLaneShift; 1-4:
+//   x, y, z, w) that lane of it in all four (what a kSwizzle broadcasting one lane made, folded
+//   into its readers). kNone (0xffff): no operand.
 // - An instruction is a uvec4: x = op, y = dst | a << 16, z = b | c << 16, w = imm (a swizzle, a
 //   component, a jump target or a uniform slot, as the op says).
 // - Registers [0, globals) persist between calls of one invocation (a scene's SCENE_STATE globals,
@@ -33,6 +35,7 @@ namespace sdfvj::eval {
 constexpr uint32_t kMaxRegisters = 128;  // the GLSL machine's register array; Translate() fails past it
 constexpr uint32_t kConstFlag = 0x8000u;
 constexpr uint32_t kNone = 0xffffu;
+constexpr uint32_t kLaneShift = 12;      // a register operand's lane: (operand >> kLaneShift) & 7, 0: the whole vec4
 
 // Component-wise over the 4 lanes unless said otherwise. A, B, C are the operands' values.
 enum Op : uint32_t {

@@ -2,9 +2,11 @@
 //
 // Unoptimized SPIR-V moves every value through variables, and inlining moves every argument and
 // result: a third to two fifths of the translated instructions were kMov (midi 232 of 694,
-// character 1448 of 3567), and each costs the GPU machine a whole dispatch. Two rewrites, each
-// within a basic block, where they are plainly exact:
-// - forward: after `MOV d = s`, a later read of d reads s, until d or s is written again;
+// character 1448 of 3567), and each costs the GPU machine a whole dispatch. A fifth more were
+// kSwizzle putting one lane in all four (a component extracted: p.y). Two rewrites, each within a
+// basic block, where they are plainly exact:
+// - forward: after `MOV d = s`, a later read of d reads s, until d or s is written again; after
+//   `SWIZZLE d = s.yyyy`, a later read of d reads s's lane y (an operand's lane, evaluator.h);
 // - backward: `op t = ..; ..; MOV x = t`, with t read by that MOV alone and x neither read nor
 //   written in between, becomes `op x = ..` (the MOV goes).
 // RemoveDeadCode then drops the copies nothing reads any more.
@@ -36,8 +38,10 @@ bool Reads(const VInstr& in, uint32_t group) {
     return in.returnGroup == group;
 }
 
-// A whole single register: what the rewrites move values between.
-bool Single(const Opnd& o, const std::vector<Group>& groups) { return IsReg(o) && o.off == 0 && groups[o.group].size == 1; }
+// A whole single register, read whole: what the rewrites move values between.
+bool Single(const Opnd& o, const std::vector<Group>& groups) {
+    return IsReg(o) && o.off == 0 && o.lane == 0 && groups[o.group].size == 1;
+}
 
 }  // namespace
 
@@ -53,14 +57,22 @@ void PropagateCopies(std::vector<VInstr>& code, const std::vector<Group>& groups
         if (IsJumpOp(code[i].op) || code[i].op == kReturn) leader[i + 1] = 1;
 
     // Forward: reads of a copy read its source.
-    std::unordered_map<uint32_t, Opnd> copyOf;   // group -> the value it holds a copy of
+    std::unordered_map<uint32_t, Opnd> copyOf;   // group -> the value it holds a copy of (a lane of it in all four)
     for (size_t i = 0; i < n; ++i) {
         if (leader[i]) copyOf.clear();
         VInstr& in = code[i];
         for (Opnd* o : {&in.a, &in.b, &in.c}) {
             if (!IsReg(*o) || o->off != 0) continue;
             const auto it = copyOf.find(o->group);
-            if (it != copyOf.end()) *o = it->second;
+            if (it == copyOf.end()) continue;
+            const Opnd& src = it->second;
+            if (src.lane != 0 || o->lane == 0) {
+                *o = src;   // every lane of the copy is the source's lane, or the whole copy is read
+            } else if (!src.isConst) {
+                const uint32_t lane = o->lane;   // one lane of a whole copy: that lane of its source
+                *o = src;
+                o->lane = lane;
+            }   // one lane of a copied constant: a constant has no lanes to pick, the read stays
         }
         const uint32_t w = Written(in);
         if (w != kNone) {
@@ -68,8 +80,17 @@ void PropagateCopies(std::vector<VInstr>& code, const std::vector<Group>& groups
             for (auto it = copyOf.begin(); it != copyOf.end();)
                 it = IsReg(it->second) && it->second.group == w ? copyOf.erase(it) : std::next(it);
         }
-        if (in.op == kMov && Single(in.dst, groups) && in.a.Used() && !(IsReg(in.a) && in.a.group == in.dst.group))
-            copyOf[in.dst.group] = in.a;
+        if (!Single(in.dst, groups) || (IsReg(in.a) && in.a.group == in.dst.group)) continue;
+        if (in.op == kMov && in.a.Used()) copyOf[in.dst.group] = in.a;
+        // A swizzle that puts one lane of a register in all four: its readers read that lane.
+        if (in.op == kSwizzle && IsReg(in.a) && !in.b.Used() && !in.c.Used()) {
+            const uint32_t lane = in.imm & 7u;
+            if (lane < 4 && in.imm == lane * 01111u) {
+                Opnd src = in.a;
+                if (src.lane == 0) src.lane = lane + 1;   // a lane of a broadcast is the broadcast
+                copyOf[in.dst.group] = src;
+            }
+        }
     }
 
     // Backward: a temporary read only by the copy that follows it is written straight to the copy.

@@ -24,6 +24,7 @@ struct Opnd {
     uint32_t group = kNone;   // kNone: no operand (or a constant)
     uint32_t off = 0;         // register in the group, or the constant's index
     bool isConst = false;
+    uint32_t lane = 0;        // a register read as one lane in all four: 1-4 (x..w); 0: the whole register
     bool Used() const { return isConst || group != kNone; }
 };
 struct VInstr {

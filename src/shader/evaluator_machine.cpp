@@ -37,10 +37,14 @@ bool Run(const Program& program, const std::string& name, const std::vector<std:
     if (R.size() < kMaxRegisters) R.resize(kMaxRegisters, {0, 0, 0, 0});
     for (size_t k = 0; k < args.size(); ++k) R[e->args[k]] = args[k];
     const V4 zero{0, 0, 0, 0};
-    auto read = [&](uint32_t o) -> const V4& {
+    auto read = [&](uint32_t o) -> V4 {
         if (o == kNone) return zero;
         if (o & kConstFlag) return program.constants[o & 0x7fffu];
-        return R[o];
+        const V4& r = R[o & (kMaxRegisters - 1)];
+        const uint32_t lane = (o >> kLaneShift) & 7u;
+        if (lane == 0) return r;
+        const float v = r[(lane - 1) & 3u];
+        return {v, v, v, v};
     };
     const size_t n = program.code.size();
     uint64_t budget = 50'000'000;   // a loop that never ends fails the test, not the process

@@ -201,7 +201,7 @@ bool AllocateRegisters(std::vector<VInstr>& code, std::vector<Group>& groups,
         if (o.isConst) return kConstFlag | o.off;
         if (o.group == kNone) return kNone;
         const Group& gr = groups[o.group];
-        return (uint32_t)((gr.fixed >= 0 ? gr.fixed : std::max(gr.reg, (int)globals)) + (int)o.off);
+        return (uint32_t)((gr.fixed >= 0 ? gr.fixed : std::max(gr.reg, (int)globals)) + (int)o.off) | (o.lane << kLaneShift);
     };
     out->code.clear();
     for (const VInstr& v : code) {

@@ -107,6 +107,40 @@ vec4 map(vec3 p) {
     CheckNear(Map(p, {2, 3, 0, 0}), {2, 5, -3, 7});
 }
 
+TEST_CASE("evaluator: copies and one-lane swizzles fold into what reads them, a copy whose source is written again stays", "[evaluator]") {
+    const Program p = MustTranslate(Unit(R"(
+vec4 map(vec3 p) {
+    vec3 q = p;                  // a copy
+    float y = q.y;               // one lane of it
+    vec3 s = vec3(y) * q;        // that lane in all four
+    float z = s.z;
+    vec3 r = q.zzz + p.xxx;
+    p.x = 5.0;                   // p written again: q must keep p's old value
+    return vec4(y, z, r.x, q.x + p.x);
+})"));
+    // p = (2, 3, 4): y = 3, s = (6, 9, 12), z = 12, r.x = 4 + 2, q.x + p.x = 2 + 5
+    CheckNear(Map(p, {2, 3, 4, 0}), {3, 12, 6, 7});
+    // Without the second write to p: every swizzle that only put one lane in all four was folded
+    // into its readers (an operand's lane, evaluator.h), and so was every copy of a register but the
+    // result's, into the entry's result register.
+    const Program folded = MustTranslate(Unit(R"(
+vec4 map(vec3 p) {
+    vec3 q = p;
+    float y = q.y;
+    vec3 s = vec3(y) * q;
+    return vec4(y, s.z, q.z + p.x, 1.0);
+})"));
+    CheckNear(Map(folded, {2, 3, 4, 0}), {3, 12, 6, 1});
+    int broadcasts = 0, copies = 0;
+    for (const Instr& in : folded.code) {
+        if (in.op == kSwizzle && in.b == kNone && (in.imm == 0 || in.imm == 0x249 || in.imm == 0x492 || in.imm == 0x6db)) ++broadcasts;
+        if (in.op == kMov && (in.a & kConstFlag) == 0) ++copies;
+    }
+    INFO(folded.code.size() << " instructions");
+    CHECK(broadcasts == 0);
+    CHECK(copies <= 1);
+}
+
 TEST_CASE("evaluator: an int loop with shifts and masks", "[evaluator]") {
     const Program p = MustTranslate(Unit(R"(
 vec4 map(vec3 p) {
