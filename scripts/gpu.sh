@@ -406,13 +406,16 @@ case "${1:-}" in
     if [ "$part" = eval ]; then
     # Session 44 (issue 12): a structural save drawn by the scene's evaluator program (built ahead;
     # the save translated on the CPU, no driver build) against the compile process with its quick
-    # tier, rounds interleaved, caches off; then the evaluator program's frames against the compiled
-    # program's at 1920x1080 and 3840x2160 (`render --evaluator`'s timing) where it prints them.
-    for s in ${EVAL_SCENES:-midi character}; do
-      timeout 250 bash "$0" remote bench reload --scene $s --size 1920x1080 --path compute --tiered on --rounds ${EVAL_ROUNDS:-5} \
-        --modes ${EVAL_MODES:-process,process-evaluator} > "$out/reload_eval_$s.txt" 2>&1 || true
-      grep -h -A4 'modes side by side' "$out/reload_eval_$s.txt" | cut -c1-300 || tail -5 "$out/reload_eval_$s.txt"
-      grep -h -E '^evaluator tier|evaluator tier:' "$out/reload_eval_$s.txt" | cut -c1-300
+    # tier, rounds interleaved, caches off. The table's "frame ms on the quick tier" column is the
+    # evaluator program's frame while it is on screen.
+    # EVAL_RUNS: SCENE:SIZE:ROUNDS each (the 4K run: the interpreter's frame where pixels cost most).
+    for run in ${EVAL_RUNS:-midi:1920x1080:5 character:1920x1080:5 midi:3840x2160:3}; do
+      IFS=: read -r s size rounds <<< "$run"
+      timeout 170 bash "$0" remote bench reload --scene $s --size $size --path compute --tiered on --rounds $rounds \
+        --modes ${EVAL_MODES:-process,process-evaluator} > "$out/reload_eval_${s}_$size.txt" 2>&1 || true
+      echo "== $s $size"
+      grep -h -A4 'modes side by side' "$out/reload_eval_${s}_$size.txt" | cut -c1-300 || tail -5 "$out/reload_eval_${s}_$size.txt"
+      grep -h -E '^evaluator tier|evaluator tier:|^median' "$out/reload_eval_${s}_$size.txt" | cut -c1-300
     done
     fi
     if [ "$part" = split ]; then
