@@ -1,4 +1,4 @@
-// What the render-process tests share (test_render_process.cpp, test_render_process_read.cpp): a
+// What the render-process tests share (test_render_process*.cpp): servers started and loaded, a
 // scene's inputs at a time, a texture or read framebuffer of this context read back, a show polled
 // until its server on screen changes.
 #pragma once
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gl_fixture.h"
+#include "render/render_process.h"
 #include "render/server_show.h"
 #include "scene/scene.h"
 
@@ -70,6 +71,35 @@ inline bool PollUntilChange(ServerShow* show, std::string* error) {
     }
     *error = "nothing changed in 120 s";
     return false;
+}
+
+// post: the load's post chain (ServerLoad::post).
+inline RenderProcess::Ready StartAndLoad(RenderProcess* proc, const std::string& scenePath, RenderPath path, FrameTransport t,
+                                  const std::vector<std::string>& env = {}, const std::vector<std::string>& post = {}) {
+    RequireGl();
+    std::string error;
+    INFO(error);
+    REQUIRE(proc->Start(&error, "/proc/self/exe", env));
+    ServerLoad load{scenePath, true, {}, path, kW, kH};
+    load.post = post;
+    REQUIRE(proc->Load(load, t));
+    RenderProcess::Ready ready;
+    REQUIRE(proc->PollReady(&ready, 120000));
+    return ready;
+}
+
+// A load of `path` with its own effects at the tests' size.
+inline ServerLoad OwnEffects(const std::string& path) { return ServerLoad{path, true, {}, RenderPath::Fragment, kW, kH}; }
+
+// `show` started on scene `name` (its own effects, fragment path); returns the scene.
+inline SceneInfo StartShow(ServerShow* show, const char* name) {
+    RequireGl();
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(FindScene(name, &scene, &error));
+    INFO(error);
+    REQUIRE(show->Start(OwnEffects(scene.path), &error));
+    return scene;
 }
 
 }  // namespace sdfvj::test
