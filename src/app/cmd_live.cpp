@@ -84,8 +84,10 @@ bool LiveSession::Start(std::string* error) {
     live_.SetLiteralTier(!softwareGl_);
     // A save that edits what the scene's functions compute shows in the next frame too, drawn by
     // the scene's evaluator program (built behind the show; live_program_eval.cpp) until its
-    // optimized program is built. Off until it is measured on a GPU (SDFVJ_EVALUATOR_TIER=1 turns it
-    // on); on llvmpipe its program's first draw JITs for seconds (docs/performance.md "Session 44").
+    // optimized program is built. Off: measured on an NVIDIA H100 its interpreted frame takes
+    // 540-610 ms at 1080p, so a save's first image comes later than the quick tier's and the show
+    // stalls until the optimized program (docs/performance.md "Session 45"; llvmpipe: "Session 44").
+    // SDFVJ_EVALUATOR_TIER=1 turns it on.
     live_.SetEvaluatorTier(false);
     live_.SetPrimePrefetched(o_.warmAhead);   // --warm-ahead: a pad hit shows its variant in one frame
     if (o_.renderProcess && !state_.show.isfScene) StartServers();
