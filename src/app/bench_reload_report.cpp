@@ -14,7 +14,7 @@ void PrintReloadRound(int round, const Round& r) {
     char used[48] = "no";
     if (r.usedBefore) std::snprintf(used, sizeof used, "yes (%.1f)", r.loadMs);
     std::printf("| %d | %.1f%s | %.1f | %d | %.1f | %.1f (%.1f / %.1f) | %.1f | %s | %.1f | %s | %s |\n", round,
-                r.firstMs, r.quickSeen ? " (quick)" : "", r.optimizedMs, r.frames, r.longestFrame,
+                r.firstMs, r.evaluatorSeen ? " (evaluator)" : r.quickSeen ? " (quick)" : "", r.optimizedMs, r.frames, r.longestFrame,
                 r.longestUpdate, r.beginCall, r.finishCall, r.firstDraw, quick, r.compileMs, used,
                 r.fromCache ? "yes" : "no");
 }

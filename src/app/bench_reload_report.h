@@ -15,6 +15,7 @@ struct Round {
     int frames = 0;
     std::vector<double> quickFrames;   // frame times while the quick tier was on screen
     bool quickSeen = false, fromCache = false, ok = false;
+    bool evaluatorSeen = false;   // the first tier was the evaluator program (a quick tier too)
     bool usedBefore = false;   // a program on screen this round was used on the loader before the hand-over
     double loadMs = 0;         // ... its load + first use there
     std::vector<double> around;   // the 3 frames before the swap to the optimized program, its own, the 3 after

@@ -373,6 +373,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                 r.firstDraw = ms - updateMs;
             }
             r.quickSeen = r.quickSeen || live.Current()->QuickTier();
+            r.evaluatorSeen = r.evaluatorSeen || live.Current()->Origin().evaluatorTier;
             r.usedBefore = r.usedBefore || live.Current()->Origin().usedBeforeHandOver;
             r.loadMs = std::max(r.loadMs, live.Current()->Origin().loadMs);
             if (live.Current()->QuickTier()) r.quickFrames.push_back(ms);
@@ -428,7 +429,7 @@ int RunReloadBench(const ReloadBenchOptions& o) {
                     how, live.Tiered() ? "yes (quick tier first)" : "no",
                     live.LiteralTierReady() ? "; literal tier: yes (a retune is drawn from uniforms at once)" : "", evaluated);
         std::printf("| round | first tier on screen ms | optimized on screen ms | frames | longest frame ms | "
-                    "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier | "
+                    "longest reload step ms (Begin / Finish calls) | first draw of new program ms | frame ms on the quick tier (or the evaluator) | "
                     "compile ms (its own) | used before the hand-over (load + first use ms) | from program cache |\n"
                     "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
         for (int round : m.failedRounds)
