@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
                           "frames of the whole render; files keep their absolute index (docs/farm.md)");
     cmdRender->add_flag("--count-frames", render.countFrames, "print how many frames the whole render has and exit");
     cmdRender->add_flag("--evaluator", render.evaluator,
-                        "draw the scene through the evaluator (the interpreter a save's first tier uses) instead of its compiled program");
+                        "draw the scene through its evaluator (the register machine of the evaluator tier, SDFVJ_EVALUATOR_TIER=1) instead of its compiled program: the same picture, hundreds of times slower");
 
     BenchOptions bench;
     auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
