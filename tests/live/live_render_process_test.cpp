@@ -400,6 +400,9 @@ TEST_CASE("live render process: the variants an effect pad or a preset reaches a
     // A pad hit: its spare loads the program from the cache instead of compiling it, and llvmpipe's
     // code for it is in Mesa's disk cache (the server that built it ahead used it once): the hit's
     // build + first use is a fraction of the first program's, which compiled (a ratio, not a time).
+    // A compile of the pad's variant (midi with AO: more code) would take at least the first
+    // program's time, so 0.8 still tells a load from a compile; CI's clean clone once read 0.6
+    // (118 + 129 ms against 65 + 82) on its two loaded cores, where 0.5 had held before.
     double firstBuild = 0, firstUse = 0, hitBuild = 0, hitUse = 0;
     REQUIRE(std::sscanf(log.c_str() + log.find("the scene is drawn by a render process"),
                         "the scene is drawn by a render process (frames by %*[^;]; build %lf ms, first use %lf ms", &firstBuild, &firstUse) == 2);
@@ -410,7 +413,7 @@ TEST_CASE("live render process: the variants an effect pad or a preset reaches a
                         "shader reloaded (its render process: build %lf ms from the program cache, first use %lf ms", &hitBuild, &hitUse) == 2);
     INFO("first program: build " << firstBuild << " ms, first use " << firstUse << " ms; the pad's, built ahead: " << hitBuild << " + "
                                  << hitUse << " ms");
-    CHECK(hitBuild + hitUse < 0.5 * (firstBuild + firstUse));
+    CHECK(hitBuild + hitUse < 0.8 * (firstBuild + firstUse));
     REQUIRE_LIVE(show, show.WaitForFramesAfter(show.Frames().size(), 10, kDeadline));
     CHECK(show.Running());
 }
