@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -84,14 +85,29 @@ int RunBench(const BenchOptions& o) {
         SceneInfo scene;
         // NAME:literals times the literal tier's program (live's first tier of a save that only retunes
         // numbers: the scene's float literals read from uniforms) beside NAME's own.
+        // NAME:aoN draws NAME with N AO samples (the quality knob, a uniform) beside NAME's default.
+        std::string sceneName = name;
+        int aoSamples = -1;
+        if (const size_t at = name.rfind(":ao"); at != std::string::npos && at + 3 < name.size() &&
+                                                  name.find_first_not_of("0123456789", at + 3) == std::string::npos) {
+            aoSamples = std::atoi(name.c_str() + at + 3);
+            if (name.size() - at > 5 || aoSamples < 1 || aoSamples > 64) {
+                std::fprintf(stderr, "sdfvj bench: %s: AO samples between 1 and 64 expected after ':ao'\n", name.c_str());
+                return 2;
+            }
+            sceneName = name.substr(0, at);
+        }
         const std::string kLiterals = ":literals";
-        const bool lift = name.size() > kLiterals.size() && name.compare(name.size() - kLiterals.size(), kLiterals.size(), kLiterals) == 0;
-        const std::string sceneName = lift ? name.substr(0, name.size() - kLiterals.size()) : name;
+        const bool lift = sceneName.size() > kLiterals.size() &&
+                          sceneName.compare(sceneName.size() - kLiterals.size(), kLiterals.size(), kLiterals) == 0;
+        if (lift) sceneName.resize(sceneName.size() - kLiterals.size());
         if (!FindScene(sceneName, &scene, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
         if (lift) scene.name += kLiterals;
+        if (aoSamples > 0) scene.name += ":ao" + std::to_string(aoSamples);
         FrameInputs in;
         for (const ParamDecl& d : scene.params) in.params.emplace_back(d.name, d.defaultValue);
         in.time = 1.0;
+        if (aoSamples > 0) in.quality.aoSamples = aoSamples;
         for (size_t t = 0; t < tests.size(); ++t)
             for (RenderPath p : paths) {
                 ShaderSource src;

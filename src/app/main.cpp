@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
 
     BenchOptions bench;
     auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
-    cmdBench->add_option("--scenes", bench.scenes, "scenes (default: all); NAME:literals times the literal tier of NAME (its float literals read from uniforms: what `live` shows first after a save that only retunes numbers)")->delimiter(',');
+    cmdBench->add_option("--scenes", bench.scenes, "scenes (default: all); NAME:literals times the literal tier of NAME (its float literals read from uniforms: what `live` shows first after a save that only retunes numbers); NAME:aoN draws NAME with N AO samples (default 5)")->delimiter(',');
     cmdBench->add_option("--sizes", bench.sizes, "sizes")->capture_default_str()->delimiter(',');
     cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: these four); show = soft shadows, AO, specular, PBR and one reflection bounce; show_ssaa = show with 4 samples a pixel sharing each surface's shading; show_ssaa_exact = each sample shaded; show_direct = show with direct_reflections (the reflected surface lit without its shadow ray or AO, its march at most 48 steps); where a frame goes: march = the cone pre-pass and the primary march alone (the depth view), normals = those and the normals (the normals view)")->delimiter(',');
     cmdBench->add_option("--paths", bench.paths, "render paths")->capture_default_str()->delimiter(',');
