@@ -341,6 +341,16 @@ std::string MachineConstants() {
     return s;
 }
 
+// The uniforms, the scene's inputs, the machine's constants, its uniform table and the machine
+// (render/eval.glsl), after `s`'s defines: what the evaluator program and the probe share.
+bool AppendMachine(const SceneInfo& scene, const fs::path& root, ShaderSource* s, std::string* error) {
+    if (!ExpandIncludes((root / "render" / "uniforms.glsl").string(), s, error)) return false;
+    std::string table;
+    if (!UniformTable(scene, &table, error)) return false;
+    s->text += "#line 1 0\n" + SceneInputUniforms(scene) + MachineConstants() + table;
+    return ExpandIncludes((root / "render" / "eval.glsl").string(), s, error);
+}
+
 }  // namespace
 
 const std::vector<std::pair<std::string, uint32_t>>& EvaluatorOpConstants() {
@@ -376,11 +386,7 @@ bool AssembleEvaluatorProgram(const SceneInfo& scene, const VariantKey& key, Sha
     if (unroll > 1) s.text += "#define EV_UNROLL " + std::to_string(unroll) + "\n";
     for (const auto& d : VariantDefines(key.effects, key.path)) s.text += "#define " + d + "\n";
     const fs::path root = fs::path(DataRoot()) / "shaders";
-    if (!ExpandIncludes((root / "render" / "uniforms.glsl").string(), &s, error)) return false;
-    std::string table;
-    if (!UniformTable(scene, &table, error)) return false;
-    s.text += "#line 1 0\n" + SceneInputUniforms(scene) + MachineConstants() + table;
-    if (!ExpandIncludes((root / "render" / "eval.glsl").string(), &s, error)) return false;
+    if (!AppendMachine(scene, root, &s, error)) return false;
     const size_t sceneAt = s.text.size();
     if (!ExpandIncludes(scene.path, &s, error)) return false;
     const std::string canonical = fs::weakly_canonical(scene.path).string();
@@ -411,11 +417,7 @@ bool AssembleEvaluatorProbe(const SceneInfo& scene, ShaderSource* out, std::stri
     s.files.push_back("<generated>");
     s.text = "#version 450 core\n#define SCENE_EVALUATOR 1\n#define SDFVJ_COMPUTE 1\n";
     const fs::path root = fs::path(DataRoot()) / "shaders";
-    if (!ExpandIncludes((root / "render" / "uniforms.glsl").string(), &s, error)) return false;
-    std::string table;
-    if (!UniformTable(scene, &table, error)) return false;
-    s.text += "#line 1 0\n" + SceneInputUniforms(scene) + MachineConstants() + table;
-    if (!ExpandIncludes((root / "render" / "eval.glsl").string(), &s, error)) return false;
+    if (!AppendMachine(scene, root, &s, error)) return false;
     s.text += "#line 1 0\nlayout(local_size_x = 64) in;\n"
               "layout(std430, binding = 0) readonly buffer ProbeIn { vec4 probeIn[]; };\n"
               "layout(std430, binding = 1) writeonly buffer ProbeOut { vec4 probeOut[]; };\n"
