@@ -26,6 +26,10 @@
 //   BOUNCE_STEPS a reflection ray's step budget (0: u_maxSteps, as the primary ray's)
 //   BOUNCE_LIGHT what lights the surface a reflection meets: 0 as a primary hit (shadows, AO) /
 //               1 no AO / 2 neither shadow nor AO (direct light unshadowed, ambient unoccluded)
+//   BOUNCE_BOUND 0 (default) / N: a reflection's shadow ray and AO are skipped where no value of
+//               theirs could move the pixel's display colour by more than N / 255 (the surface's
+//               light with both at 1 and at 0, weighted by what the mirror passes, tone mapped
+//               over the colour so far); the surface then takes the middle of the two
 //   BOUNDS      1 (default) use the scene's bounding volume, 0 march the whole field
 //               everywhere as a plain raymarcher does (the accuracy bench's plain row and its
 //               references)
@@ -56,6 +60,9 @@
 #endif
 #ifndef BOUNCE_LIGHT
 #define BOUNCE_LIGHT 0
+#endif
+#ifndef BOUNCE_BOUND
+#define BOUNCE_BOUND 0
 #endif
 #ifndef SHADOWS
 #define SHADOWS 2
@@ -359,7 +366,21 @@ vec3 litSurface(vec3 n, vec3 rd, vec3 albedo, float shadow, float occlusion) {
     return col;
 }
 
-vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
+vec3 displayColor(vec3 col);
+
+// before, weight: the pixel's radiance so far and what the mirror passes of this surface's (a
+// reflection's; BOUNCE_BOUND).
+vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec3 before, vec3 weight) {
+#if BOUNCE_BOUND > 0
+    if (bounce > 0) {
+        // The surface's light is linear in its shadow and occlusion, with terms of one sign, so
+        // whatever the two are, it lies between these; so does the pixel's display colour, which
+        // grows with it. Where the two ends are close enough, neither ray changes what is shown.
+        vec3 hi = litSurface(n, rd, albedo, 1.0f, 1.0f), lo = litSurface(n, rd, albedo, 0.0f, 0.0f);
+        vec3 spread = displayColor(before + weight * hi) - displayColor(before + weight * lo);
+        if (max(spread.x, max(spread.y, spread.z)) <= float(BOUNCE_BOUND) / 255.0f) return 0.5f * (hi + lo);
+    }
+#endif
     vec3 l = u_lightDir;
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
@@ -386,9 +407,9 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce) {
 }
 
 // Shaded colour of one marched ray, with fog.
-vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n, int bounce) {
+vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n, int bounce, vec3 before, vec3 weight) {
     if (!h.hit) return background(rd);
-    vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t, bounce);
+    vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t, bounce, before, weight);
 #if FOG
     if ((u_effectsOff & EFFECT_OFF_FOG) == 0) col = applyFog(col, h.t, background(rd), 0.03f);
 #endif
@@ -439,7 +460,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         vec2 oct = octEncode(n);
         return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
 #endif
-        col += throughput * shadeRay(ro, rd, h, n, bounce);
+        col += throughput * shadeRay(ro, rd, h, n, bounce, col, throughput);
         if (!h.hit || bounce == bounces) break;
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
         tNext = bounce == 0 ? mirrorStart(ro, rd, h, n, tStart) : 0.0f;

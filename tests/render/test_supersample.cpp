@@ -95,3 +95,73 @@ TEST_CASE("compute strips: a frame drawn in strips, a wait after each, is the on
         }
     }
 }
+
+namespace {
+
+// The largest channel spread of the 2x2 quad at (x, y).
+int QuadSpread(const Image& img, int x, int y) {
+    int spread = 0;
+    for (int c = 0; c < 3; ++c) {
+        int lo = 255, hi = 0;
+        for (int s = 0; s < 4; ++s) {
+            int v = img.rgba[((y + s / 2) * img.width + x + s % 2) * 4 + c];
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+        spread = std::max(spread, hi - lo);
+    }
+    return spread;
+}
+
+// The share of 2x2 quads that are one colour up to the dither (2/255) in `shared` but not in `each`.
+double QuadsMadeOneColour(const Image& shared, const Image& each) {
+    int quads = 0, made = 0;
+    for (int y = 0; y + 1 < shared.height; y += 2)
+        for (int x = 0; x + 1 < shared.width; x += 2, ++quads)
+            if (QuadSpread(shared, x, y) <= 2 && QuadSpread(each, x, y) > 2) ++made;
+    return quads ? double(made) / quads : 0.0;
+}
+
+}  // namespace
+
+TEST_CASE("ssaa_quads: a frame twice the size whose quads share their shading, averaged 2x2, draws what shading every pixel draws", "[supersample]") {
+    EffectSet e;
+    std::string error;
+    REQUIRE(ParseEffectList("pbr,ssaa_quads", &e, &error));
+    CHECK(e.supersample == 3);
+    CHECK(DescribeEffects(e) == "pbr,ssaa_quads");
+    constexpr int kW = 160, kH = 90;
+    for (const std::string scene : {"character", "field150", "midi"}) {
+        SECTION(scene) {
+            const Image plainBig = RenderScene(scene, Show(0), RenderPath::Compute, 2 * kW, 2 * kH);
+            const Image quadsBig = RenderScene(scene, Show(3), RenderPath::Compute, 2 * kW, 2 * kH);
+            const Image plain = Downsample2x2(plainBig), quads = Downsample2x2(quadsBig);
+            const Image one = RenderScene(scene, Show(0), RenderPath::Compute, kW, kH);
+            const ImageDiff quadsErr = CompareImages(quads, plain, 8), oneErr = CompareImages(one, plain, 8);
+            const double made = QuadsMadeOneColour(quadsBig, plainBig), unmade = QuadsMadeOneColour(plainBig, quadsBig);
+            INFO("against every pixel shaded, 2x2 averaged: quads shared mean " << quadsErr.meanAbs << " (over 8/255 "
+                 << quadsErr.fractionOver * 100 << "%, max " << quadsErr.maxAbs << "), one sample a shown pixel "
+                 << oneErr.meanAbs << " (" << oneErr.fractionOver * 100 << "%); quads made one colour by the sharing: "
+                 << made * 100 << "%, the other way " << unmade * 100 << "%");
+            // The quads did share: quads whose pixels differ when each is shaded are one colour.
+            CHECK(made > 0.02);
+            CHECK(unmade < 0.002);
+            // And the shown image stays near the one shaded per pixel: far nearer than one sample a pixel.
+            CHECK(quadsErr.meanAbs < 0.3 * oneErr.meanAbs);
+            CHECK(quadsErr.fractionOver < 0.3 * oneErr.fractionOver);
+            // The fragment path has no work-group to share with: it shades every pixel.
+            const ImageDiff fragment = CompareImages(RenderScene(scene, Show(3), RenderPath::Fragment, 2 * kW, 2 * kH),
+                                                     RenderScene(scene, Show(0), RenderPath::Fragment, 2 * kW, 2 * kH), 0);
+            CHECK(fragment.maxAbs == 0);
+        }
+    }
+    // Odd sizes (a quad cut by the edge shades its pixels each) and strips (each strip whole work-groups).
+    const Image whole = RenderScene("midi", Show(3), RenderPath::Compute, 97, 71);
+    const Image strips = RenderScene("midi", Show(3), RenderPath::Compute, 97, 71, 1.0, {}, Quality{}, 5);
+    CHECK(CompareImages(whole, strips, 0).maxAbs == 0);
+    const ImageDiff odd = CompareImages(whole, RenderScene("midi", Show(0), RenderPath::Compute, 97, 71), 8);
+    INFO("odd size: over 8/255 " << odd.fractionOver * 100 << "%");
+    CHECK(odd.fractionOver < 0.02);
+    CHECK(MeanLuma(whole, 0.0, 0.0, 1.0, 0.1) > 5.0);
+    CHECK(MeanLuma(whole, 0.9, 0.0, 1.0, 1.0) > 5.0);
+}
