@@ -35,8 +35,6 @@
 #                                 postservers (issue 12: a post effect's save drawn by the render
 #                                 processes, `bench reload --post`, without and with a standby;
 #                                 many files as s33);
-#                                 quads (issue 13: the 7680x4320 show with ssaa_quads, its time
-#                                 (quads_time) and its image (quads_image));
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -545,32 +543,6 @@ case "${1:-}" in
       --tests ${VARIANT_TESTS:-full} --paths compute --frames 20 --warmup 5 --markdown "$out/copies.md" --csv "$out/copies.csv" > "$out/copies.txt" 2>&1 || true
     cat "$out/copies.md" 2>/dev/null; grep -h drift "$out/copies.txt" || tail -5 "$out/copies.txt"
     rm -rf "$root"
-    fi
-    if [ "$part" = quads ] || [ "$part" = quads_time ]; then
-    # Session 46, issue 13: the 7680x4320 show (4x supersampled 4K) with each 2x2 quad's shading shared
-    # where it sees one flat surface (`ssaa_quads`), plain and with direct_reflections, against the
-    # show as shipped, and copies QUADS_COPIES="SCENE/SUFFIX/NAME=VALUE,..." (default: 16x16 groups,
-    # _wg16, where the shading packed to a group's first invocations leaves more warps idle; a
-    # reflection's shadow and AO skipped where they cannot move a pixel by 4/255, _b4). One run.
-    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="$all"
-    for v in ${QUADS_COPIES:-mandelbulb/wg16/WORKGROUP_X=16,WORKGROUP_Y=16 field50/wg16/WORKGROUP_X=16,WORKGROUP_Y=16 \
-        field150/wg16/WORKGROUP_X=16,WORKGROUP_Y=16 mandelbulb/b4/BOUNCE_BOUND=4 field50/b4/BOUNCE_BOUND=4 field150/b4/BOUNCE_BOUND=4 \
-        field150/wg16b4/WORKGROUP_X=16,WORKGROUP_Y=16,BOUNCE_BOUND=4 character/wg8/WORKGROUP_X=8,WORKGROUP_Y=8}; do
-      s="${v%%/*}"; rest="${v#*/}"; suf="${rest%%/*}"; defs="${rest#*/}"
-      IFS=, read -r -a dl <<< "${defs//=/ }"; variant "$root" "$s" "$suf" "${dl[@]}"; sc="$sc ${s}_$suf"
-    done
-    SDFVJ_ROOT_OVERRIDE="$root" timeout ${QUADS_TIMEOUT:-420} bash "$0" remote bench --scenes $sc --sizes 7680x4320 \
-      --tests show show_quads show_direct show_direct_quads --paths compute --frames 15 --warmup 3 \
-      --markdown "$out/quads_show.md" --csv "$out/quads_show.csv" > "$out/quads_show.txt" 2>&1 || true
-    cat "$out/quads_show.md" 2>/dev/null; grep -h drift "$out/quads_show.txt" || tail -5 "$out/quads_show.txt"
-    rm -rf "$root"
-    fi
-    if [ "$part" = quads ] || [ "$part" = quads_image ]; then
-    # What the quads' shared shading draws: `bench ssaa` at 3840x2160 (its last column: the 7680x4320
-    # show with ssaa_quads averaged 2x2 against the same frame with every pixel shaded).
-    timeout ${QUADS_IMAGE_TIMEOUT:-300} bash "$0" remote bench ssaa --size 3840x2160 --effects none,soft_shadows,ao,specular,pbr,reflections=1 --markdown "$out/quads_image.md" \
-      > "$out/quads_image.txt" 2>&1 || true
-    cat "$out/quads_image.txt"
     fi
     if [ "$part" = s22 ]; then
     # Session 22, issue 13: normals by forward differences from the march's own value at the hit (3 map()

@@ -60,56 +60,6 @@ ivec2 invocationPixel() {
 #endif
 }
 
-// SUPERSAMPLE 3 (the `ssaa_quads` effect): the frame is itself 4x supersampled (drawn at twice the
-// width and height and shown as the mean of 2x2, as `live --render-scale 2` and the 7680x4320 show
-// are), so each aligned 2x2 quad of pixels holds one shown pixel's four samples. Every pixel marches
-// its own primary ray; when a quad's four hits see one surface that is flat across the quad (the
-// rule of supersample.glsl, which `ssaa` uses within one invocation), its shading (normal, lights,
-// shadows, AO, the bounce) is done once, by its first pixel, and all four take that colour, as
-// multisampling shares a fragment's shading. What is left to shade (one job per shared quad, one
-// per pixel elsewhere) is packed to the group's first invocations, so whole warps of the group have
-// nothing to shade and finish, rather than every lane of every warp waiting on the slowest shading
-// of its warp (what made `ssaa`, four samples in turn in one invocation, lose on the GPU). The
-// fragment path has no group to share with: it shades every pixel (the exact image).
-#if SUPERSAMPLE == 3 && DEBUG_VIEW == 0
-#define QUAD_SHARE 1
-const uint QUAD_N = uint(WORKGROUP_X * WORKGROUP_Y);
-const uint QUAD_WHOLE = 0x80000000u;
-shared vec4 quadHit[QUAD_N];      // by local pixel (y * WORKGROUP_X + x): t, d, steps, 1 hit / 0 miss / -1 no pixel
-shared vec3 quadAlbedo[QUAD_N];
-shared uint quadJob[QUAD_N];      // the local pixels to shade, packed; QUAD_WHOLE: and the rest of its quad
-shared uint quadJobs;
-
-Hit quadLoad(uint i) {
-    vec4 h = quadHit[i];
-    return Hit(h.x, h.z, h.w > 0.5, quadAlbedo[i], h.y);
-}
-
-// Whether the quad whose first local pixel is `first` shares one shading (supersample.glsl's rule):
-// all four pixels in the image, and either all four see the sky, or one surface, flat across them.
-bool quadShares(uint first) {
-    uint idx[4] = uint[4](first, first + 1u, first + uint(WORKGROUP_X), first + uint(WORKGROUP_X) + 1u);
-    Hit h[4];
-    for (int s = 0; s < 4; s++) {
-        if (quadHit[idx[s]].w < -0.5) return false;
-        h[s] = quadLoad(idx[s]);
-    }
-    if (!sameSurface(h[0], h[1]) || !sameSurface(h[0], h[2]) || !sameSurface(h[0], h[3])) return false;
-    if (!h[0].hit) return true;   // all four see the sky
-    ivec2 base = ivec2(first % uint(WORKGROUP_X), first / uint(WORKGROUP_X));
-    vec3 p[4];
-    for (int s = 0; s < 4; s++) {
-        vec2 fc = vec2(ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy) + base + ivec2(s & 1, s >> 1)) + 0.5;
-        fc.y += float(u_rowOffset);
-        p[s] = u_camPos + cameraRay(fc) * h[s].t;
-    }
-    // The quad's pixels in order (0,0), (1,0), (0,1), (1,1): the fourth within the plane of the others.
-    vec3 n = cross(p[1] - p[0], p[2] - p[0]);
-    vec3 c = p[3] - p[0];
-    return abs(dot(c, n)) <= SUPERSAMPLE_FLAT * length(n) * max(length(c), 1e-20);
-}
-#endif
-
 void main() {
 #if SCENE_TABLES && SCENE_SETUP_LANES
     // The scene's tables (lib/common.glsl SCENE_TABLES): filled by the whole group, in shared memory.
@@ -147,43 +97,8 @@ void main() {
         return;
     }
     pixel.y += u_rowOffset;
-#if QUAD_SHARE
-    // No return before the barriers: a pixel past the image's edge takes part as "no pixel".
-    uvec2 local = uvec2(pixel - ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy) - ivec2(0, u_rowOffset));
-    uint li = local.y * uint(WORKGROUP_X) + local.x;
-    bool inside = pixel.x < int(u_resolution.x) && pixel.y < int(u_resolution.y);
-    if (gl_LocalInvocationIndex == 0u) quadJobs = 0u;
-    vec2 fragCoord = vec2(pixel) + 0.5;
-    callSceneSetup();
-    Hit h = Hit(0.0, 0.0, false, vec3(0.0), 0.0);
-    if (inside) {
-        float tStart = u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
-        h = march(u_camPos, cameraRay(fragCoord), tStart);
-    }
-    quadHit[li] = vec4(h.t, h.d, h.steps, inside ? (h.hit ? 1.0 : 0.0) : -1.0);
-    quadAlbedo[li] = h.albedo;
-    memoryBarrierShared();
-    barrier();
-    uint first = (local.y & ~1u) * uint(WORKGROUP_X) + (local.x & ~1u);
-    bool shares = quadShares(first);
-    if (inside && (!shares || li == first)) quadJob[atomicAdd(quadJobs, 1u)] = li | (shares ? QUAD_WHOLE : 0u);
-    memoryBarrierShared();
-    barrier();
-    // The invocations past the last job have nothing left to do: their warps end here. Each job
-    // writes its pixel, and a shared quad's other three.
-    if (gl_LocalInvocationIndex >= quadJobs) return;
-    uint job = quadJob[gl_LocalInvocationIndex], at = job & ~QUAD_WHOLE;
-    ivec2 lead = ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy) + ivec2(at % uint(WORKGROUP_X), at / uint(WORKGROUP_X));
-    lead.y += u_rowOffset;
-    vec3 display = displayColor(traceRay(u_camPos, cameraRay(vec2(lead) + 0.5), 0.0, quadLoad(at), true).rgb);
-    for (int s = 0; s < ((job & QUAD_WHOLE) != 0u ? 4 : 1); s++) {
-        ivec2 p = lead + ivec2(s & 1, s >> 1);
-        imageStore(u_output, p, pixelColor(display, vec2(p) + 0.5));
-    }
-#else
     if (pixel.x >= int(u_resolution.x) || pixel.y >= int(u_resolution.y)) return;
     vec2 fragCoord = vec2(pixel) + 0.5;
     float tStart = u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
     imageStore(u_output, pixel, renderPixel(fragCoord, tStart));
-#endif
 }

@@ -129,9 +129,19 @@ vec3 osNormalPoint(int i) {
 const int OS_NORMAL_SAMPLES = NORMALS == 1 ? 3 : NORMALS == 2 ? 4 : 6;
 
 void osBeginAo();
-// shadeSurface's shadow ray, from the normal just found.
+// shadeSurface's shadow ray, from the normal just found; os_lightWanted: shadeSurface's BOUNCE_BOUND
+// test (a reflection's shadow and AO skipped, each 0.5, where they cannot move the pixel).
+bool os_lightWanted;
 void osBeginShadow() {
     os_shadow = 1.0f;
+    os_lightWanted = true;
+#if BOUNCE_BOUND > 0 && BOUNCE_LIGHT < 2
+    if (os_bounce > 0) {
+        vec3 spread = displayColor(os_col + os_throughput * litSurface(os_n, os_rd, os_h.albedo, 1.0f, 1.0f)) -
+                      displayColor(os_col + os_throughput * litSurface(os_n, os_rd, os_h.albedo, 0.0f, 0.0f));
+        os_lightWanted = max(spread.x, max(spread.y, spread.z)) > float(BOUNCE_BOUND) / 255.0f;
+    }
+#endif
     os_sRo = os_p + os_n * (2.0f * hitEpsilon(os_h.t));
     os_facesLight = dot(os_n, u_lightDir) > 0.0f && (BOUNCE_LIGHT < 2 || os_bounce == 0);
 #if SHADOWS == 1 || SHADOWS == 2 || SHADOWS == 3
@@ -140,7 +150,8 @@ void osBeginShadow() {
 #else
     vec2 sr = shadowRange(os_sRo, u_lightDir, 0.01f, u_maxDist, u_shadowK);
 #endif
-    if (os_facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y && u_shadowSteps > 0) {
+    if (os_facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y && !os_lightWanted) os_shadow = 0.5f;
+    else if (os_facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y && u_shadowSteps > 0) {
         os_phase = OS_SHADOW;
         os_i = 0;
         os_sT = sr.x;
@@ -156,7 +167,8 @@ void osBeginShadow() {
 void osBeginAo() {
     os_occlusion = 1.0f;
 #if AO
-    if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || os_bounce == 0) && u_aoSamples > 0) {
+    if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || os_bounce == 0) && !os_lightWanted) os_occlusion = 0.5f;
+    else if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || os_bounce == 0) && u_aoSamples > 0) {
         os_phase = OS_AO;
         os_i = 0;
         os_aOcc = 0.0f;

@@ -26,10 +26,13 @@
 //   BOUNCE_STEPS a reflection ray's step budget (0: u_maxSteps, as the primary ray's)
 //   BOUNCE_LIGHT what lights the surface a reflection meets: 0 as a primary hit (shadows, AO) /
 //               1 no AO / 2 neither shadow nor AO (direct light unshadowed, ambient unoccluded)
-//   BOUNCE_BOUND 0 (default) / N: a reflection's shadow ray and AO are skipped where no value of
-//               theirs could move the pixel's display colour by more than N / 255 (the surface's
-//               light with both at 1 and at 0, weighted by what the mirror passes, tone mapped
-//               over the colour so far); the surface then takes the middle of the two
+//   BOUNCE_BOUND N (default 4; 0 off): a reflection's shadow ray and AO are skipped where no
+//               values of theirs could move the pixel's display colour by more than N / 255 (the
+//               surface's light with both at 1 and both at 0, weighted by what the mirror passes,
+//               tone mapped over the colour so far; the light is linear in both with terms of one
+//               sign, and the display colour grows with it). Skipped, each takes the middle, 0.5
+//               (a shadow ray whose range is empty still gives 1). The bound holds before fog and
+//               later bounces, which only shrink the spread as far as tone mapping flattens
 //   BOUNDS      1 (default) use the scene's bounding volume, 0 march the whole field
 //               everywhere as a plain raymarcher does (the accuracy bench's plain row and its
 //               references)
@@ -62,7 +65,7 @@
 #define BOUNCE_LIGHT 0
 #endif
 #ifndef BOUNCE_BOUND
-#define BOUNCE_BOUND 0
+#define BOUNCE_BOUND 4
 #endif
 #ifndef SHADOWS
 #define SHADOWS 2
@@ -371,14 +374,14 @@ vec3 displayColor(vec3 col);
 // before, weight: the pixel's radiance so far and what the mirror passes of this surface's (a
 // reflection's; BOUNCE_BOUND).
 vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec3 before, vec3 weight) {
-#if BOUNCE_BOUND > 0
+    bool wantShadow = true, wantOcclusion = true;
+#if BOUNCE_BOUND > 0 && BOUNCE_LIGHT < 2
     if (bounce > 0) {
-        // The surface's light is linear in its shadow and occlusion, with terms of one sign, so
-        // whatever the two are, it lies between these; so does the pixel's display colour, which
-        // grows with it. Where the two ends are close enough, neither ray changes what is shown.
-        vec3 hi = litSurface(n, rd, albedo, 1.0f, 1.0f), lo = litSurface(n, rd, albedo, 0.0f, 0.0f);
-        vec3 spread = displayColor(before + weight * hi) - displayColor(before + weight * lo);
-        if (max(spread.x, max(spread.y, spread.z)) <= float(BOUNCE_BOUND) / 255.0f) return 0.5f * (hi + lo);
+        // What the two terms could move the pixel by: the light with both at 1 against both at 0
+        // (terms of one sign, so any values lie between), shown over the colour so far.
+        vec3 spread = displayColor(before + weight * litSurface(n, rd, albedo, 1.0f, 1.0f)) -
+                      displayColor(before + weight * litSurface(n, rd, albedo, 0.0f, 0.0f));
+        wantShadow = wantOcclusion = max(spread.x, max(spread.y, spread.z)) > float(BOUNCE_BOUND) / 255.0f;
     }
 #endif
     vec3 l = u_lightDir;
@@ -390,18 +393,18 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec
     WORK_PHASE(bounce == 0 ? 2 : 6);
 #if SHADOWS == 1
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, 1e6f);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
+    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowHard(ro, l, sr.x, sr.y, u_shadowSteps) : 0.5f;
 #elif SHADOWS == 2
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
+    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK) : 0.5f;
 #elif SHADOWS == 3
     vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
+    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK) : 0.5f;
 #endif
     float occlusion = 1.0f;
     WORK_PHASE(bounce == 0 ? 3 : 7);
 #if AO
-    if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = ambientOcclusion(p, n, u_aoSamples);
+    if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = wantOcclusion ? ambientOcclusion(p, n, u_aoSamples) : 0.5f;
 #endif
     return litSurface(n, rd, albedo, shadow, occlusion);
 }

@@ -15,25 +15,21 @@
 #ifndef SUPERSAMPLE
 #define SUPERSAMPLE 0
 #endif
-#define USE_SUPERSAMPLE ((SUPERSAMPLE == 1 || SUPERSAMPLE == 2) && DEBUG_VIEW == 0)
+#define USE_SUPERSAMPLE (SUPERSAMPLE && DEBUG_VIEW == 0)
 
-// SUPERSAMPLE 3 (`ssaa_quads`, main_comp.glsl): a frame at twice the size whose 2x2 quads share
-// their shading by the rule below; the fragment path draws it one pixel at a time.
-#if USE_SUPERSAMPLE || SUPERSAMPLE == 3
+#if USE_SUPERSAMPLE
+// The rotated grid: each sample alone on its row and on its column, within the pixel.
 #ifndef SUPERSAMPLE_FLAT
 #define SUPERSAMPLE_FLAT 0.05   // sine of the largest angle between the samples' plane and the fourth hit
 #endif
+const vec2 SAMPLE_OFFSETS[4] = vec2[4](vec2(-0.125, -0.375), vec2(0.375, -0.125), vec2(0.125, 0.375), vec2(-0.375, 0.125));
+
 // Whether two samples see one surface: both the sky, or the same albedo at nearly the same depth.
 bool sameSurface(Hit a, Hit b) {
     if (a.hit != b.hit) return false;
     if (!a.hit) return true;   // both see the sky: its colour varies slowly with the direction
     return abs(a.t - b.t) <= 0.02 * max(a.t, b.t) && all(equal(a.albedo, b.albedo));
 }
-#endif
-
-#if USE_SUPERSAMPLE
-// The rotated grid: each sample alone on its row and on its column, within the pixel.
-const vec2 SAMPLE_OFFSETS[4] = vec2[4](vec2(-0.125, -0.375), vec2(0.375, -0.125), vec2(0.125, 0.375), vec2(-0.375, 0.125));
 
 vec4 renderSupersampled(vec2 fragCoord, float tStart) {
     callSceneSetup();

@@ -50,13 +50,6 @@ std::vector<LightingTest> FramePartTests() {
     return {{"march", march}, {"normals", normals}};
 }
 
-LightingTest ShowQuadsLightingTest(bool direct) {
-    LightingTest t = direct ? ShowDirectReflectionsLightingTest() : ShowLightingTest();
-    t.effects.supersample = 3;
-    t.name = direct ? "show_direct_quads" : "show_quads";
-    return t;
-}
-
 LightingTest ShowDirectReflectionsLightingTest() {
     LightingTest t = ShowLightingTest();
     t.effects.directReflections = true;

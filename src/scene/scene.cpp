@@ -434,7 +434,6 @@ bool ParseEffectList(const std::string& list, EffectSet* effects, std::string* e
         else if (item == "direct_reflections") e.directReflections = on;
         else if (item == "ssaa") e.supersample = on ? 1 : 0;
         else if (item == "ssaa_exact") e.supersample = on ? 2 : 0;
-        else if (item == "ssaa_quads") e.supersample = on ? 3 : 0;
         else if (item == "heatmap" || item == "steps") e.debugView = on ? 1 : 0;
         else if (item == "depth") e.debugView = on ? 2 : 0;
         else if (item == "normals") e.debugView = on ? 3 : 0;
@@ -453,7 +452,7 @@ bool ParseEffectList(const std::string& list, EffectSet* effects, std::string* e
             e.reflections = on ? n : 0;
         } else {
             *error = "unknown effect '" + item + "', expected hard_shadows, soft_shadows, improved_shadows, ao, specular, pbr, "
-                     "reflections[=N], direct_reflections, fog, fixed_step, ssaa, ssaa_exact, ssaa_quads, heatmap, depth, normals, work or none (prefix - to "
+                     "reflections[=N], direct_reflections, fog, fixed_step, ssaa, ssaa_exact, heatmap, depth, normals, work or none (prefix - to "
                      "remove)";
             return false;
         }
@@ -473,8 +472,7 @@ std::string DescribeEffects(const EffectSet& e) {
     if (e.directReflections) add("direct_reflections");
     if (e.fog) add("fog");
     if (e.marchFixed) add("fixed_step");
-    static const char* kSupersample[] = {"", "ssaa", "ssaa_exact", "ssaa_quads"};
-    if (e.supersample > 0 && e.supersample < 4) add(kSupersample[e.supersample]);
+    if (e.supersample) add(e.supersample == 2 ? "ssaa_exact" : "ssaa");
     static const char* kDebug[] = {"", "heatmap", "depth", "normals", "geometry", "radiance", "work_primary", "work_reflection", "work"};
     if (e.debugView > 0 && e.debugView < int(sizeof kDebug / sizeof kDebug[0])) add(kDebug[e.debugView]);
     else if (e.debugView) add("debug_view=" + std::to_string(e.debugView));

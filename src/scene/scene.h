@@ -44,8 +44,7 @@ struct EffectSet {
     int normals = 0;        // 0 central, 1 forward, 2 tetrahedron
     bool marchFixed = false;
     bool directReflections = false;   // `direct_reflections`: a reflection lands on a surface lit without its shadow ray or AO, in at most 48 steps (render.glsl BOUNCE_LIGHT 2, BOUNCE_STEPS 48)
-    int supersample = 0;   // 1 `ssaa`: 4 samples a pixel, shading shared per surface; 2 `ssaa_exact`: each sample shaded (render/supersample.glsl);
-                           // 3 `ssaa_quads`: a frame drawn at twice the size whose 2x2 quads share their shading (render/main_comp.glsl)
+    int supersample = 0;   // 1 `ssaa`: 4 samples a pixel, shading shared per surface; 2 `ssaa_exact`: each sample shaded (render/supersample.glsl)
     auto operator<=>(const EffectSet&) const = default;
 };
 
@@ -104,10 +103,6 @@ LightingTest ShowLightingTest();
 // (`ssaa`; `bench --tests show_ssaa`, at 3840x2160 the 4x supersampled 4K of issue 13); `exact`:
 // every sample shaded (`ssaa_exact`, show_ssaa_exact).
 LightingTest ShowSupersampledLightingTest(bool exact);
-// The show lighting drawn as a 4x supersampled frame whose 2x2 quads share one shading where they
-// see one flat surface (`ssaa_quads`; `bench --tests show_quads`, at 7680x4320 the 4x supersampled
-// 4K of issue 13); `direct`: with `direct_reflections` too (show_direct_quads).
-LightingTest ShowQuadsLightingTest(bool direct);
 // The show lighting with `direct_reflections` (`bench --tests show_direct`): the reflected surface
 // lit directly, unshadowed and unoccluded, its march at most 48 steps.
 LightingTest ShowDirectReflectionsLightingTest();

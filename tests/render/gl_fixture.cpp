@@ -6,7 +6,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
+#include <sstream>
 
 namespace sdfvj::test {
 
@@ -105,6 +107,20 @@ double MeanLuma(const Image& img, double x0, double y0, double x1, double y1) {
             ++n;
         }
     return n ? sum / n : 0.0;
+}
+
+bool WriteSceneCopy(const std::string& scene, const std::string& defines, const std::filesystem::path& file) {
+    SceneInfo info;
+    std::string error;
+    if (!FindScene(scene, &info, &error)) return false;
+    std::ifstream in(info.path);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string original = text.str();
+    const size_t header = original.find("}*/");
+    if (header == std::string::npos) return false;
+    std::ofstream(file) << original.substr(0, header + 3) << "\n" << defines << original.substr(header + 3);
+    return true;
 }
 
 }  // namespace sdfvj::test

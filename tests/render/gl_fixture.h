@@ -2,6 +2,7 @@
 // rendering a scene variant to RGBA, and image comparison with a stated tolerance.
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,9 @@ ImageDiff CompareImages(const Image& a, const Image& b, int threshold);
 
 // Mean luminance of a rectangle (fractions of the image), 0..255.
 double MeanLuma(const Image& img, double x0, double y0, double x1, double y1);
+
+// A copy of a shipped scene at `file` with `defines` (lines) right after its header, where a scene
+// declares its own switches. False when the scene is unknown or has no header.
+bool WriteSceneCopy(const std::string& scene, const std::string& defines, const std::filesystem::path& file);
 
 }  // namespace sdfvj::test

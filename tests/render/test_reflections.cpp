@@ -49,3 +49,35 @@ TEST_CASE("direct_reflections: reflections stay, lit directly, and frames withou
         }
     }
 }
+
+// BOUNCE_BOUND (render.glsl, 4 by default): a reflection's shadow ray and AO are skipped where no
+// values of theirs could move the pixel's display colour by more than 4/255. The frame with
+// the bound against a copy without it (BOUNCE_BOUND 0): no pixel further than the bound, 4/255,
+// plus one for the rounding to 8 bits; some pixels do move (the bound reached the program and
+// skipped); and frames without a reflection are the same bytes. A wrong bound (the shadow's
+// spread taken without the mirror's weight, say) moves pixels by far more.
+TEST_CASE("bounce bound: a reflection's shadow and AO are skipped only where they cannot move a pixel by 4/255", "[reflections]") {
+    constexpr int kW = 160, kH = 90;
+    const std::filesystem::path dir = std::filesystem::path(SDFVJ_TEST_OUTPUT_DIR) / "bounce_bound";
+    std::filesystem::create_directories(dir);
+    for (const char* scene : {"character", "field150", "mandelbulb"}) {
+        SECTION(scene) {
+            const std::filesystem::path file = dir / (std::string(scene) + "_unbound.glsl");
+            REQUIRE(WriteSceneCopy(scene, "#define BOUNCE_BOUND 0", file));
+            const EffectSet show = ShowLightingTest().effects;
+            for (RenderPath path : {RenderPath::Fragment, RenderPath::Compute}) {
+                const Image bound = RenderScene(scene, show, path, kW, kH);
+                const Image unbound = RenderScene(file.string(), show, path, kW, kH);
+                const ImageDiff d = CompareImages(bound, unbound, 0);
+                INFO(RenderPathName(path) << ": " << d.fractionOver * 100 << " % of pixels moved, mean " << d.meanAbs
+                                          << ", max " << d.maxAbs);
+                CHECK(d.maxAbs <= 5);
+                CHECK(d.fractionOver > 0.001);
+            }
+            EffectSet flat = show;
+            flat.reflections = 0;
+            CHECK(RenderScene(scene, flat, RenderPath::Fragment, kW, kH).rgba ==
+                  RenderScene(file.string(), flat, RenderPath::Fragment, kW, kH).rgba);
+        }
+    }
+}

@@ -26,21 +26,6 @@ constexpr int kW = 160, kH = 120;
 const fs::path kReferenceDir = SDFVJ_TEST_REFERENCE_DIR;
 const fs::path kActualDir = SDFVJ_TEST_OUTPUT_DIR;
 
-// A copy of a shipped scene at `file` with `defines` (lines) right after its header, where a scene
-// declares its own switches. False when the scene is unknown or has no header.
-bool WriteSceneCopy(const std::string& scene, const std::string& defines, const fs::path& file) {
-    SceneInfo info;
-    std::string error;
-    if (!FindScene(scene, &info, &error)) return false;
-    std::ifstream in(info.path);
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string original = text.str();
-    const size_t header = original.find("}*/");
-    if (header == std::string::npos) return false;
-    std::ofstream(file) << original.substr(0, header + 3) << "\n" << defines << original.substr(header + 3);
-    return true;
-}
 }  // namespace
 
 TEST_CASE("render: every scene x lighting test matches its reference image", "[render]") {
