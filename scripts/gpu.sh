@@ -35,6 +35,8 @@
 #                                 postservers (issue 12: a post effect's save drawn by the render
 #                                 processes, `bench reload --post`, without and with a standby;
 #                                 many files as s33);
+#                                 qrefl (issue 13: the 7680x4320 show with quad_reflections, its
+#                                 time (qrefl_time) and its image (qrefl_image));
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -543,6 +545,26 @@ case "${1:-}" in
       --tests ${VARIANT_TESTS:-full} --paths compute --frames 20 --warmup 5 --markdown "$out/copies.md" --csv "$out/copies.csv" > "$out/copies.txt" 2>&1 || true
     cat "$out/copies.md" 2>/dev/null; grep -h drift "$out/copies.txt" || tail -5 "$out/copies.txt"
     rm -rf "$root"
+    fi
+    if [ "$part" = qrefl ] || [ "$part" = qrefl_time ]; then
+    # Session 46, issue 13: the 7680x4320 show (4x supersampled 4K) with its bounce traced once per
+    # 2x2 pixels (`quad_reflections`, show_quad_reflections), against the show as shipped and with
+    # direct_reflections; QREFL_OWN0 scenes also as copies whose pixels never trace their own bounce
+    # (_own0: QUAD_REFLECTIONS_OWN 0, no fallback where a pixel's surface is not the quad centre's).
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="$all"
+    for s in ${QREFL_OWN0:-mandelbulb field50 field150}; do variant "$root" "$s" own0 "QUAD_REFLECTIONS_OWN 0"; sc="$sc ${s}_own0"; done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout ${QREFL_TIMEOUT:-300} bash "$0" remote bench --scenes $sc --sizes 7680x4320 \
+      --tests show show_quad_reflections show_direct --paths compute --frames 15 --warmup 3 \
+      --markdown "$out/qrefl_show.md" --csv "$out/qrefl_show.csv" > "$out/qrefl_show.txt" 2>&1 || true
+    cat "$out/qrefl_show.md" 2>/dev/null; grep -h drift "$out/qrefl_show.txt" || tail -5 "$out/qrefl_show.txt"
+    rm -rf "$root"
+    fi
+    if [ "$part" = qrefl ] || [ "$part" = qrefl_image ]; then
+    # What it draws: `bench ssaa` at 3840x2160 with the show's effects; its last column is the
+    # 7680x4320 frame with quad_reflections averaged 2x2 against the same frame without.
+    timeout ${QREFL_IMAGE_TIMEOUT:-240} bash "$0" remote bench ssaa --size 3840x2160 --effects none,soft_shadows,ao,specular,pbr,reflections=1 \
+      --markdown "$out/qrefl_image.md" > "$out/qrefl_image.txt" 2>&1 || true
+    cat "$out/qrefl_image.txt"
     fi
     if [ "$part" = s22 ]; then
     # Session 22, issue 13: normals by forward differences from the march's own value at the hit (3 map()

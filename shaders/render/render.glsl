@@ -67,6 +67,22 @@
 #ifndef BOUNCE_BOUND
 #define BOUNCE_BOUND 4
 #endif
+// QUAD_REFLECTIONS 1 (the `quad_reflections` effect; compute path, one bounce): the mirror bounce is
+// traced once per 2x2 pixels, through the quad's centre, by a dispatch of its own before the frame
+// (main_comp.glsl, u_conePass 4 and 5), and each pixel weights what that ray saw by its own Fresnel
+// term. A frame drawn 2x2 supersampled (`--render-scale 2`, the 7680x4320 show) so reflects at the
+// shown pixel's rate. Elsewhere (the fragment path, debug views, more bounces) it draws as without.
+#ifndef QUAD_REFLECTIONS
+#define QUAD_REFLECTIONS 0
+#endif
+#ifndef QUAD_REFLECTIONS_OWN
+#define QUAD_REFLECTIONS_OWN 1
+#endif
+#if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && DEBUG_VIEW == 0 && REFLECTIONS == 1
+#define USE_QUAD_REFLECTIONS 1
+#else
+#define USE_QUAD_REFLECTIONS 0
+#endif
 #ifndef SHADOWS
 #define SHADOWS 2
 #endif
@@ -435,13 +451,47 @@ int rayMaxSteps(int bounce) { return bounce == 0 || BOUNCE_STEPS <= 0 ? u_maxSte
 // it is not unrolled. The primary ray is marched from tStart (the compute path's cone pre-pass; 0
 // from the eye), or its hit is `given` (supersample.glsl marches a pixel's samples first).
 // Returns linear radiance (or a DEBUG_VIEW's value).
+#if USE_QUAD_REFLECTIONS
+// One texel per 2x2 pixels: what the centre's bounce saw (halves: r g, b and the centre's depth, -1
+// for the sky) and the centre's normal (octahedral, snorm 16).
+layout(rgba32ui, binding = 2) uniform uimage2D u_quadReflections;
+bool g_quadPass = false;   // the quads' own dispatch: traceRay shades only the bounce, into g_bounceLight
+vec3 g_bounceLight = vec3(0.0f);
+float g_quadT = -1.0f;     // the quad's centre's primary hit distance (-1: the sky)
+vec3 g_quadN = vec3(0.0f, 1.0f, 0.0f);   // and its normal
+vec3 quadOctDecode(vec2 e) {   // lib/common.glsl octEncode's inverse
+    vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
+    if (n.z < 0.0f) n.xy = vec2((1.0f - abs(e.y)) * sgn(e.x), (1.0f - abs(e.x)) * sgn(e.y));
+    return normalize(n);
+}
+ivec2 g_pixel = ivec2(0);  // the frame's pixel (main_comp.glsl)
+#endif
+
 vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 col = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     float tNext = 0.0f;   // where a reflected ray starts (march.glsl mirrorStart)
+#if USE_QUAD_REFLECTIONS
+    float tFirst = 0.0f;  // the primary hit's distance and normal
+    vec3 nFirst = vec3(0.0f, 1.0f, 0.0f);
+#endif
     for (int bounce = 0; bounce <= bounces; bounce++) {
         WORK_PHASE(bounce == 0 ? 0 : 4);
+#if USE_QUAD_REFLECTIONS
+        if (bounce == 1 && !g_quadPass) {   // the quad's bounce, traced before the frame
+            uvec4 quad = imageLoad(u_quadReflections, g_pixel >> 1);
+            vec2 rg = unpackHalf2x16(quad.x), bt = unpackHalf2x16(quad.y);
+            // A pixel whose surface is not the centre's (its depth 2 % or more off, the centre sees
+            // the sky, or its normal turned more than about 8 degrees from the centre's) traces its
+            // own bounce (QUAD_REFLECTIONS_OWN 1, the default).
+            if (QUAD_REFLECTIONS_OWN == 0 ||
+                (abs(bt.y - tFirst) <= 0.02f * tFirst && dot(quadOctDecode(unpackSnorm2x16(quad.z)), nFirst) >= 0.99f)) {
+                col += throughput * vec3(rg, bt.x);
+                break;
+            }
+        }
+#endif
         Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : tNext, rayMaxSteps(bounce));
         vec3 n = vec3(0.0f, 1.0f, 0.0f);
         WORK_PHASE(bounce == 0 ? 1 : 5);
@@ -463,8 +513,17 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         vec2 oct = octEncode(n);
         return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
 #endif
+#if USE_QUAD_REFLECTIONS
+        if (g_quadPass) {
+            if (bounce == 1) g_bounceLight = shadeRay(ro, rd, h, n, bounce, col, throughput);
+        } else
+#endif
         col += throughput * shadeRay(ro, rd, h, n, bounce, col, throughput);
         if (!h.hit || bounce == bounces) break;
+#if USE_QUAD_REFLECTIONS
+        if (bounce == 0) tFirst = h.t, nFirst = n;
+        if (g_quadPass && bounce == 0) g_quadT = h.t, g_quadN = n;
+#endif
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
         tNext = bounce == 0 ? mirrorStart(ro, rd, h, n, tStart) : 0.0f;
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));

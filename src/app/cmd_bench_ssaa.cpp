@@ -3,6 +3,8 @@
 // width and height averaged 2x2. PSNR and the share of pixels with a channel past 8/255
 // (accuracy's CompareRgba8) for each pair: how much of the exact samples' anti-aliasing the
 // shared shading keeps (docs/performance.md, "4x supersampling that shades each surface once").
+// And `quad_reflections` in the frame twice the size (its bounce traced once per 2x2 pixels, once per
+// shown pixel), averaged 2x2, against the truth: what issue 13's 7680x4320 show draws with it.
 #include <cstdio>
 #include <fstream>
 
@@ -24,7 +26,7 @@ int RunSsaaBench(const SsaaBenchOptions& o) {
     if (!gl.Create(&error)) return fail(2);
     FrameRenderer fr;
     std::string table = "| scene | one sample vs truth | `ssaa_exact` vs truth | `ssaa` vs truth | `ssaa` vs `ssaa_exact` | "
-                        "one sample vs `ssaa_exact` |\n|---|---|---|---|---|---|\n";
+                        "one sample vs `ssaa_exact` | `quad_reflections` twice the size vs truth |\n|---|---|---|---|---|---|---|\n";
     std::printf("# sdfvj bench ssaa on %s, %dx%d, %s path, the scene's effects plus %s; the truth: %dx%d averaged 2x2\n%s",
                 gl.Description().c_str(), w, h, RenderPathName(path), o.effects.c_str(), 2 * w, 2 * h, table.c_str());
     for (const std::string& name : o.scenes.empty() ? ListScenes() : o.scenes) {
@@ -35,9 +37,10 @@ int RunSsaaBench(const SsaaBenchOptions& o) {
         // The scene's own effects with --effects applied over them (as `render --effects`), supersampled as asked.
         EffectSet base = scene.effects;
         if (!ParseEffectList(o.effects, &base, &error)) return fail(2);
-        auto draw = [&](int supersample, int dw, int dh, std::vector<uint8_t>* out) {
+        auto draw = [&](int supersample, int dw, int dh, std::vector<uint8_t>* out, bool quadReflections = false) {
             EffectSet e = base;
             e.supersample = supersample;
+            e.quadReflections = quadReflections;
             ShaderSource src;
             Program program;
             if (!AssembleProgram(scene, VariantKey{scene.path, e, path}, &src, &error) || !program.Build(src, path, &error) ||
@@ -47,10 +50,12 @@ int RunSsaaBench(const SsaaBenchOptions& o) {
             *out = fr.ReadPixels();
             return true;
         };
-        std::vector<uint8_t> one, shared, exact, big;
-        if (!draw(0, w, h, &one) || !draw(1, w, h, &shared) || !draw(2, w, h, &exact) || !draw(0, 2 * w, 2 * h, &big))
+        std::vector<uint8_t> one, shared, exact, big, bigQuads;
+        if (!draw(0, w, h, &one) || !draw(1, w, h, &shared) || !draw(2, w, h, &exact) || !draw(0, 2 * w, 2 * h, &big) ||
+            !draw(0, 2 * w, 2 * h, &bigQuads, true))
             return fail(1);
         const std::vector<uint8_t> truth = accuracy::DownsampleRgba8x2(big, 2 * w, 2 * h);
+        const std::vector<uint8_t> quads = accuracy::DownsampleRgba8x2(bigQuads, 2 * w, 2 * h);
         auto cell = [](const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
             const accuracy::ImageError e = accuracy::CompareRgba8(a, b);
             char s[64];
@@ -58,7 +63,8 @@ int RunSsaaBench(const SsaaBenchOptions& o) {
             return std::string(s);
         };
         const std::string row = "| " + scene.name + " | " + cell(one, truth) + " | " + cell(exact, truth) + " | " +
-                                cell(shared, truth) + " | " + cell(shared, exact) + " | " + cell(one, exact) + " |\n";
+                                cell(shared, truth) + " | " + cell(shared, exact) + " | " + cell(one, exact) + " | " +
+                                cell(quads, truth) + " |\n";
         std::printf("%s", row.c_str());
         std::fflush(stdout);
         table += row;

@@ -44,7 +44,8 @@ void AddShowOptions(CLI::App* cmd, ShowOptions* s) {
     cmd->add_option("--effects", s->effects,
                     "effects over the scene's own, comma-separated: hard_shadows, soft_shadows, improved_shadows, ao, "
                     "specular, pbr, reflections=N, direct_reflections (a reflection lands on a surface lit without its shadow ray or AO, "
-                    "in at most 48 steps: cheaper), fog, fixed_step, ssaa (4 samples a pixel, each surface shaded once), ssaa_exact "
+                    "in at most 48 steps: cheaper), quad_reflections (the reflection traced once per 2x2 pixels, through their centre, each pixel weighting it by its own "
+                    "Fresnel term: with --render-scale 2, once per shown pixel; compute path), fog, fixed_step, ssaa (4 samples a pixel, each surface shaded once), ssaa_exact "
                     "(each sample shaded), heatmap, "
                     "depth, normals, work (map() calls a pixel, every phase, as a heatmap: 0 blue .. 127 red, log scale); none clears; -ao removes");
     cmd->add_option("--normals", s->normals, "normal method: central, forward or tetrahedron");
@@ -106,7 +107,7 @@ int main(int argc, char** argv) {
     auto* cmdBench = app.add_subcommand("bench", "GPU ms per frame: scenes x lighting tests x sizes x render paths");
     cmdBench->add_option("--scenes", bench.scenes, "scenes (default: all); NAME:literals times the literal tier of NAME (its float literals read from uniforms: what `live` shows first after a save that only retunes numbers); NAME:aoN draws NAME with N AO samples (default 5)")->delimiter(',');
     cmdBench->add_option("--sizes", bench.sizes, "sizes")->capture_default_str()->delimiter(',');
-    cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: these four); show = soft shadows, AO, specular, PBR and one reflection bounce; show_ssaa = show with 4 samples a pixel sharing each surface's shading; show_ssaa_exact = each sample shaded; show_direct = show with direct_reflections (the reflected surface lit without its shadow ray or AO, its march at most 48 steps); where a frame goes: march = the cone pre-pass and the primary march alone (the depth view), normals = those and the normals (the normals view)")->delimiter(',');
+    cmdBench->add_option("--tests", bench.tests, "lighting tests: full, shadows_ao, shadows, none (default: these four); show = soft shadows, AO, specular, PBR and one reflection bounce; show_ssaa = show with 4 samples a pixel sharing each surface's shading; show_ssaa_exact = each sample shaded; show_direct = show with direct_reflections (the reflected surface lit without its shadow ray or AO, its march at most 48 steps); show_quad_reflections = show with quad_reflections (at 7680x4320: the bounce traced once per 4K pixel); where a frame goes: march = the cone pre-pass and the primary march alone (the depth view), normals = those and the normals (the normals view)")->delimiter(',');
     cmdBench->add_option("--paths", bench.paths, "render paths")->capture_default_str()->delimiter(',');
     cmdBench->add_option("--frames", bench.frames, "timed frames per cell (median)")->check(FiniteFrom(1, false))->capture_default_str();
     cmdBench->add_option("--warmup", bench.warmup, "untimed frames first")->check(FiniteFrom(0, false))->capture_default_str();
@@ -123,7 +124,7 @@ int main(int argc, char** argv) {
     cmdEffects->add_option("--markdown", effectsBench.markdown, "also write the table to this file");
     cmdEffects->add_option("--csv", effectsBench.csv, "also write the table as CSV: scene,lighting,size,path,ms,gpu,effect,variant");
     SsaaBenchOptions ssaaBench;
-    auto* cmdSsaa = cmdBench->add_subcommand("ssaa", "ssaa's anti-aliasing: one sample, ssaa and ssaa_exact against a frame twice the size averaged 2x2");
+    auto* cmdSsaa = cmdBench->add_subcommand("ssaa", "ssaa's anti-aliasing: one sample, ssaa and ssaa_exact against a frame twice the size averaged 2x2; and that frame drawn with quad_reflections");
     cmdSsaa->add_option("--scenes", ssaaBench.scenes, "scenes (default: all)")->delimiter(',');
     cmdSsaa->add_option("--size", ssaaBench.size, "frame size (the truth is drawn at twice it)")->capture_default_str();
     cmdSsaa->add_option("--path", ssaaBench.path, "compute or fragment")->capture_default_str();

@@ -36,7 +36,9 @@ void FrameRenderer::Release() {
     if (vao_) glDeleteVertexArrays(1, &vao_);
     if (query_) glDeleteQueries(1, &query_);
     if (stateBuffer_) glDeleteBuffers(1, &stateBuffer_);
-    fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = 0;
+    if (quadTexture_) glDeleteTextures(1, &quadTexture_);
+    fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = quadTexture_ = 0;
+    quadW_ = quadH_ = 0;
     width_ = height_ = 0;
 }
 
@@ -196,6 +198,21 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
             const GLuint tilesX = (GLuint)(width_ + kConeTile - 1) / kConeTile, tilesY = (GLuint)(height_ + kConeTile - 1) / kConeTile;
             glDispatchCompute((tilesX + gx - 1) / gx, (tilesY + gy - 1) / gy, 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+        }
+        if (p.QuadReflections()) {   // the bounce once per 2x2 pixels, before the frame reads it
+            const int qw = (width_ + 1) / 2, qh = (height_ + 1) / 2;
+            if (qw != quadW_ || qh != quadH_) {
+                if (quadTexture_) glDeleteTextures(1, &quadTexture_);
+                glGenTextures(1, &quadTexture_);
+                glBindTexture(GL_TEXTURE_2D, quadTexture_);
+                glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32UI, qw, qh);
+                quadW_ = qw, quadH_ = qh;
+            }
+            glBindImageTexture(2, quadTexture_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
+            p.Set("u_conePass", q.conePrepass ? 4.0f : 5.0f);
+            p.Set("u_rowOffset", 0.0f);
+            glDispatchCompute(((GLuint)qw + gx - 1) / gx, ((GLuint)qh + gy - 1) / gy, 1);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
         p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
         // Strips of whole work-groups (main_comp.glsl adds u_rowOffset to each invocation's row).

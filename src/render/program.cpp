@@ -45,6 +45,7 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const
     if (path == RenderPath::Compute) glGetProgramiv(id, GL_COMPUTE_WORK_GROUP_SIZE, group_);
     frameState_ = path == RenderPath::Compute &&
                   glGetProgramResourceIndex(id, GL_SHADER_STORAGE_BLOCK, "SceneStateOut") != GL_INVALID_INDEX;
+    quadReflections_ = path == RenderPath::Compute && glGetUniformLocation(id, "u_quadReflections") >= 0;
     GLint count = 0;
     glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
     for (GLint i = 0; i < count; ++i) {

@@ -136,6 +136,9 @@ public:
     // A compute program whose scene's setup runs once per frame (main_comp.glsl SCENE_STATE_FRAME):
     // FrameRenderer binds the state's buffer and has it filled before the frame.
     bool FrameState() const { return frameState_; }
+    // A compute program that traces its bounce once per 2x2 pixels (render.glsl QUAD_REFLECTIONS):
+    // FrameRenderer dispatches the quads' pass, into an image of its own, before the frame.
+    bool QuadReflections() const { return quadReflections_; }
     const ShaderSource& Source() const { return source_; }
     // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
     void Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin = {});
@@ -168,6 +171,7 @@ private:
     RenderPath path_ = RenderPath::Fragment;
     int group_[3] = {8, 8, 1};
     bool frameState_ = false;
+    bool quadReflections_ = false;
     ShaderSource source_;
     ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;
@@ -298,6 +302,8 @@ private:
     size_t keepSizes_ = 0;
     int targetsMade_ = 0;
     unsigned stateBuffer_ = 0;   // the scene's frame state (Program::FrameState), kSceneStateBytes
+    unsigned quadTexture_ = 0;   // rgba32ui, one texel per 2x2 pixels (Program::QuadReflections), made when first asked for
+    int quadW_ = 0, quadH_ = 0;
     double lastGpuMs_ = 0.0;
     int strips_ = 1;
 };

@@ -50,6 +50,13 @@ std::vector<LightingTest> FramePartTests() {
     return {{"march", march}, {"normals", normals}};
 }
 
+LightingTest ShowQuadReflectionsLightingTest() {
+    LightingTest t = ShowLightingTest();
+    t.effects.quadReflections = true;
+    t.name = "show_quad_reflections";
+    return t;
+}
+
 LightingTest ShowDirectReflectionsLightingTest() {
     LightingTest t = ShowLightingTest();
     t.effects.directReflections = true;

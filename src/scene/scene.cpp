@@ -432,6 +432,7 @@ bool ParseEffectList(const std::string& list, EffectSet* effects, std::string* e
         else if (item == "fog") e.fog = on;
         else if (item == "fixed_step") e.marchFixed = on;
         else if (item == "direct_reflections") e.directReflections = on;
+        else if (item == "quad_reflections") e.quadReflections = on;
         else if (item == "ssaa") e.supersample = on ? 1 : 0;
         else if (item == "ssaa_exact") e.supersample = on ? 2 : 0;
         else if (item == "heatmap" || item == "steps") e.debugView = on ? 1 : 0;
@@ -452,7 +453,7 @@ bool ParseEffectList(const std::string& list, EffectSet* effects, std::string* e
             e.reflections = on ? n : 0;
         } else {
             *error = "unknown effect '" + item + "', expected hard_shadows, soft_shadows, improved_shadows, ao, specular, pbr, "
-                     "reflections[=N], direct_reflections, fog, fixed_step, ssaa, ssaa_exact, heatmap, depth, normals, work or none (prefix - to "
+                     "reflections[=N], direct_reflections, quad_reflections, fog, fixed_step, ssaa, ssaa_exact, heatmap, depth, normals, work or none (prefix - to "
                      "remove)";
             return false;
         }
@@ -470,6 +471,7 @@ std::string DescribeEffects(const EffectSet& e) {
     if (e.pbr) add("pbr");
     if (e.reflections) add("reflections=" + std::to_string(e.reflections));
     if (e.directReflections) add("direct_reflections");
+    if (e.quadReflections) add("quad_reflections");
     if (e.fog) add("fog");
     if (e.marchFixed) add("fixed_step");
     if (e.supersample) add(e.supersample == 2 ? "ssaa_exact" : "ssaa");

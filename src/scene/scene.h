@@ -44,6 +44,7 @@ struct EffectSet {
     int normals = 0;        // 0 central, 1 forward, 2 tetrahedron
     bool marchFixed = false;
     bool directReflections = false;   // `direct_reflections`: a reflection lands on a surface lit without its shadow ray or AO, in at most 48 steps (render.glsl BOUNCE_LIGHT 2, BOUNCE_STEPS 48)
+    bool quadReflections = false;   // `quad_reflections`: the bounce traced once per 2x2 pixels (render.glsl QUAD_REFLECTIONS; compute path)
     int supersample = 0;   // 1 `ssaa`: 4 samples a pixel, shading shared per surface; 2 `ssaa_exact`: each sample shaded (render/supersample.glsl)
     auto operator<=>(const EffectSet&) const = default;
 };
@@ -103,6 +104,9 @@ LightingTest ShowLightingTest();
 // (`ssaa`; `bench --tests show_ssaa`, at 3840x2160 the 4x supersampled 4K of issue 13); `exact`:
 // every sample shaded (`ssaa_exact`, show_ssaa_exact).
 LightingTest ShowSupersampledLightingTest(bool exact);
+// The show lighting with `quad_reflections` (`bench --tests show_quad_reflections`): at 7680x4320 the
+// 4x supersampled 4K's bounce traced once per shown pixel.
+LightingTest ShowQuadReflectionsLightingTest();
 // The show lighting with `direct_reflections` (`bench --tests show_direct`): the reflected surface
 // lit directly, unshadowed and unoccluded, its march at most 48 steps.
 LightingTest ShowDirectReflectionsLightingTest();

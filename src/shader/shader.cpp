@@ -128,6 +128,7 @@ std::vector<std::string> VariantDefines(const EffectSet& e, RenderPath path) {
         // direct_reflections: the reflected surface lit without its shadow ray or AO, in at most 48 steps
         "BOUNCE_LIGHT " + std::to_string(e.directReflections ? 2 : 0),
         "BOUNCE_STEPS " + std::to_string(e.directReflections ? kDirectReflectionSteps : 0),
+        "QUAD_REFLECTIONS " + std::to_string(e.quadReflections ? 1 : 0),
     };
     d.push_back(path == RenderPath::Compute ? "SDFVJ_COMPUTE 1" : "SDFVJ_FRAGMENT 1");
     return d;

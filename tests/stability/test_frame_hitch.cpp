@@ -111,7 +111,9 @@ TEST_CASE("frame hitch: a frame spent sleeping is blocked, one spent spinning ra
         REQUIRE(hitch.End(Seconds(t0), &line));
         INFO("alone on the CPU: " << line);
         const double ms = NumberAfter(line, "sdfvj live: a ");
-        CHECK(NumberAfter(line, "thread ran ") > 0.5 * ms);   // a machine busy elsewhere may take some of it
+        // A machine busy elsewhere may take some of it: a clean-clone CI run read 75 of 154 ms with
+        // another test process on the same CPU. A sleeping frame runs under a fifth.
+        CHECK(NumberAfter(line, "thread ran ") > 0.4 * ms);
     }
     std::atomic<bool> stop{false};
     std::vector<std::thread> spinners;
