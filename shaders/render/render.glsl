@@ -357,108 +357,19 @@ vec3 surfaceNormal(vec3 p, float t) {
 #endif
 }
 
-// What a ray that hits nothing sees.
-vec3 background(vec3 rd) {
-#if FOG
-    return skyColor(rd, u_lightDir, u_lightColor);
-#else
-    return mix(vec3(0.02f, 0.02f, 0.025f), vec3(0.08f, 0.09f, 0.11f), saturate(rd.y * 0.5f + 0.5f));
-#endif
-}
-
-// Direct light plus ambient at a surface point (linear radiance); bounce > 0: a surface a
-// reflection met (BOUNCE_LIGHT).
-// Direct light and ambient at a surface whose shadow (1 lit .. 0) and occlusion (1 open) are known.
-vec3 litSurface(vec3 n, vec3 rd, vec3 albedo, float shadow, float occlusion) {
-    vec3 l = u_lightDir;
-    vec3 v = -rd;
-#if PBR
-    vec3 col = cookTorrance(n, v, l, albedo, u_metalness, u_roughness) * u_lightColor * (PI * shadow);
-    col += ambientLight(n) * albedo * (1.0f - 0.8f * u_metalness) * occlusion;
-#else
-    vec3 col = albedo * (lambert(n, l) * shadow * u_lightColor + ambientLight(n) * occlusion);
-#if SPECULAR
-    if ((u_effectsOff & EFFECT_OFF_SPECULAR) == 0) col += u_lightColor * (blinnPhong(n, l, v, roughnessToShininess(u_roughness)) * shadow *
-                           (1.0f - 0.7f * u_roughness));
-#endif
-#endif
-    return col;
-}
-
-vec3 displayColor(vec3 col);
-
-// before, weight: the pixel's radiance so far and what the mirror passes of this surface's (a
-// reflection's; BOUNCE_BOUND).
-vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec3 before, vec3 weight) {
-    bool wantShadow = true, wantOcclusion = true;
-#if BOUNCE_BOUND > 0 && BOUNCE_LIGHT < 2
-    if (bounce > 0) {
-        // What the two terms could move the pixel by: the light with both at 1 against both at 0
-        // (terms of one sign, so any values lie between), shown over the colour so far.
-        vec3 spread = displayColor(before + weight * litSurface(n, rd, albedo, 1.0f, 1.0f)) -
-                      displayColor(before + weight * litSurface(n, rd, albedo, 0.0f, 0.0f));
-        wantShadow = wantOcclusion = max(spread.x, max(spread.y, spread.z)) > float(BOUNCE_BOUND) / 255.0f;
-    }
-#endif
-    vec3 l = u_lightDir;
-    float shadow = 1.0f;
-    vec3 ro = p + n * (2.0f * hitEpsilon(t));
-    // Every direct term (Lambert, Blinn-Phong, Cook-Torrance) carries max(n.l, 0), so a surface
-    // turned away from the light needs no shadow ray: skipping it changes no pixel.
-    bool facesLight = dot(n, l) > 0.0f && (BOUNCE_LIGHT < 2 || bounce == 0);
-    WORK_PHASE(bounce == 0 ? 2 : 6);
-#if SHADOWS == 1
-    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, 1e6f);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowHard(ro, l, sr.x, sr.y, u_shadowSteps) : 0.5f;
-#elif SHADOWS == 2
-    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK) : 0.5f;
-#elif SHADOWS == 3
-    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK) : 0.5f;
-#endif
-    float occlusion = 1.0f;
-    WORK_PHASE(bounce == 0 ? 3 : 7);
-#if AO
-    if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = wantOcclusion ? ambientOcclusion(p, n, u_aoSamples) : 0.5f;
-#endif
-    return litSurface(n, rd, albedo, shadow, occlusion);
-}
-
-// Shaded colour of one marched ray, with fog.
-vec3 shadeRay(vec3 ro, vec3 rd, Hit h, vec3 n, int bounce, vec3 before, vec3 weight) {
-    if (!h.hit) return background(rd);
-    vec3 col = shadeSurface(ro + rd * h.t, n, rd, h.albedo, h.t, bounce, before, weight);
-#if FOG
-    if ((u_effectsOff & EFFECT_OFF_FOG) == 0) col = applyFog(col, h.t, background(rd), 0.03f);
-#endif
-    return col;
-}
-
-// Tiny per-pixel dither (+-0.5 / 255) against banding in 8-bit output; deterministic
-// per frame so replays match.
-float ditherNoise(vec2 fragCoord) {
-    return fract(52.9829189f * fract(0.06711056f * fragCoord.x + 0.00583715f * fragCoord.y +
-                                     0.1f * float(u_frame % 16))) - 0.5f;
-}
+#include "render/shade.glsl"
 
 // The step budget of a ray: a reflection's is BOUNCE_STEPS where it sets one.
 int rayMaxSteps(int bounce) { return bounce == 0 || BOUNCE_STEPS <= 0 ? u_maxSteps : min(u_maxSteps, BOUNCE_STEPS); }
 
-// The primary ray (from `ro` along `rd`) and each mirror bounce run one loop body: one copy of the
-// march, the normal and the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the
-// cost per map() call, and it doubled what the driver compiles); the trip count reads a uniform, so
-// it is not unrolled. The primary ray is marched from tStart (the compute path's cone pre-pass; 0
-// from the eye), or its hit is `given` (supersample.glsl marches a pixel's samples first).
-// Returns linear radiance (or a DEBUG_VIEW's value).
 #if USE_QUAD_REFLECTIONS
 // One texel per 2x2 pixels: what the centre's bounce saw (halves: r g, b and the centre's depth, -1
 // for the sky) and the centre's normal (octahedral, snorm 16).
 layout(rgba32ui, binding = 2) uniform uimage2D u_quadReflections;
 bool g_quadPass = false;   // the quads' own dispatch: traceRay shades only the bounce, into g_bounceLight
 vec3 g_bounceLight = vec3(0.0f);
-float g_quadT = -1.0f;     // the quad's centre's primary hit distance (-1: the sky)
-vec3 g_quadN = vec3(0.0f, 1.0f, 0.0f);   // and its normal
+float g_firstT = -1.0f;    // the primary hit's distance (-1: the sky) and normal: the quads' pass stores
+vec3 g_firstN = vec3(0.0f, 1.0f, 0.0f);   // the centre's, the frame compares a pixel's with them
 vec3 quadOctDecode(vec2 e) {   // lib/common.glsl octEncode's inverse
     vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
     if (n.z < 0.0f) n.xy = vec2((1.0f - abs(e.y)) * sgn(e.x), (1.0f - abs(e.x)) * sgn(e.y));
@@ -467,15 +378,17 @@ vec3 quadOctDecode(vec2 e) {   // lib/common.glsl octEncode's inverse
 ivec2 g_pixel = ivec2(0);  // the frame's pixel (main_comp.glsl)
 #endif
 
+// The primary ray (from `ro` along `rd`) and each mirror bounce run one loop body: one copy of the
+// march, the normal and the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the
+// cost per map() call, and it doubled what the driver compiles); the trip count reads a uniform, so
+// it is not unrolled. The primary ray is marched from tStart (the compute path's cone pre-pass; 0
+// from the eye), or its hit is `given` (supersample.glsl marches a pixel's samples first).
+// Returns linear radiance (or a DEBUG_VIEW's value).
 vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 col = vec3(0.0f);
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     float tNext = 0.0f;   // where a reflected ray starts (march.glsl mirrorStart)
-#if USE_QUAD_REFLECTIONS
-    float tFirst = 0.0f;  // the primary hit's distance and normal
-    vec3 nFirst = vec3(0.0f, 1.0f, 0.0f);
-#endif
     for (int bounce = 0; bounce <= bounces; bounce++) {
         WORK_PHASE(bounce == 0 ? 0 : 4);
 #if USE_QUAD_REFLECTIONS
@@ -486,7 +399,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
             // the sky, or its normal turned more than about 8 degrees from the centre's) traces its
             // own bounce (QUAD_REFLECTIONS_OWN 1, the default).
             if (QUAD_REFLECTIONS_OWN == 0 ||
-                (abs(bt.y - tFirst) <= 0.02f * tFirst && dot(quadOctDecode(unpackSnorm2x16(quad.z)), nFirst) >= 0.99f)) {
+                (abs(bt.y - g_firstT) <= 0.02f * g_firstT && dot(quadOctDecode(unpackSnorm2x16(quad.z)), g_firstN) >= 0.99f)) {
                 col += throughput * vec3(rg, bt.x);
                 break;
             }
@@ -521,8 +434,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         col += throughput * shadeRay(ro, rd, h, n, bounce, col, throughput);
         if (!h.hit || bounce == bounces) break;
 #if USE_QUAD_REFLECTIONS
-        if (bounce == 0) tFirst = h.t, nFirst = n;
-        if (g_quadPass && bounce == 0) g_quadT = h.t, g_quadN = n;
+        if (bounce == 0) g_firstT = h.t, g_firstN = n;
 #endif
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
         tNext = bounce == 0 ? mirrorStart(ro, rd, h, n, tStart) : 0.0f;
@@ -536,12 +448,6 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
 }
 
 #include "render/one_site.glsl"
-
-// Linear radiance to the display colour: tone mapped, sRGB (supersample.glsl averages these).
-vec3 displayColor(vec3 col) { return linearToSRGB(toneMapACES(col)); }
-
-// The pixel's output: its display colour, dithered.
-vec4 pixelColor(vec3 display, vec2 fragCoord) { return vec4(display + vec3(ditherNoise(fragCoord) / 255.0f), 1.0f); }
 
 // tStart: where the primary ray starts (the compute path's cone pre-pass; 0 marches from the eye).
 vec4 renderFrom(vec2 fragCoord, float tStart) {

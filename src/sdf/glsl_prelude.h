@@ -38,6 +38,7 @@
 #undef SDF_RENDER_RENDER_GLSL
 #undef SDF_RENDER_MARCH_GLSL
 #undef SDF_RENDER_INTERVALS_GLSL
+#undef SDF_RENDER_SHADE_GLSL
 // what a scene declares for render.glsl (its bounding volume) must not carry over to the next
 #undef SCENE_BOUND
 #undef SCENE_GROUND

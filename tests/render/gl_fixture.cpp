@@ -3,6 +3,8 @@
 
 #include "gl_fixture.h"
 
+#include "accuracy/accuracy.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -107,6 +109,10 @@ double MeanLuma(const Image& img, double x0, double y0, double x1, double y1) {
             ++n;
         }
     return n ? sum / n : 0.0;
+}
+
+Image Downsample2x2(const Image& big) {
+    return Image{big.width / 2, big.height / 2, accuracy::DownsampleRgba8x2(big.rgba, big.width, big.height)};
 }
 
 bool WriteSceneCopy(const std::string& scene, const std::string& defines, const std::filesystem::path& file) {

@@ -40,6 +40,9 @@ ImageDiff CompareImages(const Image& a, const Image& b, int threshold);
 // Mean luminance of a rectangle (fractions of the image), 0..255.
 double MeanLuma(const Image& img, double x0, double y0, double x1, double y1);
 
+// Each 2x2 block's mean (accuracy::DownsampleRgba8x2): a frame drawn at twice the size, as shown.
+Image Downsample2x2(const Image& big);
+
 // A copy of a shipped scene at `file` with `defines` (lines) right after its header, where a scene
 // declares its own switches. False when the scene is unknown or has no header.
 bool WriteSceneCopy(const std::string& scene, const std::string& defines, const std::filesystem::path& file);

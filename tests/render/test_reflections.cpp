@@ -82,21 +82,6 @@ TEST_CASE("bounce bound: a reflection's shadow and AO are skipped only where the
     }
 }
 
-namespace {
-Image Downsample2x2(const Image& big) {
-    Image out{big.width / 2, big.height / 2, {}};
-    out.rgba.resize((size_t)out.width * out.height * 4);
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x)
-            for (int c = 0; c < 4; ++c) {
-                int sum = 0;
-                for (int s = 0; s < 4; ++s) sum += big.rgba[((size_t)(2 * y + s / 2) * big.width + 2 * x + s % 2) * 4 + c];
-                out.rgba[((size_t)y * out.width + x) * 4 + c] = (uint8_t)((sum + 2) / 4);
-            }
-    return out;
-}
-}  // namespace
-
 // `quad_reflections` (render.glsl QUAD_REFLECTIONS): the bounce traced once per 2x2 pixels through
 // their centre, in a dispatch before the frame, each pixel weighting it by its own Fresnel term. A
 // frame drawn 2x2 supersampled, shown averaged 2x2, reflects at the shown pixel's rate: it must

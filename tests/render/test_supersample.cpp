@@ -6,17 +6,12 @@
 // one-sample frame's own error, so they hold on any renderer that anti-aliases at all.
 #include <catch2/catch.hpp>
 
-#include "accuracy/accuracy.h"
 #include "gl_fixture.h"
 
 using namespace sdfvj;
 using namespace sdfvj::test;
 
 namespace {
-
-Image Downsample2x2(const Image& big) {
-    return Image{big.width / 2, big.height / 2, accuracy::DownsampleRgba8x2(big.rgba, big.width, big.height)};
-}
 
 EffectSet Show(int supersample) {
     EffectSet e = ShowLightingTest().effects;
