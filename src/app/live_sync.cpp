@@ -35,6 +35,20 @@ void OnLeaderClock(LiveSync& s, const LeaderClock& c, double local) {
     ++s.leaderFrames;
     s.leaderValues = c.values;
     MtcSync& m = s.leader;
+    // Read late: a running leader's time that went on from the last one taken, but by less than
+    // this machine's clock did (a stall here, in the frame loop or the input thread, queued the
+    // leader's frames and they arrive together). The leader did not step back: the clock runs
+    // on from the last anchor, no seek; the frames still say the leader is alive. Only for as
+    // long as a leader may go unheard (lostSeconds): a leader that stays behind longer seeks.
+    if (c.running && m.state == MtcSync::State::Locked && m.direction > 0) {
+        const double behind = MtcShowTime(m, local) - c.seconds;
+        const double seek = (m.seekFrames > 0 ? m.seekFrames : 2.0) / m.fps;
+        if (behind > seek && c.seconds >= m.anchorShow && local - m.anchorLocal <= m.lostSeconds) {
+            ++s.lateFrames;
+            MtcOnQuarterFrame(m, local);
+            return;
+        }
+    }
     if (c.running) {
         MtcOnQuarterFrame(m, local);
         MtcOnTimecode(m, c.seconds, MtcRate::Fps25, local, false);

@@ -38,6 +38,7 @@ struct LiveSync {
     std::vector<std::pair<std::string, float>> leaderValues;
     double lastShow = -1.0;   // the show time of the last frame (the leader's clock never steps back by jitter)
     uint64_t leaderFrames = 0;
+    uint64_t lateFrames = 0;     // of them, read late (a stall here): the clock ran on without them
     static MtcSync LeaderClockSync();
 };
 

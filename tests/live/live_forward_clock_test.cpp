@@ -139,6 +139,38 @@ TEST_CASE("live forward: a follower's show clock locks to the leader's /sdfvj/cl
     CHECK(LiveSyncStatus(mtc, 1.0).find("(values only)") != std::string::npos);
 }
 
+TEST_CASE("live forward: the leader's frames read late together after a stall here are no jump, a step back is") {
+    LiveSync s;
+    std::vector<std::string> said;
+    // Locked at 50 s, a frame every 10 ms.
+    CHECK(Step(s, {ClockEvent(1.0, 50.0, true, {})}, 1.0, &said) == Approx(50.0));
+    CHECK(Step(s, {ClockEvent(1.01, 50.01, true, {})}, 1.01, &said) == Approx(50.01));
+    said.clear();
+    // A 155 ms stall here: the leader's next 15 frames (50.02 .. 50.16) are read at once at 1.165.
+    std::vector<ControlEvent> batch;
+    for (int k = 0; k < 15; ++k) batch.push_back(ClockEvent(1.165, 50.02 + 0.01 * k, true, {}));
+    CHECK(Step(s, batch, 1.165, &said) == Approx(50.16));
+    INFO((said.empty() ? "" : said[0]));
+    CHECK_FALSE(Said(said, "jump"));
+    CHECK(s.leader.seeks == 0);
+    CHECK(s.lateFrames == 7);   // 50.02 .. 50.08, 85 ms or more behind the clock (a seek: 2 frames, 80 ms)
+    // On time again: it locks on as before.
+    CHECK(Step(s, {ClockEvent(1.17, 50.17, true, {})}, 1.17, &said) == Approx(50.17));
+    CHECK(Step(s, {ClockEvent(1.18, 50.18, true, {})}, 1.18, &said) == Approx(50.18));
+    CHECK(s.leader.seeks == 0);
+    // A leader that steps back (its time before the last one taken) seeks, however late it was read.
+    CHECK(Step(s, {ClockEvent(1.5, 50.0, true, {})}, 1.5, &said) == Approx(50.0));
+    CHECK(Said(said, "leader jump to 50.000 s"));
+    CHECK(s.leader.seeks == 1);
+    // A leader that stays behind longer than it may go unheard (0.5 s) is no late read: it seeks.
+    CHECK(Step(s, {ClockEvent(1.6, 50.01, true, {})}, 1.6, &said) == Approx(50.1));
+    CHECK(Step(s, {ClockEvent(1.8, 50.02, true, {})}, 1.8, &said) == Approx(50.3));
+    CHECK(s.leader.seeks == 1);
+    CHECK(Step(s, {ClockEvent(2.05, 50.03, true, {})}, 2.05, &said) == Approx(50.03));
+    CHECK(s.leader.seeks == 2);
+    CHECK(s.leader.seeks == 2);
+}
+
 TEST_CASE("live forward: the leader's frame goes out as /sdfvj/clock that the decoder takes back") {
     lo_server server = lo_server_new(nullptr, nullptr);   // a free port
     REQUIRE(server);
