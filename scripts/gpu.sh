@@ -36,7 +36,9 @@
 #                                 processes, `bench reload --post`, without and with a standby;
 #                                 many files as s33);
 #                                 qrefl (issue 13: the 7680x4320 show with quad_reflections, its
-#                                 time (qrefl_time) and its image (qrefl_image));
+#                                 time (qrefl_time) and its image (qrefl_image)); qrefl2 (the
+#                                 pixels that trace their own bounce: copies that never do, do it
+#                                 without shadow and AO, do it at a wider angle, ask the quads beside first);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -565,6 +567,28 @@ case "${1:-}" in
     timeout ${QREFL_IMAGE_TIMEOUT:-240} bash "$0" remote bench ssaa --size 3840x2160 --effects none,soft_shadows,ao,specular,pbr,reflections=1 \
       --markdown "$out/qrefl_image.md" > "$out/qrefl_image.txt" 2>&1 || true
     cat "$out/qrefl_image.txt"
+    fi
+    if [ "$part" = qrefl2 ]; then
+    # Session 47, issue 13: what the pixels that trace their own bounce cost and draw. Copies of
+    # QREFL2_SCENES: _own0 (never their own), _own2 (their own without its shadow ray and AO), _cos95
+    # (their own where the normals part by more than about 18 degrees, not 8), _near (the three
+    # quads beside them asked first); the 7680x4320 show
+    # with quad_reflections, then `bench ssaa` at 3840x2160 (its last column: what each draws).
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc=""
+    for s in ${QREFL2_SCENES:-mandelbulb field50 field150}; do
+      sc="$sc $s"
+      variant "$root" "$s" own0 "QUAD_REFLECTIONS_OWN 0"; variant "$root" "$s" own2 "QUAD_REFLECTIONS_OWN 2"
+      variant "$root" "$s" cos95 "QUAD_REFLECTIONS_COS 0.95f"; variant "$root" "$s" near "QUAD_REFLECTIONS_NEAR 1"
+      sc="$sc ${s}_own0 ${s}_own2 ${s}_cos95 ${s}_near"
+    done
+    SDFVJ_ROOT_OVERRIDE="$root" timeout ${QREFL_TIMEOUT:-300} bash "$0" remote bench --scenes $sc --sizes 7680x4320 \
+      --tests show show_quad_reflections --paths compute --frames 15 --warmup 3 \
+      --markdown "$out/qrefl2_show.md" --csv "$out/qrefl2_show.csv" > "$out/qrefl2_show.txt" 2>&1 || true
+    cat "$out/qrefl2_show.md" 2>/dev/null; grep -h drift "$out/qrefl2_show.txt" || tail -5 "$out/qrefl2_show.txt"
+    SDFVJ_ROOT_OVERRIDE="$root" timeout ${QREFL_IMAGE_TIMEOUT:-240} bash "$0" remote bench ssaa --scenes "$(echo $sc | tr ' ' ,)" --size 3840x2160 \
+      --effects none,soft_shadows,ao,specular,pbr,reflections=1 --markdown "$out/qrefl2_image.md" > "$out/qrefl2_image.txt" 2>&1 || true
+    cat "$out/qrefl2_image.txt"
+    rm -rf "$root"
     fi
     if [ "$part" = s22 ]; then
     # Session 22, issue 13: normals by forward differences from the march's own value at the hit (3 map()

@@ -75,8 +75,18 @@
 #ifndef QUAD_REFLECTIONS
 #define QUAD_REFLECTIONS 0
 #endif
+// QUAD_REFLECTIONS_OWN: where a pixel's surface is not the quad centre's, 1 (default) the pixel
+// traces its own bounce, 2 it does without that bounce's shadow ray and AO (each 0.5, as
+// BOUNCE_BOUND's skip), 0 it takes the centre's bounce all the same. QUAD_REFLECTIONS_COS: the
+// least cosine between the two normals that still counts as the centre's surface.
 #ifndef QUAD_REFLECTIONS_OWN
 #define QUAD_REFLECTIONS_OWN 1
+#endif
+#ifndef QUAD_REFLECTIONS_COS
+#define QUAD_REFLECTIONS_COS 0.99f
+#endif
+#ifndef QUAD_REFLECTIONS_NEAR
+#define QUAD_REFLECTIONS_NEAR 0
 #endif
 #if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && DEBUG_VIEW == 0 && REFLECTIONS == 1
 #define USE_QUAD_REFLECTIONS 1
@@ -357,6 +367,9 @@ vec3 surfaceNormal(vec3 p, float t) {
 #endif
 }
 
+#if USE_QUAD_REFLECTIONS
+bool g_bounceBare = false;   // shade.glsl: this pixel's own bounce goes without shadow and AO (QUAD_REFLECTIONS_OWN 2)
+#endif
 #include "render/shade.glsl"
 
 // The step budget of a ray: a reflection's is BOUNCE_STEPS where it sets one.
@@ -393,16 +406,29 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         WORK_PHASE(bounce == 0 ? 0 : 4);
 #if USE_QUAD_REFLECTIONS
         if (bounce == 1 && !g_quadPass) {   // the quad's bounce, traced before the frame
-            uvec4 quad = imageLoad(u_quadReflections, g_pixel >> 1);
-            vec2 rg = unpackHalf2x16(quad.x), bt = unpackHalf2x16(quad.y);
             // A pixel whose surface is not the centre's (its depth 2 % or more off, the centre sees
             // the sky, or its normal turned more than about 8 degrees from the centre's) traces its
-            // own bounce (QUAD_REFLECTIONS_OWN 1, the default).
-            if (QUAD_REFLECTIONS_OWN == 0 ||
-                (abs(bt.y - g_firstT) <= 0.02f * g_firstT && dot(quadOctDecode(unpackSnorm2x16(quad.z)), g_firstN) >= 0.99f)) {
-                col += throughput * vec3(rg, bt.x);
+            // own bounce (QUAD_REFLECTIONS_OWN 1, the default). QUAD_REFLECTIONS_NEAR 1: first the
+            // three quads beside it on its side are asked the same (an edge's pixel is often the
+            // neighbour's surface).
+            vec3 seen = vec3(-1.0f);
+            ivec2 side = (g_pixel & 1) * 2 - 1;
+            for (int k = 0; k < (QUAD_REFLECTIONS_NEAR != 0 ? 4 : 1); k++) {
+                ivec2 q = (g_pixel >> 1) + (k == 1 ? ivec2(side.x, 0) : k == 2 ? ivec2(0, side.y) : k == 3 ? side : ivec2(0));
+                q = clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);   // this frame's quads only
+                uvec4 quad = imageLoad(u_quadReflections, q);
+                vec2 rg = unpackHalf2x16(quad.x), bt = unpackHalf2x16(quad.y);
+                if ((QUAD_REFLECTIONS_OWN == 0 && k == 0) ||
+                    (abs(bt.y - g_firstT) <= 0.02f * g_firstT && dot(quadOctDecode(unpackSnorm2x16(quad.z)), g_firstN) >= QUAD_REFLECTIONS_COS)) {
+                    seen = vec3(rg, bt.x);
+                    break;
+                }
+            }
+            if (seen.x >= 0.0f) {
+                col += throughput * seen;
                 break;
             }
+            g_bounceBare = QUAD_REFLECTIONS_OWN == 2;
         }
 #endif
         Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : tNext, rayMaxSteps(bounce));

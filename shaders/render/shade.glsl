@@ -50,6 +50,9 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec
         wantShadow = wantOcclusion = max(spread.x, max(spread.y, spread.z)) > float(BOUNCE_BOUND) / 255.0f;
     }
 #endif
+#if USE_QUAD_REFLECTIONS
+    if (bounce > 0 && g_bounceBare) wantShadow = wantOcclusion = false;
+#endif
     vec3 l = u_lightDir;
     float shadow = 1.0f;
     vec3 ro = p + n * (2.0f * hitEpsilon(t));
