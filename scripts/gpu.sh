@@ -37,8 +37,7 @@
 #                                 many files as s33);
 #                                 qrefl (issue 13: the 7680x4320 show with quad_reflections, its
 #                                 time (qrefl_time) and its image (qrefl_image)); qrefl2 (the
-#                                 pixels that trace their own bounce: copies that never do, do it
-#                                 without shadow and AO, do it at a wider angle, ask the quads beside first);
+#                                 pixels that trace their own bounce: QREFL2_VARIANTS copies);
 #                                 pending = adopt + field + cone.
 #
 # Example (device tool): carry [".gl", ".devbuild"], command
@@ -569,17 +568,19 @@ case "${1:-}" in
     cat "$out/qrefl_image.txt"
     fi
     if [ "$part" = qrefl2 ]; then
-    # Session 47, issue 13: what the pixels that trace their own bounce cost and draw. Copies of
-    # QREFL2_SCENES: _own0 (never their own), _own2 (their own without its shadow ray and AO), _cos95
-    # (their own where the normals part by more than about 18 degrees, not 8), _near (the three
-    # quads beside them asked first); the 7680x4320 show
-    # with quad_reflections, then `bench ssaa` at 3840x2160 (its last column: what each draws).
-    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc=""
-    for s in ${QREFL2_SCENES:-mandelbulb field50 field150}; do
-      sc="$sc $s"
-      variant "$root" "$s" own0 "QUAD_REFLECTIONS_OWN 0"; variant "$root" "$s" own2 "QUAD_REFLECTIONS_OWN 2"
-      variant "$root" "$s" cos95 "QUAD_REFLECTIONS_COS 0.95f"; variant "$root" "$s" near "QUAD_REFLECTIONS_NEAR 1"
-      sc="$sc ${s}_own0 ${s}_own2 ${s}_cos95 ${s}_near"
+    # Session 47, issue 13: what the pixels that trace their own bounce cost and draw. Every scene
+    # in QREFL2_SCENES as shipped, and copies of those in QREFL2_COPIED, one per QREFL2_VARIANTS entry
+    # "SUFFIX/NAME=VALUE,NAME=VALUE": near0 (no quad beside asked first: session 46's), own0 (never
+    # their own bounce), cos95 and cos90 (their own only where the normals part by more than about
+    # 18 or 26 degrees, not 8). Session 47's first call also had own2 (QUAD_REFLECTIONS_OWN=2: their
+    # own without its shadow ray and AO). The 7680x4320 show with and without quad_reflections, then
+    # `bench ssaa` at 3840x2160 (its last column: what each draws).
+    root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="${QREFL2_SCENES:-$all}"
+    for s in ${QREFL2_COPIED:-mandelbulb field150}; do
+      for v in ${QREFL2_VARIANTS:-near0/QUAD_REFLECTIONS_NEAR=0 own0/QUAD_REFLECTIONS_OWN=0 cos95/QUAD_REFLECTIONS_COS=0.95f cos90/QUAD_REFLECTIONS_COS=0.90f}; do
+        suf="${v%%/*}"; defs="${v#*/}"; IFS=, read -r -a dl <<< "${defs//=/ }"
+        variant "$root" "$s" "$suf" "${dl[@]}"; sc="$sc ${s}_$suf"
+      done
     done
     SDFVJ_ROOT_OVERRIDE="$root" timeout ${QREFL_TIMEOUT:-300} bash "$0" remote bench --scenes $sc --sizes 7680x4320 \
       --tests show show_quad_reflections --paths compute --frames 15 --warmup 3 \

@@ -79,6 +79,8 @@
 // traces its own bounce, 2 it does without that bounce's shadow ray and AO (each 0.5, as
 // BOUNCE_BOUND's skip), 0 it takes the centre's bounce all the same. QUAD_REFLECTIONS_COS: the
 // least cosine between the two normals that still counts as the centre's surface.
+// QUAD_REFLECTIONS_NEAR 1 (default): before its own bounce, such a pixel asks the three quads
+// beside it on its side (its surface is often theirs); 0 asks its own quad alone.
 #ifndef QUAD_REFLECTIONS_OWN
 #define QUAD_REFLECTIONS_OWN 1
 #endif
@@ -86,7 +88,7 @@
 #define QUAD_REFLECTIONS_COS 0.99f
 #endif
 #ifndef QUAD_REFLECTIONS_NEAR
-#define QUAD_REFLECTIONS_NEAR 0
+#define QUAD_REFLECTIONS_NEAR 1
 #endif
 #if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && DEBUG_VIEW == 0 && REFLECTIONS == 1
 #define USE_QUAD_REFLECTIONS 1
@@ -408,9 +410,9 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         if (bounce == 1 && !g_quadPass) {   // the quad's bounce, traced before the frame
             // A pixel whose surface is not the centre's (its depth 2 % or more off, the centre sees
             // the sky, or its normal turned more than about 8 degrees from the centre's) traces its
-            // own bounce (QUAD_REFLECTIONS_OWN 1, the default). QUAD_REFLECTIONS_NEAR 1: first the
-            // three quads beside it on its side are asked the same (an edge's pixel is often the
-            // neighbour's surface).
+            // own bounce (QUAD_REFLECTIONS_OWN 1, the default). With QUAD_REFLECTIONS_NEAR 1 (the
+            // default) it first asks the three quads beside it on its side the same: an edge's
+            // pixel is often the neighbour's surface, and a fold's normal often a neighbour's.
             vec3 seen = vec3(-1.0f);
             ivec2 side = (g_pixel & 1) * 2 - 1;
             for (int k = 0; k < (QUAD_REFLECTIONS_NEAR != 0 ? 4 : 1); k++) {

@@ -108,7 +108,9 @@ TEST_CASE("quad_reflections: the bounce traced once per 2x2 pixels shows, averag
                  << noneToEvery.fractionOver * 100 << " %");
             CHECK(toEvery.maxAbs > 0);                              // the quads' pass reached the frame
             CHECK(toEvery.meanAbs < 0.2 * noneToEvery.meanAbs);     // and it reflects what the pixels' own bounces do
-            CHECK(toEvery.fractionOver <= 0.006);   // measured: character 0.007 %, mandelbulb 0.04 %, field150 0.38 %
+            // measured (the quads beside asked first, the default): character 0.02 %, mandelbulb 0.09 %,
+            // field150 0.49 %; its own quad alone (QUAD_REFLECTIONS_NEAR 0): 0.007 %, 0.04 %, 0.38 %
+            CHECK(toEvery.fractionOver <= 0.006);
             // The fragment path has no pass before the frame: every pixel traces its own bounce.
             CHECK(RenderScene(scene, quads, RenderPath::Fragment, kW, kH).rgba == RenderScene(scene, show, RenderPath::Fragment, kW, kH).rgba);
         }
