@@ -123,3 +123,41 @@ TEST_CASE("quad_reflections: the bounce traced once per 2x2 pixels shows, averag
     INFO("97x71 against every pixel's bounce: " << odd.fractionOver * 100 << " % past 8/255");
     CHECK(odd.fractionOver <= 0.03);
 }
+
+// QUAD_REFLECTIONS_LEAD 1: the quads' pass traces the quad's first pixel (even x and y) instead of
+// its centre, and that pixel's frame takes the primary hit the pass marched (no second march). So
+// a first pixel draws what it draws tracing its own bounce (the bounce's light kept as halves: at
+// most a few levels), and the frame averaged 2x2 stays as near every pixel's own bounce as the
+// centre's does. A wrong hit handed over (a neighbour's, a miss for a hit) moves first pixels by far more.
+TEST_CASE("quad_reflections: with QUAD_REFLECTIONS_LEAD 1 a quad's first pixel takes the quads' pass's primary hit", "[reflections]") {
+    constexpr int kW = 160, kH = 90;
+    const std::filesystem::path dir = std::filesystem::path(SDFVJ_TEST_OUTPUT_DIR) / "quad_lead";
+    std::filesystem::create_directories(dir);
+    for (const char* scene : {"character", "field150", "mandelbulb"}) {
+        SECTION(scene) {
+            const std::filesystem::path file = dir / (std::string(scene) + "_lead.glsl");
+            REQUIRE(WriteSceneCopy(scene, "#define QUAD_REFLECTIONS_LEAD 1", file));
+            const EffectSet show = ShowLightingTest().effects, quads = ShowQuadReflectionsLightingTest().effects;
+            const Image every = RenderScene(scene, show, RenderPath::Compute, 2 * kW, 2 * kH);
+            const Image lead = RenderScene(file.string(), quads, RenderPath::Compute, 2 * kW, 2 * kH);
+            REQUIRE(lead.rgba.size() == every.rgba.size());
+            int firstWorst = 0, othersWorst = 0;
+            for (int row = 0; row < 2 * kH; ++row)
+                for (int x = 0; x < 2 * kW; ++x) {
+                    const int y = 2 * kH - 1 - row;   // rows top first, GL's y from the bottom
+                    for (int c = 0; c < 3; ++c) {
+                        const size_t i = (size_t(row) * 2 * kW + x) * 4 + c;
+                        const int d = std::abs(int(lead.rgba[i]) - int(every.rgba[i]));
+                        int& worst = (x % 2 == 0 && y % 2 == 0) ? firstWorst : othersWorst;
+                        worst = std::max(worst, d);
+                    }
+                }
+            const ImageDiff shown = CompareImages(Downsample2x2(lead), Downsample2x2(every), 8);
+            INFO("first pixels: max " << firstWorst << "; the others: max " << othersWorst << "; shown: "
+                                      << shown.fractionOver * 100 << " % past 8/255");
+            CHECK(firstWorst <= 4);   // measured: 2, 2, 3 (mandelbulb)
+            CHECK(othersWorst > 2);   // the others take a neighbour's bounce somewhere
+            CHECK(shown.fractionOver <= 0.006);
+        }
+    }
+}
