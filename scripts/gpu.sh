@@ -570,15 +570,14 @@ case "${1:-}" in
     if [ "$part" = qrefl2 ]; then
     # Session 47, issue 13: what the pixels that trace their own bounce cost and draw. Every scene
     # in QREFL2_SCENES as shipped, and copies of those in QREFL2_COPIED, one per QREFL2_VARIANTS entry
-    # "SUFFIX/NAME=VALUE,NAME=VALUE": lead1 (the quad's first pixel traced, its primary hit taken by
-    # the frame), own0 (never their own bounce), cos95 (their own only where the normals part by
-    # more than about 18 degrees, not 8). Session 47's first call had own0, own2
-    # (QUAD_REFLECTIONS_OWN=2: their own without its shadow ray and AO), cos95 and near
-    # (QUAD_REFLECTIONS_NEAR=1, since the default). The 7680x4320 show with and without quad_reflections, then
+    # "SUFFIX/NAME=VALUE,NAME=VALUE": near0 (no quad beside asked first: session 46's), own0 (never
+    # their own bounce), cos95 and cos90 (their own only where the normals part by more than about
+    # 18 or 26 degrees, not 8). Session 47's first call also had own2 (QUAD_REFLECTIONS_OWN=2: their
+    # own without its shadow ray and AO). The 7680x4320 show with and without quad_reflections, then
     # `bench ssaa` at 3840x2160 (its last column: what each draws).
     root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="${QREFL2_SCENES:-$all}"
     for s in ${QREFL2_COPIED:-mandelbulb field150}; do
-      for v in ${QREFL2_VARIANTS:-lead1/QUAD_REFLECTIONS_LEAD=1 own0/QUAD_REFLECTIONS_OWN=0 cos95/QUAD_REFLECTIONS_COS=0.95f}; do
+      for v in ${QREFL2_VARIANTS:-near0/QUAD_REFLECTIONS_NEAR=0 own0/QUAD_REFLECTIONS_OWN=0 cos95/QUAD_REFLECTIONS_COS=0.95f cos90/QUAD_REFLECTIONS_COS=0.90f}; do
         suf="${v%%/*}"; defs="${v#*/}"; IFS=, read -r -a dl <<< "${defs//=/ }"
         variant "$root" "$s" "$suf" "${dl[@]}"; sc="$sc ${s}_$suf"
       done

@@ -100,14 +100,13 @@ void main() {
     if (u_conePass >= 4) {   // the quads' bounces (render.glsl QUAD_REFLECTIONS): 4 after the cone pre-pass, 5 without
         if (pixel.x >= (int(u_resolution.x) + 1) / 2 || pixel.y >= (int(u_resolution.y) + 1) / 2) return;
         callSceneSetup();
-        // Through the quad's first pixel (QUAD_REFLECTIONS_LEAD) or its centre; its pixels share one
-        // cone tile (tiles are 8 wide, quads 2).
+        // Through the quad's centre; its pixels share one cone tile (tiles are 8 wide, quads 2).
         float tStart = u_conePass == 4 ? imageLoad(u_coneStart, pixel * 2 / CONE_TILE).x : 0.0;
         g_quadPass = true;
         Hit none = Hit(0.0, 0.0, false, vec3(0.0), 0.0);
-        traceRay(u_camPos, cameraRay(vec2(pixel * 2) + (QUAD_REFLECTIONS_LEAD != 0 ? 0.5 : 1.0)), tStart, none, false);
+        traceRay(u_camPos, cameraRay(vec2(pixel * 2) + 1.0), tStart, none, false);
         imageStore(u_quadReflections, pixel, uvec4(packHalf2x16(g_bounceLight.rg), packHalf2x16(vec2(g_bounceLight.b, g_firstT)),
-                                                    packSnorm2x16(octEncode(g_firstN)), floatBitsToUint(g_firstT)));
+                                                    packSnorm2x16(octEncode(g_firstN)), 0u));
         return;
     }
 #endif

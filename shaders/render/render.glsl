@@ -90,13 +90,6 @@
 #ifndef QUAD_REFLECTIONS_NEAR
 #define QUAD_REFLECTIONS_NEAR 1
 #endif
-// QUAD_REFLECTIONS_LEAD 1: the quads' pass traces through the centre of the quad's first pixel
-// (its even x and y), not the quad's centre, and that pixel's frame takes the primary hit the pass
-// marched instead of marching it again (renderFrom); 0 (default): through the quad's centre, every
-// pixel marching its own primary ray.
-#ifndef QUAD_REFLECTIONS_LEAD
-#define QUAD_REFLECTIONS_LEAD 0
-#endif
 #if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && DEBUG_VIEW == 0 && REFLECTIONS == 1
 #define USE_QUAD_REFLECTIONS 1
 #else
@@ -421,9 +414,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
             // default) it first asks the three quads beside it on its side the same: an edge's
             // pixel is often the neighbour's surface, and a fold's normal often a neighbour's.
             vec3 seen = vec3(-1.0f);
-            // The quads beside that are as near: with QUAD_REFLECTIONS_LEAD, those after it (their
-            // first pixels are as near as its own quad's); else those on its side of the centre.
-            ivec2 side = QUAD_REFLECTIONS_LEAD != 0 ? ivec2(1) : (g_pixel & 1) * 2 - 1;
+            ivec2 side = (g_pixel & 1) * 2 - 1;
             for (int k = 0; k < (QUAD_REFLECTIONS_NEAR != 0 ? 4 : 1); k++) {
                 ivec2 q = (g_pixel >> 1) + (k == 1 ? ivec2(side.x, 0) : k == 2 ? ivec2(0, side.y) : k == 3 ? side : ivec2(0));
                 q = clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);   // this frame's quads only
@@ -469,10 +460,10 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         } else
 #endif
         col += throughput * shadeRay(ro, rd, h, n, bounce, col, throughput);
-#if USE_QUAD_REFLECTIONS
-        if (bounce == 0) g_firstT = h.hit ? h.t : -1.0f, g_firstN = n;
-#endif
         if (!h.hit || bounce == bounces) break;
+#if USE_QUAD_REFLECTIONS
+        if (bounce == 0) g_firstT = h.t, g_firstN = n;
+#endif
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
         tNext = bounce == 0 ? mirrorStart(ro, rd, h, n, tStart) : 0.0f;
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));
@@ -493,21 +484,6 @@ vec4 renderFrom(vec2 fragCoord, float tStart) {
     Hit none = Hit(0.0f, 0.0f, false, vec3(0.0f), 0.0f);
 #if USE_ONE_SITE
     vec4 c = traceRayOneSite(u_camPos, cameraRay(fragCoord), tStart);
-#elif USE_QUAD_REFLECTIONS && QUAD_REFLECTIONS_LEAD
-    // A quad's first pixel: the quads' pass marched its primary ray (the hit's albedo and field
-    // value read again from map(), one call).
-    vec3 rd = cameraRay(fragCoord);
-    bool lead = !g_quadPass && all(equal(g_pixel & 1, ivec2(0)));
-    if (lead) {
-        float t = uintBitsToFloat(imageLoad(u_quadReflections, g_pixel >> 1).w);
-        if (t >= 0.0f) {
-            vec4 m = map(u_camPos + rd * t);
-            none = Hit(t, 0.0f, true, m.xyz, m.w);
-        } else {
-            none.t = u_maxDist;
-        }
-    }
-    vec4 c = traceRay(u_camPos, rd, tStart, none, lead);
 #else
     vec4 c = traceRay(u_camPos, cameraRay(fragCoord), tStart, none, false);
 #endif
