@@ -553,7 +553,7 @@ case "${1:-}" in
     # direct_reflections; QREFL_OWN0 scenes also as copies whose pixels never trace their own bounce
     # (_own0: QUAD_REFLECTIONS_OWN 0, no fallback where a pixel's surface is not the quad centre's).
     root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="$all"
-    for s in ${QREFL_OWN0:-mandelbulb field50 field150}; do variant "$root" "$s" own0 "QUAD_REFLECTIONS_OWN 0"; sc="$sc ${s}_own0"; done
+    for s in ${QREFL_OWN0-mandelbulb field50 field150}; do variant "$root" "$s" own0 "QUAD_REFLECTIONS_OWN 0"; sc="$sc ${s}_own0"; done
     SDFVJ_ROOT_OVERRIDE="$root" timeout ${QREFL_TIMEOUT:-300} bash "$0" remote bench --scenes $sc --sizes 7680x4320 \
       --tests show show_quad_reflections show_direct --paths compute --frames 15 --warmup 3 \
       --markdown "$out/qrefl_show.md" --csv "$out/qrefl_show.csv" > "$out/qrefl_show.txt" 2>&1 || true
