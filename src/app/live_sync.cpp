@@ -122,6 +122,8 @@ std::string LiveSyncStatus(const LiveSync& s, double wall) {
     if (s.mode == LiveSync::Mode::Clock) line = "tempo and beat follow MIDI clock";
     if (s.leader.state != MtcSync::State::Waiting)
         line += (line.empty() ? "" : "; ") + MtcStatusLine(s.leader, wall) + (s.mode == LiveSync::Mode::Mtc ? " (values only)" : "");
+    if (s.lateFrames > 0)   // this machine stalled: the leader's frames queued and were read together
+        line += "; " + std::to_string(s.lateFrames) + " leader frames read late";
     return line;
 }
 

@@ -154,6 +154,7 @@ TEST_CASE("live forward: the leader's frames read late together after a stall he
     CHECK_FALSE(Said(said, "jump"));
     CHECK(s.leader.seeks == 0);
     CHECK(s.lateFrames == 7);   // 50.02 .. 50.08, 85 ms or more behind the clock (a seek: 2 frames, 80 ms)
+    CHECK(LiveSyncStatus(s, 1.165).find("; 7 leader frames read late") != std::string::npos);   // the overlay says so
     // On time again: it locks on as before.
     CHECK(Step(s, {ClockEvent(1.17, 50.17, true, {})}, 1.17, &said) == Approx(50.17));
     CHECK(Step(s, {ClockEvent(1.18, 50.18, true, {})}, 1.18, &said) == Approx(50.18));
