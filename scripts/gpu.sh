@@ -572,8 +572,8 @@ case "${1:-}" in
     # in QREFL2_SCENES as shipped, and copies of those in QREFL2_COPIED, one per QREFL2_VARIANTS entry
     # "SUFFIX/NAME=VALUE,NAME=VALUE": near0 (no quad beside asked first: session 46's), own0 (never
     # their own bounce), cos95 and cos90 (their own only where the normals part by more than about
-    # 18 or 26 degrees, not 8). Session 47's first call also had own2 (QUAD_REFLECTIONS_OWN=2: their
-    # own without its shadow ray and AO). The 7680x4320 show with and without quad_reflections, then
+    # 18 or 26 degrees, not 8). Session 47's first call also had own2 (their own without its
+    # shadow ray and AO: QUAD_REFLECTIONS_OWN 2, commit 8e46934, since removed). The 7680x4320 show with and without quad_reflections, then
     # `bench ssaa` at 3840x2160 (its last column: what each draws).
     root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="${QREFL2_SCENES:-$all}"
     for s in ${QREFL2_COPIED:-mandelbulb field150}; do

@@ -1,7 +1,7 @@
 // common.glsl - constants and small scalar/vector helpers used by every SDF file.
 //
 // Usage: #include "lib/common.glsl", then PI, TAU, saturate(x), dot2(v), vmax(v), vmin(v),
-// sgn(x) (never 0), square(x), safeNormalize(v), octEncode(n).
+// sgn(x) (never 0), square(x), safeNormalize(v), octEncode(n), octDecode(e).
 // Written in the GLSL subset that also compiles as C++ (src/sdf/glsl_prelude.h): no
 // swizzles, no inout/out, float literals with `f`.
 #ifndef SDF_LIB_COMMON_GLSL
@@ -90,6 +90,13 @@ vec2 octEncode(vec3 n) {
         y = oy;
     }
     return vec2(x, y);
+}
+
+// octEncode's inverse (render.glsl's quad_reflections reads its normals back).
+vec3 octDecode(vec2 e) {
+    vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
+    if (n.z < 0.0f) n = vec3((1.0f - abs(e.y)) * sgn(e.x), (1.0f - abs(e.x)) * sgn(e.y), n.z);
+    return normalize(n);
 }
 
 #endif

@@ -76,8 +76,7 @@
 #define QUAD_REFLECTIONS 0
 #endif
 // QUAD_REFLECTIONS_OWN: where a pixel's surface is not the quad centre's, 1 (default) the pixel
-// traces its own bounce, 2 it does without that bounce's shadow ray and AO (each 0.5, as
-// BOUNCE_BOUND's skip), 0 it takes the centre's bounce all the same. QUAD_REFLECTIONS_COS: the
+// traces its own bounce, 0 it takes the centre's bounce all the same. QUAD_REFLECTIONS_COS: the
 // least cosine between the two normals that still counts as the centre's surface.
 // QUAD_REFLECTIONS_NEAR 1 (default): before its own bounce, such a pixel asks the three quads
 // beside it on its side (its surface is often theirs); 0 asks its own quad alone.
@@ -369,9 +368,6 @@ vec3 surfaceNormal(vec3 p, float t) {
 #endif
 }
 
-#if USE_QUAD_REFLECTIONS
-bool g_bounceBare = false;   // shade.glsl: this pixel's own bounce goes without shadow and AO (QUAD_REFLECTIONS_OWN 2)
-#endif
 #include "render/shade.glsl"
 
 // The step budget of a ray: a reflection's is BOUNCE_STEPS where it sets one.
@@ -385,11 +381,6 @@ bool g_quadPass = false;   // the quads' own dispatch: traceRay shades only the 
 vec3 g_bounceLight = vec3(0.0f);
 float g_firstT = -1.0f;    // the primary hit's distance (-1: the sky) and normal: the quads' pass stores
 vec3 g_firstN = vec3(0.0f, 1.0f, 0.0f);   // the centre's, the frame compares a pixel's with them
-vec3 quadOctDecode(vec2 e) {   // lib/common.glsl octEncode's inverse
-    vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
-    if (n.z < 0.0f) n.xy = vec2((1.0f - abs(e.y)) * sgn(e.x), (1.0f - abs(e.x)) * sgn(e.y));
-    return normalize(n);
-}
 ivec2 g_pixel = ivec2(0);  // the frame's pixel (main_comp.glsl)
 #endif
 
@@ -421,7 +412,7 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
                 uvec4 quad = imageLoad(u_quadReflections, q);
                 vec2 rg = unpackHalf2x16(quad.x), bt = unpackHalf2x16(quad.y);
                 if ((QUAD_REFLECTIONS_OWN == 0 && k == 0) ||
-                    (abs(bt.y - g_firstT) <= 0.02f * g_firstT && dot(quadOctDecode(unpackSnorm2x16(quad.z)), g_firstN) >= QUAD_REFLECTIONS_COS)) {
+                    (abs(bt.y - g_firstT) <= 0.02f * g_firstT && dot(octDecode(unpackSnorm2x16(quad.z)), g_firstN) >= QUAD_REFLECTIONS_COS)) {
                     seen = vec3(rg, bt.x);
                     break;
                 }
@@ -430,7 +421,6 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
                 col += throughput * seen;
                 break;
             }
-            g_bounceBare = QUAD_REFLECTIONS_OWN == 2;
         }
 #endif
         Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : tNext, rayMaxSteps(bounce));

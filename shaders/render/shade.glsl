@@ -31,14 +31,12 @@ vec3 litSurface(vec3 n, vec3 rd, vec3 albedo, float shadow, float occlusion) {
     return col;
 }
 
-
-// before, weight: the pixel's radiance so far and what the mirror passes of this surface's (a
-// reflection's; BOUNCE_BOUND).
 // Linear radiance to the display colour: tone mapped, sRGB (supersample.glsl averages these).
 vec3 displayColor(vec3 col) { return linearToSRGB(toneMapACES(col)); }
 
 // Direct light plus ambient at a surface point (linear radiance); bounce > 0: a surface a
-// reflection met (BOUNCE_LIGHT, BOUNCE_BOUND).
+// reflection met (BOUNCE_LIGHT, BOUNCE_BOUND). before, weight: the pixel's radiance so far and
+// what the mirror passes of this surface's (BOUNCE_BOUND).
 vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec3 before, vec3 weight) {
     bool wantShadow = true, wantOcclusion = true;
 #if BOUNCE_BOUND > 0 && BOUNCE_LIGHT < 2
@@ -49,9 +47,6 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec
                       displayColor(before + weight * litSurface(n, rd, albedo, 0.0f, 0.0f));
         wantShadow = wantOcclusion = max(spread.x, max(spread.y, spread.z)) > float(BOUNCE_BOUND) / 255.0f;
     }
-#endif
-#if USE_QUAD_REFLECTIONS
-    if (bounce > 0 && g_bounceBare) wantShadow = wantOcclusion = false;
 #endif
     vec3 l = u_lightDir;
     float shadow = 1.0f;

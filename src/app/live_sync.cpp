@@ -42,8 +42,7 @@ void OnLeaderClock(LiveSync& s, const LeaderClock& c, double local) {
     // long as a leader may go unheard (lostSeconds): a leader that stays behind longer seeks.
     if (c.running && m.state == MtcSync::State::Locked && m.direction > 0) {
         const double behind = MtcShowTime(m, local) - c.seconds;
-        const double seek = (m.seekFrames > 0 ? m.seekFrames : 2.0) / m.fps;
-        if (behind > seek && c.seconds >= m.anchorShow && local - m.anchorLocal <= m.lostSeconds) {
+        if (behind > MtcSeekSeconds(m) && c.seconds >= m.anchorShow && local - m.anchorLocal <= m.lostSeconds) {
             ++s.lateFrames;
             MtcOnQuarterFrame(m, local);
             return;

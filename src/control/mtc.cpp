@@ -206,6 +206,8 @@ std::string Pulse(const MtcSync& s) { return s.pulse.empty() ? "quarter frame" :
 
 }  // namespace
 
+double MtcSeekSeconds(const MtcSync& s) { return SeekFrames(s) / s.fps; }
+
 double MtcShowTime(const MtcSync& s, double localTime) {
     if (s.state == MtcSync::State::Locked || s.state == MtcSync::State::Freewheel)
         return std::max(0.0, s.anchorShow + s.direction * (localTime - s.anchorLocal));
@@ -220,12 +222,12 @@ void MtcOnTimecode(MtcSync& s, double seconds, MtcRate rate, double localTime, b
     s.rate = rate;
     s.fps = MtcFramesPerSecond(rate);
     if (fullFrame) {
-        if (was != MtcSync::State::Waiting && std::fabs(seconds - now) > SeekFrames(s) / s.fps) ++s.seeks;
+        if (was != MtcSync::State::Waiting && std::fabs(seconds - now) > MtcSeekSeconds(s)) ++s.seeks;
         s.pending.push_back(Name(s) + " locate to " + At(s, seconds, rate) + ": holding until the master runs");
         s.state = MtcSync::State::Holding;
     } else {
         const bool running = was == MtcSync::State::Locked || was == MtcSync::State::Freewheel;
-        if (running && (std::fabs(seconds - now) > SeekFrames(s) / s.fps || direction != s.direction)) {
+        if (running && (std::fabs(seconds - now) > MtcSeekSeconds(s) || direction != s.direction)) {
             ++s.seeks;
             s.pending.push_back(Name(s) + " jump to " + At(s, seconds, rate) + " (from " + At(s, now, rate) + "): seek");
         }

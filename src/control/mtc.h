@@ -106,6 +106,8 @@ void MtcOnQuarterFrame(MtcSync& s, double localTime);
 void MtcTick(MtcSync& s, double localTime);
 // The show clock now.
 double MtcShowTime(const MtcSync& s, double localTime);
+// How far a time may be from the running clock before it is a jump (seekFrames frames).
+double MtcSeekSeconds(const MtcSync& s);
 // "MTC 00:01:02:03@25 locked" / "... lost: freewheeling" / "... stopped" / "MTC: waiting for the master".
 std::string MtcStatusLine(const MtcSync& s, double localTime);
 

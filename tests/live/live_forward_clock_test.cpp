@@ -169,7 +169,6 @@ TEST_CASE("live forward: the leader's frames read late together after a stall he
     CHECK(s.leader.seeks == 1);
     CHECK(Step(s, {ClockEvent(2.05, 50.03, true, {})}, 2.05, &said) == Approx(50.03));
     CHECK(s.leader.seeks == 2);
-    CHECK(s.leader.seeks == 2);
 }
 
 TEST_CASE("live forward: the leader's frame goes out as /sdfvj/clock that the decoder takes back") {

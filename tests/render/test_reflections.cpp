@@ -9,12 +9,25 @@
 using namespace sdfvj;
 using namespace sdfvj::test;
 
-TEST_CASE("direct_reflections: the effect list names it, and it is its own variant", "[reflections]") {
+namespace {
+
+// An effect list that must parse, and that DescribeEffects names back as written.
+EffectSet EffectsNamedBack(const std::string& list) {
     EffectSet e;
     std::string error;
-    REQUIRE(ParseEffectList("pbr,reflections=1,direct_reflections", &e, &error));
+    const bool parsed = ParseEffectList(list, &e, &error);
+    INFO(list << ": " << error);
+    REQUIRE(parsed);
+    CHECK(DescribeEffects(e) == list);
+    return e;
+}
+
+}  // namespace
+
+TEST_CASE("direct_reflections: the effect list names it, and it is its own variant", "[reflections]") {
+    EffectSet e = EffectsNamedBack("pbr,reflections=1,direct_reflections");
+    std::string error;
     CHECK(e.directReflections);
-    CHECK(DescribeEffects(e) == "pbr,reflections=1,direct_reflections");
     EffectSet full = e;
     full.directReflections = false;
     CHECK(full != e);   // another program, compiled and cached as a variant
@@ -88,11 +101,7 @@ TEST_CASE("bounce bound: a reflection's shadow and AO are skipped only where the
 // show nearly what tracing every pixel's bounce shows (the reflection of a neighbouring surface
 // only where the quad's centre sees another one), far nearer than no reflection at all.
 TEST_CASE("quad_reflections: the bounce traced once per 2x2 pixels shows, averaged 2x2, what every pixel's own bounce shows", "[reflections]") {
-    EffectSet parsed;
-    std::string error;
-    REQUIRE(ParseEffectList("pbr,reflections=1,quad_reflections", &parsed, &error));
-    CHECK(parsed.quadReflections);
-    CHECK(DescribeEffects(parsed) == "pbr,reflections=1,quad_reflections");
+    CHECK(EffectsNamedBack("pbr,reflections=1,quad_reflections").quadReflections);
     constexpr int kW = 160, kH = 90;
     for (const char* scene : {"character", "field150", "mandelbulb"}) {
         SECTION(scene) {
