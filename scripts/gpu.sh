@@ -572,7 +572,8 @@ case "${1:-}" in
     # in QREFL2_SCENES as shipped, and copies of those in QREFL2_COPIED, one per QREFL2_VARIANTS entry
     # "SUFFIX/NAME=VALUE,NAME=VALUE": near0 (no quad beside asked first: session 46's), own0 (never
     # their own bounce), cos95 and cos90 (their own only where the normals part by more than about
-    # 18 or 26 degrees, not 8). Session 47's first call also had own2 (their own without its
+    # 18 or 26 degrees, not 8); session 48: defer0 (QUAD_REFLECTIONS_DEFER 0: their own bounce in
+    # the frame, not listed for a dispatch of its own). Session 47's first call also had own2 (their own without its
     # shadow ray and AO: QUAD_REFLECTIONS_OWN 2, commit 8e46934, since removed). The 7680x4320 show with and without quad_reflections, then
     # `bench ssaa` at 3840x2160 (its last column: what each draws).
     root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="${QREFL2_SCENES:-$all}"
@@ -586,9 +587,11 @@ case "${1:-}" in
       --tests show show_quad_reflections --paths compute --frames 15 --warmup 3 \
       --markdown "$out/qrefl2_show.md" --csv "$out/qrefl2_show.csv" > "$out/qrefl2_show.txt" 2>&1 || true
     cat "$out/qrefl2_show.md" 2>/dev/null; grep -h drift "$out/qrefl2_show.txt" || tail -5 "$out/qrefl2_show.txt"
+    if [ "${QREFL2_IMAGE:-1}" = 1 ]; then   # QREFL2_IMAGE=0: copies that draw the same picture, time only
     SDFVJ_ROOT_OVERRIDE="$root" timeout ${QREFL_IMAGE_TIMEOUT:-240} bash "$0" remote bench ssaa --scenes "$(echo $sc | tr ' ' ,)" --size 3840x2160 \
       --effects none,soft_shadows,ao,specular,pbr,reflections=1 --markdown "$out/qrefl2_image.md" > "$out/qrefl2_image.txt" 2>&1 || true
     cat "$out/qrefl2_image.txt"
+    fi
     rm -rf "$root"
     fi
     if [ "$part" = s22 ]; then

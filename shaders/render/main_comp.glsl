@@ -60,6 +60,30 @@ ivec2 invocationPixel() {
 #endif
 }
 
+#if USE_QUAD_DEFER
+// The bounces the frame left for their own dispatch (render.glsl QUAD_REFLECTIONS_DEFER). The head
+// is the dispatch's size (groups x, y, z: glDispatchComputeIndirect reads it), the entries counted
+// and the room; FrameRenderer sets it to {0, 1, 1, 0, room} before each frame. An entry is four
+// uvec4: the pixel (x | y << 16), the bounce's origin, its direction, where its march starts, the
+// throughput and the colour so far, all as the frame had them (the same picture, listed or not).
+layout(std430, binding = 3) buffer QuadDeferred {
+    uint qd_groups, qd_groupsY, qd_groupsZ, qd_count, qd_room, qd_pad0, qd_pad1, qd_pad2;
+    uvec4 qd_entries[];
+};
+const uint QD_GROUP = uint(WORKGROUP_X * WORKGROUP_Y);
+
+bool quadDeferPush(ivec2 pixel, vec3 ro, vec3 rd, float tNext, vec3 throughput, vec3 col) {
+    uint i = atomicAdd(qd_count, 1u);
+    if (i >= qd_room) return false;
+    if (i % QD_GROUP == 0u) atomicMax(qd_groups, i / QD_GROUP + 1u);
+    qd_entries[4u * i] = uvec4(uint(pixel.x) | (uint(pixel.y) << 16), floatBitsToUint(ro));
+    qd_entries[4u * i + 1u] = uvec4(floatBitsToUint(rd), floatBitsToUint(tNext));
+    qd_entries[4u * i + 2u] = uvec4(floatBitsToUint(throughput), floatBitsToUint(col.r));
+    qd_entries[4u * i + 3u] = uvec4(floatBitsToUint(col.gb), 0u, 0u);
+    return true;
+}
+#endif
+
 void main() {
 #if SCENE_TABLES && SCENE_SETUP_LANES
     // The scene's tables (lib/common.glsl SCENE_TABLES): filled by the whole group, in shared memory.
@@ -97,7 +121,7 @@ void main() {
         return;
     }
 #if USE_QUAD_REFLECTIONS
-    if (u_conePass >= 4) {   // the quads' bounces (render.glsl QUAD_REFLECTIONS): 4 after the cone pre-pass, 5 without
+    if (u_conePass == 4 || u_conePass == 5) {   // the quads' bounces (render.glsl QUAD_REFLECTIONS): 4 after the cone pre-pass, 5 without
         if (pixel.x >= (int(u_resolution.x) + 1) / 2 || pixel.y >= (int(u_resolution.y) + 1) / 2) return;
         callSceneSetup();
         // Through the quad's centre; its pixels share one cone tile (tiles are 8 wide, quads 2).
@@ -110,6 +134,20 @@ void main() {
         return;
     }
 #endif
+#if USE_QUAD_DEFER
+    if (u_conePass == 6) {   // the listed bounces (render.glsl QUAD_REFLECTIONS_DEFER), one an invocation
+        uint i = gl_WorkGroupID.x * QD_GROUP + gl_LocalInvocationIndex;
+        if (i >= min(qd_count, qd_room)) return;
+        uvec4 a = qd_entries[4u * i], b = qd_entries[4u * i + 1u], c = qd_entries[4u * i + 2u], d = qd_entries[4u * i + 3u];
+        pixel = ivec2(int(a.x & 0xffffu), int(a.x >> 16));
+        g_deferRo = uintBitsToFloat(a.yzw);
+        g_deferRd = uintBitsToFloat(b.xyz);
+        g_deferTNext = uintBitsToFloat(b.w);
+        g_deferThroughput = uintBitsToFloat(c.xyz);
+        g_deferCol = vec3(uintBitsToFloat(c.w), uintBitsToFloat(d.xy));
+        g_deferPass = true;
+    } else
+#endif
     pixel.y += u_rowOffset;
     if (pixel.x >= int(u_resolution.x) || pixel.y >= int(u_resolution.y)) return;
 #if USE_QUAD_REFLECTIONS
@@ -117,5 +155,9 @@ void main() {
 #endif
     vec2 fragCoord = vec2(pixel) + 0.5;
     float tStart = u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
-    imageStore(u_output, pixel, renderPixel(fragCoord, tStart));
+    vec4 c = renderPixel(fragCoord, tStart);
+#if USE_QUAD_DEFER
+    if (g_deferred) return;   // its bounce is in the list: the list's dispatch writes it
+#endif
+    imageStore(u_output, pixel, c);
 }

@@ -89,10 +89,23 @@
 #ifndef QUAD_REFLECTIONS_NEAR
 #define QUAD_REFLECTIONS_NEAR 1
 #endif
+// QUAD_REFLECTIONS_DEFER 1 (default): a pixel that finds no quad's bounce to take does not trace its
+// own in the frame, where its warp's other lanes would wait for it; the frame appends it to a list
+// and a dispatch of its own (u_conePass 6, sized by the list) traces the listed bounces side by side
+// and writes their pixels. Past the list's room (FrameRenderer: an eighth of the pixels) a pixel
+// traces its own in the frame, as with 0. One pixel, one picture: the same trace either way.
+#ifndef QUAD_REFLECTIONS_DEFER
+#define QUAD_REFLECTIONS_DEFER 1
+#endif
 #if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && DEBUG_VIEW == 0 && REFLECTIONS == 1
 #define USE_QUAD_REFLECTIONS 1
 #else
 #define USE_QUAD_REFLECTIONS 0
+#endif
+#if USE_QUAD_REFLECTIONS && QUAD_REFLECTIONS_DEFER && QUAD_REFLECTIONS_OWN && SUPERSAMPLE == 0
+#define USE_QUAD_DEFER 1
+#else
+#define USE_QUAD_DEFER 0
 #endif
 #ifndef SHADOWS
 #define SHADOWS 2
@@ -383,6 +396,15 @@ float g_firstT = -1.0f;    // the primary hit's distance (-1: the sky) and norma
 vec3 g_firstN = vec3(0.0f, 1.0f, 0.0f);   // the centre's, the frame compares a pixel's with them
 ivec2 g_pixel = ivec2(0);  // the frame's pixel (main_comp.glsl)
 #endif
+#if USE_QUAD_DEFER
+// The list of bounces left for their own dispatch (main_comp.glsl): the frame appends, returning
+// false where the list is full; the listed pixel's trace resumes from what was left in it.
+bool quadDeferPush(ivec2 pixel, vec3 ro, vec3 rd, float tNext, vec3 throughput, vec3 col);
+bool g_deferred = false;   // the frame's pixel is in the list: the dispatch of the list writes it
+bool g_deferPass = false;  // the list's dispatch: traceRay starts at the bounce, from these
+vec3 g_deferRo, g_deferRd, g_deferThroughput, g_deferCol;
+float g_deferTNext;
+#endif
 
 // The primary ray (from `ro` along `rd`) and each mirror bounce run one loop body: one copy of the
 // march, the normal and the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the
@@ -395,10 +417,21 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
     vec3 throughput = vec3(1.0f);
     int bounces = (u_effectsOff & EFFECT_OFF_REFLECTIONS) != 0 ? 0 : REFLECTIONS;
     float tNext = 0.0f;   // where a reflected ray starts (march.glsl mirrorStart)
-    for (int bounce = 0; bounce <= bounces; bounce++) {
+    int firstBounce = 0;
+#if USE_QUAD_DEFER
+    if (g_deferPass) {   // a listed pixel: its bounce, from where the frame left it
+        ro = g_deferRo, rd = g_deferRd, tNext = g_deferTNext, throughput = g_deferThroughput, col = g_deferCol;
+        firstBounce = 1;
+    }
+#endif
+    for (int bounce = firstBounce; bounce <= bounces; bounce++) {
         WORK_PHASE(bounce == 0 ? 0 : 4);
 #if USE_QUAD_REFLECTIONS
+#if USE_QUAD_DEFER
+        if (bounce == 1 && !g_quadPass && !g_deferPass) {   // the quad's bounce, traced before the frame
+#else
         if (bounce == 1 && !g_quadPass) {   // the quad's bounce, traced before the frame
+#endif
             // A pixel whose surface is not the centre's (its depth 2 % or more off, the centre sees
             // the sky, or its normal turned more than about 8 degrees from the centre's) traces its
             // own bounce (QUAD_REFLECTIONS_OWN 1, the default). With QUAD_REFLECTIONS_NEAR 1 (the
@@ -421,6 +454,12 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
                 col += throughput * seen;
                 break;
             }
+#if USE_QUAD_DEFER
+            if (quadDeferPush(g_pixel, ro, rd, tNext, throughput, col)) {
+                g_deferred = true;
+                break;
+            }
+#endif
         }
 #endif
         Hit h = bounce == 0 && given ? first : march(ro, rd, bounce == 0 ? tStart : tNext, rayMaxSteps(bounce));

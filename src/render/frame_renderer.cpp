@@ -17,6 +17,8 @@ namespace sdfvj {
 
 namespace {
 constexpr int kConeTile = 8;   // main_comp.glsl's CONE_TILE
+constexpr GLuint kDeferBinding = 3;   // main_comp.glsl's QuadDeferred: a head of 8 uints, then 4 uvec4 an entry
+constexpr long long kDeferHeadBytes = 32, kDeferEntryBytes = 64;
 }
 
 FrameRenderer::~FrameRenderer() { Release(); }
@@ -37,8 +39,10 @@ void FrameRenderer::Release() {
     if (query_) glDeleteQueries(1, &query_);
     if (stateBuffer_) glDeleteBuffers(1, &stateBuffer_);
     if (quadTexture_) glDeleteTextures(1, &quadTexture_);
-    fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = quadTexture_ = 0;
+    if (deferBuffer_) glDeleteBuffers(1, &deferBuffer_);
+    fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = quadTexture_ = deferBuffer_ = 0;
     quadW_ = quadH_ = 0;
+    deferRoom_ = 0;
     width_ = height_ = 0;
 }
 
@@ -214,6 +218,19 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
             glDispatchCompute(((GLuint)qw + gx - 1) / gx, ((GLuint)qh + gy - 1) / gy, 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
+        if (p.QuadDefer()) {   // the list of bounces left to their own dispatch, emptied (main_comp.glsl QuadDeferred)
+            const long long room = deferRoomAsked_ >= 0 ? deferRoomAsked_ : (long long)width_ * height_ / 8;
+            if (!deferBuffer_ || room != deferRoom_) {
+                if (!deferBuffer_) glGenBuffers(1, &deferBuffer_);
+                glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+                glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(kDeferHeadBytes + std::max(room, 1LL) * kDeferEntryBytes), nullptr, GL_DYNAMIC_DRAW);
+                deferRoom_ = room;
+            }
+            const GLuint head[8] = {0u, 1u, 1u, 0u, (GLuint)std::min(room, (long long)UINT32_MAX), 0u, 0u, 0u};
+            glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+            glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof head, head);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDeferBinding, deferBuffer_);
+        }
         p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
         // Strips of whole work-groups (main_comp.glsl adds u_rowOffset to each invocation's row).
         const GLuint rows = (GLuint)height_, perStrip = ((rows + (GLuint)strips_ - 1) / (GLuint)strips_ + gy - 1) / gy * gy;
@@ -221,6 +238,13 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
             p.Set("u_rowOffset", (float)y0);
             glDispatchCompute(((GLuint)width_ + gx - 1) / gx, (std::min(perStrip, rows - y0) + gy - 1) / gy, 1);
             if (strips_ > 1) glFinish();
+        }
+        if (p.QuadDefer()) {   // the listed bounces, one an invocation, as many groups as the frame listed
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+            p.Set("u_conePass", 6.0f);
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, deferBuffer_);
+            glDispatchComputeIndirect(0);
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         }
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {
@@ -240,6 +264,14 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
         lastGpuMs_ = (double)ns * 1e-6;
     }
+}
+
+long long FrameRenderer::LastQuadDeferred() const {
+    if (!deferBuffer_) return 0;
+    GLuint count = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 12, sizeof count, &count);
+    return count;
 }
 
 GpuTimerRing::~GpuTimerRing() {

@@ -46,6 +46,7 @@ void Program::Adopt(unsigned id, RenderPath path, const ShaderSource& src, const
     frameState_ = path == RenderPath::Compute &&
                   glGetProgramResourceIndex(id, GL_SHADER_STORAGE_BLOCK, "SceneStateOut") != GL_INVALID_INDEX;
     quadReflections_ = path == RenderPath::Compute && glGetUniformLocation(id, "u_quadReflections") >= 0;
+    quadDefer_ = quadReflections_ && glGetProgramResourceIndex(id, GL_SHADER_STORAGE_BLOCK, "QuadDeferred") != GL_INVALID_INDEX;
     GLint count = 0;
     glGetProgramiv(id, GL_ACTIVE_UNIFORMS, &count);
     for (GLint i = 0; i < count; ++i) {

@@ -139,6 +139,9 @@ public:
     // A compute program that traces its bounce once per 2x2 pixels (render.glsl QUAD_REFLECTIONS):
     // FrameRenderer dispatches the quads' pass, into an image of its own, before the frame.
     bool QuadReflections() const { return quadReflections_; }
+    // ... and leaves the bounces no quad lends to a list (render.glsl QUAD_REFLECTIONS_DEFER), which
+    // FrameRenderer traces in a dispatch of their own after the frame.
+    bool QuadDefer() const { return quadDefer_; }
     const ShaderSource& Source() const { return source_; }
     // Takes ownership of a linked GL program (PendingProgram::Finish uses this).
     void Adopt(unsigned id, RenderPath path, const ShaderSource& src, const ProgramOrigin& origin = {});
@@ -172,6 +175,7 @@ private:
     int group_[3] = {8, 8, 1};
     bool frameState_ = false;
     bool quadReflections_ = false;
+    bool quadDefer_ = false;
     ShaderSource source_;
     ProgramOrigin origin_;
     std::map<std::string, Slot> uniforms_;
@@ -279,6 +283,11 @@ public:
     // each (1: one dispatch, the default). The same pixels; the GPU is free between strips for
     // another process's work (a render server's first frame while the show's frames go on).
     void SetStrips(int n) { strips_ = n < 1 ? 1 : n; }
+    // A program with Program::QuadDefer: room for `entries` listed bounces (-1, the default: an
+    // eighth of the frame's pixels; past it a pixel traces its own bounce in the frame), and how
+    // many the last Draw listed, the ones past the room included (reads the GPU back: a sync).
+    void SetQuadDeferRoom(long long entries) { deferRoomAsked_ = entries; }
+    long long LastQuadDeferred() const;
     // RGBA rows, top row first.
     std::vector<uint8_t> ReadPixels() const;
     // RGBA32F rows of a float target, BOTTOM row first (row y is fragCoord.y = y + 0.5).
@@ -304,6 +313,9 @@ private:
     unsigned stateBuffer_ = 0;   // the scene's frame state (Program::FrameState), kSceneStateBytes
     unsigned quadTexture_ = 0;   // rgba32ui, one texel per 2x2 pixels (Program::QuadReflections), made when first asked for
     int quadW_ = 0, quadH_ = 0;
+    unsigned deferBuffer_ = 0;   // the list of bounces (Program::QuadDefer): a head and room for deferRoom_ entries
+    long long deferRoom_ = 0;
+    long long deferRoomAsked_ = -1;   // SetQuadDeferRoom; -1: an eighth of the frame's pixels
     double lastGpuMs_ = 0.0;
     int strips_ = 1;
 };

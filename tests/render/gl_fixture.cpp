@@ -33,7 +33,8 @@ void RequireGl() {
 }
 
 Image RenderScene(const std::string& sceneName, const EffectSet& effects, RenderPath path, int width, int height,
-                  double time, const std::vector<std::pair<std::string, float>>& params, const Quality& quality, int strips) {
+                  double time, const std::vector<std::pair<std::string, float>>& params, const Quality& quality, int strips,
+                  long long deferRoom, long long* deferred) {
     RequireGl();
     SceneInfo scene;
     std::string error;
@@ -53,7 +54,9 @@ Image RenderScene(const std::string& sceneName, const EffectSet& effects, Render
         for (const auto& [pn, pv] : params)
             if (n == pn) v = pv;
     fr.SetStrips(strips);
+    fr.SetQuadDeferRoom(deferRoom);
     fr.Draw(prog, scene, in);
+    if (deferred) *deferred = fr.LastQuadDeferred();
     return Image{width, height, fr.ReadPixels()};
 }
 

@@ -21,10 +21,11 @@ struct Image {
 };
 
 // Renders one frame of a scene with an effect set on a path. FAILs on compile errors. `strips`:
-// FrameRenderer::SetStrips (the compute path's frame in horizontal strips).
+// FrameRenderer::SetStrips (the compute path's frame in horizontal strips). `deferRoom`:
+// FrameRenderer::SetQuadDeferRoom; where `deferred` is given, it gets LastQuadDeferred.
 Image RenderScene(const std::string& scene, const EffectSet& effects, RenderPath path, int width, int height,
                   double time = 1.0, const std::vector<std::pair<std::string, float>>& params = {},
-                  const Quality& quality = {}, int strips = 1);
+                  const Quality& quality = {}, int strips = 1, long long deferRoom = -1, long long* deferred = nullptr);
 
 bool LoadPng(const std::string& path, Image* out);
 bool SavePng(const std::string& path, const Image& img);
