@@ -584,7 +584,7 @@ case "${1:-}" in
       done
     done
     SDFVJ_ROOT_OVERRIDE="$root" timeout ${QREFL_TIMEOUT:-300} bash "$0" remote bench --scenes $sc --sizes 7680x4320 \
-      --tests show show_quad_reflections --paths compute --frames 15 --warmup 3 \
+      --tests ${QREFL2_TESTS:-show show_quad_reflections} --paths compute --frames 15 --warmup 3 \
       --markdown "$out/qrefl2_show.md" --csv "$out/qrefl2_show.csv" > "$out/qrefl2_show.txt" 2>&1 || true
     cat "$out/qrefl2_show.md" 2>/dev/null; grep -h drift "$out/qrefl2_show.txt" || tail -5 "$out/qrefl2_show.txt"
     if [ "${QREFL2_IMAGE:-1}" = 1 ]; then   # QREFL2_IMAGE=0: copies that draw the same picture, time only

@@ -66,8 +66,11 @@ ivec2 invocationPixel() {
 // and the room; FrameRenderer sets it to {0, 1, 1, 0, room} before each frame. An entry is four
 // uvec4: the pixel (x | y << 16), the bounce's origin, its direction, where its march starts, the
 // throughput and the colour so far, all as the frame had them (the same picture, listed or not).
+// Two buffers: the head is written from the CPU each frame, the entries stay in the GPU's memory.
 layout(std430, binding = 3) buffer QuadDeferred {
     uint qd_groups, qd_groupsY, qd_groupsZ, qd_count, qd_room, qd_pad0, qd_pad1, qd_pad2;
+};
+layout(std430, binding = 4) buffer QuadDeferredEntries {
     uvec4 qd_entries[];
 };
 const uint QD_GROUP = uint(WORKGROUP_X * WORKGROUP_Y);

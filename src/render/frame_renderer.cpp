@@ -17,8 +17,9 @@ namespace sdfvj {
 
 namespace {
 constexpr int kConeTile = 8;   // main_comp.glsl's CONE_TILE
-constexpr GLuint kDeferBinding = 3;   // main_comp.glsl's QuadDeferred: a head of 8 uints, then 4 uvec4 an entry
-constexpr long long kDeferHeadBytes = 32, kDeferEntryBytes = 64;
+// main_comp.glsl's QuadDeferred (a head of 8 uints) and QuadDeferredEntries (4 uvec4 an entry)
+constexpr GLuint kDeferHeadBinding = 3, kDeferEntriesBinding = 4;
+constexpr long long kDeferEntryBytes = 64;
 }
 
 FrameRenderer::~FrameRenderer() { Release(); }
@@ -40,7 +41,8 @@ void FrameRenderer::Release() {
     if (stateBuffer_) glDeleteBuffers(1, &stateBuffer_);
     if (quadTexture_) glDeleteTextures(1, &quadTexture_);
     if (deferBuffer_) glDeleteBuffers(1, &deferBuffer_);
-    fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = quadTexture_ = deferBuffer_ = 0;
+    if (deferHead_) glDeleteBuffers(1, &deferHead_);
+    fbo_ = texture_ = vao_ = query_ = coneTexture_ = stateBuffer_ = quadTexture_ = deferBuffer_ = deferHead_ = 0;
     quadW_ = quadH_ = 0;
     deferRoom_ = 0;
     width_ = height_ = 0;
@@ -220,16 +222,23 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         }
         if (p.QuadDefer()) {   // the list of bounces left to their own dispatch, emptied (main_comp.glsl QuadDeferred)
             const long long room = deferRoomAsked_ >= 0 ? deferRoomAsked_ : (long long)width_ * height_ / 8;
-            if (!deferBuffer_ || room != deferRoom_) {
-                if (!deferBuffer_) glGenBuffers(1, &deferBuffer_);
+            if (!deferBuffer_ || room != deferRoom_) {   // the entries: immutable, no CPU access (the GPU's own memory)
+                if (!deferHead_) {
+                    glGenBuffers(1, &deferHead_);
+                    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferHead_);
+                    glBufferStorage(GL_SHADER_STORAGE_BUFFER, 32, nullptr, GL_DYNAMIC_STORAGE_BIT);
+                }
+                if (deferBuffer_) glDeleteBuffers(1, &deferBuffer_);
+                glGenBuffers(1, &deferBuffer_);
                 glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
-                glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(kDeferHeadBytes + std::max(room, 1LL) * kDeferEntryBytes), nullptr, GL_DYNAMIC_DRAW);
+                glBufferStorage(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(std::max(room, 1LL) * kDeferEntryBytes), nullptr, 0);
                 deferRoom_ = room;
             }
             const GLuint head[8] = {0u, 1u, 1u, 0u, (GLuint)std::min(room, (long long)UINT32_MAX), 0u, 0u, 0u};
-            glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+            glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferHead_);
             glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof head, head);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDeferBinding, deferBuffer_);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDeferHeadBinding, deferHead_);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDeferEntriesBinding, deferBuffer_);
         }
         p.Set("u_conePass", q.conePrepass ? 2.0f : 0.0f);
         // Strips of whole work-groups (main_comp.glsl adds u_rowOffset to each invocation's row).
@@ -242,7 +251,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         if (p.QuadDefer()) {   // the listed bounces, one an invocation, as many groups as the frame listed
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
             p.Set("u_conePass", 6.0f);
-            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, deferBuffer_);
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, deferHead_);
             glDispatchComputeIndirect(0);
             glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         }
@@ -267,9 +276,9 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
 }
 
 long long FrameRenderer::LastQuadDeferred() const {
-    if (!deferBuffer_) return 0;
+    if (!deferHead_) return 0;
     GLuint count = 0;
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferHead_);
     glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 12, sizeof count, &count);
     return count;
 }
