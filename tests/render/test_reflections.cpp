@@ -133,12 +133,12 @@ TEST_CASE("quad_reflections: the bounce traced once per 2x2 pixels shows, averag
     CHECK(odd.fractionOver <= 0.03);
 }
 
-// QUAD_REFLECTIONS_DEFER (render.glsl, the default): a pixel that no quad lends its bounce to is
-// listed by the frame, and a dispatch of its own traces the listed bounces. The same trace as in
-// the frame (QUAD_REFLECTIONS_DEFER 0), carried over as the frame had it: the same bytes, with room
-// in the list for every pixel, with the default room
-// (an eighth of the pixels; at this size mandelbulb lists about a quarter, so the rest trace their
-// own in the frame) and with room for 16. The list has pixels in it (the path ran).
+// QUAD_REFLECTIONS_DEFER 1 (render.glsl; mandelbulb declares it): a pixel that no quad lends its
+// bounce to is listed by the frame, and a dispatch of its own traces the listed bounces. The same
+// trace as in the frame (QUAD_REFLECTIONS_DEFER 0, the default), carried over as the frame had it:
+// the same bytes, with room in the list for every pixel, with the default room (an eighth of the
+// pixels; at this size mandelbulb lists about a quarter, so the rest trace their own in the frame)
+// and with room for 16. The list has pixels in it (the path ran).
 TEST_CASE("quad_reflections: the bounces left to a list of their own draw what the frame's own draw", "[reflections]") {
     const std::filesystem::path dir = std::filesystem::path(SDFVJ_TEST_OUTPUT_DIR) / "quad_defer";
     std::filesystem::create_directories(dir);
@@ -146,15 +146,21 @@ TEST_CASE("quad_reflections: the bounces left to a list of their own draw what t
     constexpr int kW = 192, kH = 108;
     for (const char* scene : {"mandelbulb", "field150"}) {
         SECTION(scene) {
-            const std::filesystem::path file = dir / (std::string(scene) + "_in_frame.glsl");
-            REQUIRE(WriteSceneCopy(scene, "#define QUAD_REFLECTIONS_DEFER 0", file));
-            long long none = 0;
-            const Image inFrame = RenderScene(file.string(), quads, RenderPath::Compute, kW, kH, 1.0, {}, Quality{}, 1, -1, &none);
+            const std::filesystem::path inFrameFile = dir / (std::string(scene) + "_in_frame.glsl");
+            const std::filesystem::path listedFile = dir / (std::string(scene) + "_listed.glsl");
+            REQUIRE(WriteSceneCopy(scene, "#define QUAD_REFLECTIONS_DEFER 0", inFrameFile));
+            REQUIRE(WriteSceneCopy(scene, "#define QUAD_REFLECTIONS_DEFER 1", listedFile));
+            long long none = 0, shipped = 0;
+            const Image inFrame = RenderScene(inFrameFile.string(), quads, RenderPath::Compute, kW, kH, 1.0, {}, Quality{}, 1, -1, &none);
             CHECK(none == 0);   // the copy without has no list
+            // As shipped: mandelbulb lists (its header asks), field150 does not.
+            const Image asShipped = RenderScene(scene, quads, RenderPath::Compute, kW, kH, 1.0, {}, Quality{}, 1, -1, &shipped);
+            CHECK((shipped > 0) == (std::string(scene) == "mandelbulb"));
+            CHECK(CompareImages(asShipped, inFrame, 0).maxAbs == 0);
             long long first = -1;
             for (long long room : {(long long)kW * kH, -1LL, 16LL}) {
                 long long listed = 0;
-                const Image img = RenderScene(scene, quads, RenderPath::Compute, kW, kH, 1.0, {}, Quality{}, 1, room, &listed);
+                const Image img = RenderScene(listedFile.string(), quads, RenderPath::Compute, kW, kH, 1.0, {}, Quality{}, 1, room, &listed);
                 const ImageDiff d = CompareImages(img, inFrame, 0);
                 INFO("room " << room << ": " << listed << " of " << kW * kH << " pixels listed; against the frame's own: max "
                      << d.maxAbs << ", " << d.fractionOver * 100 << " % moved");
