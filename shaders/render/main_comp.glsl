@@ -61,59 +61,30 @@ ivec2 invocationPixel() {
 }
 
 #if USE_QUAD_DEFER
-// A listed bounce (render.glsl QUAD_REFLECTIONS_DEFER) as four uvec4: the pixel (x | y << 16), the
-// bounce's origin, its direction, where its march starts, the throughput and the colour so far,
-// all as the frame had them (the same picture, listed or not).
-void quadDeferEncode(ivec2 pixel, vec3 ro, vec3 rd, float tNext, vec3 throughput, vec3 col,
-                     out uvec4 a, out uvec4 b, out uvec4 c, out uvec4 d) {
-    a = uvec4(uint(pixel.x) | (uint(pixel.y) << 16), floatBitsToUint(ro));
-    b = uvec4(floatBitsToUint(rd), floatBitsToUint(tNext));
-    c = uvec4(floatBitsToUint(throughput), floatBitsToUint(col.r));
-    d = uvec4(floatBitsToUint(col.gb), 0u, 0u);
-}
-// ... and back: the pixel, and traceRay's start (render.glsl g_defer*).
-ivec2 quadDeferDecode(uvec4 a, uvec4 b, uvec4 c, uvec4 d) {
-    g_deferRo = uintBitsToFloat(a.yzw);
-    g_deferRd = uintBitsToFloat(b.xyz);
-    g_deferTNext = uintBitsToFloat(b.w);
-    g_deferThroughput = uintBitsToFloat(c.xyz);
-    g_deferCol = vec3(uintBitsToFloat(c.w), uintBitsToFloat(d.xy));
-    g_deferPass = true;
-    return ivec2(int(a.x & 0xffffu), int(a.x >> 16));
-}
-const uint QD_GROUP = uint(WORKGROUP_X * WORKGROUP_Y);
-#if QUAD_REFLECTIONS_DEFER == 2
-// QUAD_REFLECTIONS_DEFER 2: the group's own list, in shared memory; the group traces it after its
-// pixels, its bounces side by side in as few warps as they fill (main below).
-shared uint s_qdCount;
-shared uvec4 s_qd[4u * QD_GROUP];
-
-bool quadDeferPush(ivec2 pixel, vec3 ro, vec3 rd, float tNext, vec3 throughput, vec3 col) {
-    uint i = atomicAdd(s_qdCount, 1u);
-    quadDeferEncode(pixel, ro, rd, tNext, throughput, col, s_qd[4u * i], s_qd[4u * i + 1u], s_qd[4u * i + 2u], s_qd[4u * i + 3u]);
-    return true;
-}
-#else
-// The frame's list, for a dispatch of its own. The head is the dispatch's size (groups x, y, z:
-// glDispatchComputeIndirect reads it), the entries counted and the room; FrameRenderer sets it to
-// {0, 1, 1, 0, room} before each frame. Two buffers: the head is written from the CPU each frame,
-// the entries stay in the GPU's memory.
+// The bounces the frame left for their own dispatch (render.glsl QUAD_REFLECTIONS_DEFER). The head
+// is the dispatch's size (groups x, y, z: glDispatchComputeIndirect reads it), the entries counted
+// and the room; FrameRenderer sets it to {0, 1, 1, 0, room} before each frame. An entry is four
+// uvec4: the pixel (x | y << 16), the bounce's origin, its direction, where its march starts, the
+// throughput and the colour so far, all as the frame had them (the same picture, listed or not).
+// Two buffers: the head is written from the CPU each frame, the entries stay in the GPU's memory.
 layout(std430, binding = 3) buffer QuadDeferred {
     uint qd_groups, qd_groupsY, qd_groupsZ, qd_count, qd_room, qd_pad0, qd_pad1, qd_pad2;
 };
 layout(std430, binding = 4) buffer QuadDeferredEntries {
     uvec4 qd_entries[];
 };
+const uint QD_GROUP = uint(WORKGROUP_X * WORKGROUP_Y);
 
 bool quadDeferPush(ivec2 pixel, vec3 ro, vec3 rd, float tNext, vec3 throughput, vec3 col) {
     uint i = atomicAdd(qd_count, 1u);
     if (i >= qd_room) return false;
     if (i % QD_GROUP == 0u) atomicMax(qd_groups, i / QD_GROUP + 1u);
-    quadDeferEncode(pixel, ro, rd, tNext, throughput, col, qd_entries[4u * i], qd_entries[4u * i + 1u],
-                    qd_entries[4u * i + 2u], qd_entries[4u * i + 3u]);
+    qd_entries[4u * i] = uvec4(uint(pixel.x) | (uint(pixel.y) << 16), floatBitsToUint(ro));
+    qd_entries[4u * i + 1u] = uvec4(floatBitsToUint(rd), floatBitsToUint(tNext));
+    qd_entries[4u * i + 2u] = uvec4(floatBitsToUint(throughput), floatBitsToUint(col.r));
+    qd_entries[4u * i + 3u] = uvec4(floatBitsToUint(col.gb), 0u, 0u);
     return true;
 }
-#endif
 #endif
 
 void main() {
@@ -166,36 +137,18 @@ void main() {
         return;
     }
 #endif
-#if USE_QUAD_DEFER && QUAD_REFLECTIONS_DEFER == 2
-    // The frame in two rounds, one call site: the group's pixels, then the bounces they listed.
-    pixel.y += u_rowOffset;
-    bool inside = pixel.x < int(u_resolution.x) && pixel.y < int(u_resolution.y);
-    if (gl_LocalInvocationIndex == 0u) s_qdCount = 0u;
-    memoryBarrierShared();
-    barrier();
-    for (int round = 0; round < 2; round++) {
-        if (round == 1) {
-            memoryBarrierShared();
-            barrier();
-            g_deferred = false;
-            uint i = gl_LocalInvocationIndex;
-            inside = i < s_qdCount;
-            if (inside) pixel = quadDeferDecode(s_qd[4u * i], s_qd[4u * i + 1u], s_qd[4u * i + 2u], s_qd[4u * i + 3u]);
-        }
-        if (inside) {
-            g_pixel = pixel;
-            vec2 fragCoord = vec2(pixel) + 0.5;
-            float tStart = u_conePass == 2 ? imageLoad(u_coneStart, pixel / CONE_TILE).x : 0.0;
-            vec4 c = renderPixel(fragCoord, tStart);
-            if (!g_deferred) imageStore(u_output, pixel, c);
-        }
-    }
-    return;
-#elif USE_QUAD_DEFER
+#if USE_QUAD_DEFER
     if (u_conePass == 6) {   // the listed bounces (render.glsl QUAD_REFLECTIONS_DEFER), one an invocation
         uint i = gl_WorkGroupID.x * QD_GROUP + gl_LocalInvocationIndex;
         if (i >= min(qd_count, qd_room)) return;
-        pixel = quadDeferDecode(qd_entries[4u * i], qd_entries[4u * i + 1u], qd_entries[4u * i + 2u], qd_entries[4u * i + 3u]);
+        uvec4 a = qd_entries[4u * i], b = qd_entries[4u * i + 1u], c = qd_entries[4u * i + 2u], d = qd_entries[4u * i + 3u];
+        pixel = ivec2(int(a.x & 0xffffu), int(a.x >> 16));
+        g_deferRo = uintBitsToFloat(a.yzw);
+        g_deferRd = uintBitsToFloat(b.xyz);
+        g_deferTNext = uintBitsToFloat(b.w);
+        g_deferThroughput = uintBitsToFloat(c.xyz);
+        g_deferCol = vec3(uintBitsToFloat(c.w), uintBitsToFloat(d.xy));
+        g_deferPass = true;
     } else
 #endif
     pixel.y += u_rowOffset;

@@ -150,9 +150,6 @@ TEST_CASE("quad_reflections: the bounces left to a list of their own draw what t
             const std::filesystem::path listedFile = dir / (std::string(scene) + "_listed.glsl");
             REQUIRE(WriteSceneCopy(scene, "#define QUAD_REFLECTIONS_DEFER 0", inFrameFile));
             REQUIRE(WriteSceneCopy(scene, "#define QUAD_REFLECTIONS_DEFER 1", listedFile));
-            const std::filesystem::path groupFile = dir / (std::string(scene) + "_group.glsl");
-            REQUIRE(WriteSceneCopy(scene, "#define QUAD_REFLECTIONS_DEFER 2", groupFile));
-            CHECK(CompareImages(RenderScene(groupFile.string(), quads, RenderPath::Compute, kW, kH), RenderScene(inFrameFile.string(), quads, RenderPath::Compute, kW, kH), 0).maxAbs == 0);
             long long none = 0, shipped = 0;
             const Image inFrame = RenderScene(inFrameFile.string(), quads, RenderPath::Compute, kW, kH, 1.0, {}, Quality{}, 1, -1, &none);
             CHECK(none == 0);   // the copy without has no list
