@@ -314,7 +314,7 @@ private:
     unsigned quadTexture_ = 0;   // rgba32ui, one texel per 2x2 pixels (Program::QuadReflections), made when first asked for
     int quadW_ = 0, quadH_ = 0;
     unsigned deferHead_ = 0, deferBuffer_ = 0;   // the list of bounces (Program::QuadDefer): its head, room for deferRoom_ entries
-    long long deferRoom_ = 0;
+    long long deferRoom_ = 0, deferFailed_ = 0;   // the room made; the room asked for that no memory held (0: none)
     long long deferRoomAsked_ = -1;   // SetQuadDeferRoom; -1: an eighth of the frame's pixels
     double lastGpuMs_ = 0.0;
     int strips_ = 1;

@@ -138,7 +138,8 @@ TEST_CASE("quad_reflections: the bounce traced once per 2x2 pixels shows, averag
 // trace as in the frame (QUAD_REFLECTIONS_DEFER 0, the default), carried over as the frame had it:
 // the same bytes, with room in the list for every pixel, with the default room (an eighth of the
 // pixels; at this size mandelbulb lists about a quarter, so the rest trace their own in the frame)
-// and with room for 16. The list has pixels in it (the path ran).
+// with room for 16, and asked for more room than memory holds. The list has pixels in it (the path
+// ran).
 TEST_CASE("quad_reflections: the bounces left to a list of their own draw what the frame's own draw", "[reflections]") {
     const std::filesystem::path dir = std::filesystem::path(SDFVJ_TEST_OUTPUT_DIR) / "quad_defer";
     std::filesystem::create_directories(dir);
@@ -158,7 +159,9 @@ TEST_CASE("quad_reflections: the bounces left to a list of their own draw what t
             CHECK((shipped > 0) == (std::string(scene) == "mandelbulb"));
             CHECK(CompareImages(asShipped, inFrame, 0).maxAbs == 0);
             long long first = -1;
-            for (long long room : {(long long)kW * kH, -1LL, 16LL}) {
+            // Room for every pixel, the default, 16, and more than any memory holds (the list then has
+            // room for none: every bounce traced in the frame).
+            for (long long room : {(long long)kW * kH, -1LL, 16LL, 1LL << 40}) {
                 long long listed = 0;
                 const Image img = RenderScene(listedFile.string(), quads, RenderPath::Compute, kW, kH, 1.0, {}, Quality{}, 1, room, &listed);
                 const ImageDiff d = CompareImages(img, inFrame, 0);
