@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -70,9 +71,21 @@ int RunBench(const BenchOptions& o) {
     BenchCsv csv;
     // One target per size, so all sizes interleave without reallocating.
     std::vector<std::unique_ptr<FrameRenderer>> targets;
+    // SDFVJ_QUAD_DEFER_ROOM=N (a measurement's knob): the room of a `quad_reflections` list
+    // (render.glsl QUAD_REFLECTIONS_DEFER; FrameRenderer::SetQuadDeferRoom); 0 times a listing
+    // program with every bounce traced in the frame.
+    long long deferRoom = -1;
+    if (const char* env = std::getenv("SDFVJ_QUAD_DEFER_ROOM"); env && *env) {
+        const char* end = env + std::char_traits<char>::length(env);
+        long long v = 0;
+        const auto [at, ec] = std::from_chars(env, end, v);
+        if (ec != std::errc() || at != end || v < 0) { std::fprintf(stderr, "sdfvj bench: SDFVJ_QUAD_DEFER_ROOM=%s: expected a count of entries, 0 or more\n", env); return 2; }
+        deferRoom = v;
+    }
     for (auto [w, h] : sizes) {
         targets.push_back(std::make_unique<FrameRenderer>());
         if (!targets.back()->Resize(w, h, &error)) { std::fprintf(stderr, "sdfvj bench: %s\n", error.c_str()); return 2; }
+        targets.back()->SetQuadDeferRoom(deferRoom);
     }
     // Every program first: each (scene, test, size, path) is one setting, and each round draws
     // every setting once, so a clock change lands on all of them alike (scenes and sizes are
