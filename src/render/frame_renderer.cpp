@@ -221,35 +221,7 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
         if (p.QuadDefer()) {   // the list of bounces left to their own dispatch, emptied (main_comp.glsl QuadDeferred)
-            long long room = deferRoomAsked_ >= 0 ? deferRoomAsked_ : (long long)width_ * height_ / 8;
-            if (!deferHead_) {
-                glGenBuffers(1, &deferHead_);
-                glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferHead_);
-                glBufferStorage(GL_SHADER_STORAGE_BUFFER, 32, nullptr, GL_DYNAMIC_STORAGE_BIT);
-            }
-            // The entries: immutable, no CPU access (the GPU's own memory); grown, never shrunk, and not
-            // asked again for a size the driver had no memory for.
-            if (!deferBuffer_ || (room > deferRoom_ && (deferFailed_ == 0 || room < deferFailed_))) {
-                if (deferBuffer_) glDeleteBuffers(1, &deferBuffer_);
-                glGenBuffers(1, &deferBuffer_);
-                glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
-                const GLsizeiptr want = (GLsizeiptr)(std::max(room, 1LL) * kDeferEntryBytes);
-                glBufferStorage(GL_SHADER_STORAGE_BUFFER, want, nullptr, 0);
-                GLint64 got = 0;
-                glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &got);
-                if (got < want) {   // no memory for it: a list of one entry, every pixel's bounce traced in the frame
-                    while (glGetError() != GL_NO_ERROR) {}   // its GL_OUT_OF_MEMORY, not a later check's
-                    glDeleteBuffers(1, &deferBuffer_);
-                    glGenBuffers(1, &deferBuffer_);
-                    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
-                    glBufferStorage(GL_SHADER_STORAGE_BUFFER, kDeferEntryBytes, nullptr, 0);
-                    deferRoom_ = 0;
-                    deferFailed_ = room;
-                } else {
-                    deferRoom_ = room;
-                }
-            }
-            room = std::min(room, deferRoom_);
+            const long long room = QuadDeferRoom();
             const GLuint head[8] = {0u, 1u, 1u, 0u, (GLuint)std::min(room, (long long)UINT32_MAX), 0u, 0u, 0u};
             glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferHead_);
             glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof head, head);
@@ -289,6 +261,38 @@ void FrameRenderer::Draw(const Program& program, const SceneInfo& scene, const F
         glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
         lastGpuMs_ = (double)ns * 1e-6;
     }
+}
+
+long long FrameRenderer::QuadDeferRoom() {
+    const long long room = deferRoomAsked_ >= 0 ? deferRoomAsked_ : (long long)width_ * height_ / 8;
+    if (!deferHead_) {
+        glGenBuffers(1, &deferHead_);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferHead_);
+        glBufferStorage(GL_SHADER_STORAGE_BUFFER, 32, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    // The entries: immutable, no CPU access (the GPU's own memory); grown, never shrunk, and not
+    // asked again for a size the driver had no memory for.
+    if (deferBuffer_ && (room <= deferRoom_ || (deferFailed_ != 0 && room >= deferFailed_))) return std::min(room, deferRoom_);
+    if (deferBuffer_) glDeleteBuffers(1, &deferBuffer_);
+    glGenBuffers(1, &deferBuffer_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+    const GLsizeiptr want = (GLsizeiptr)(std::max(room, 1LL) * kDeferEntryBytes);
+    glBufferStorage(GL_SHADER_STORAGE_BUFFER, want, nullptr, 0);
+    GLint64 got = 0;
+    glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &got);
+    if (got >= want) {
+        deferRoom_ = room;
+        return room;
+    }
+    // No memory for it: a list of one entry with room for none, every pixel's bounce traced in the frame.
+    while (glGetError() != GL_NO_ERROR) {}   // its GL_OUT_OF_MEMORY, not a later check's
+    glDeleteBuffers(1, &deferBuffer_);
+    glGenBuffers(1, &deferBuffer_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+    glBufferStorage(GL_SHADER_STORAGE_BUFFER, kDeferEntryBytes, nullptr, 0);
+    deferRoom_ = 0;
+    deferFailed_ = room;
+    return 0;
 }
 
 long long FrameRenderer::LastQuadDeferred() const {

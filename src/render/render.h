@@ -302,6 +302,8 @@ private:
     };
     void Release();
     static void ReleaseTarget(Target& t);
+    // The list's buffers made or grown for this frame's room (SetQuadDeferRoom); the room they hold.
+    long long QuadDeferRoom();
     Target Current() const { return {width_, height_, floatTarget_, fbo_, texture_, coneTexture_}; }
     int width_ = 0, height_ = 0;
     bool floatTarget_ = false;
