@@ -61,7 +61,7 @@ ivec2 invocationPixel() {
 }
 
 #if USE_QUAD_DEFER
-// The bounces the frame left for their own dispatch (render.glsl QUAD_REFLECTIONS_DEFER). The head
+// The bounces the frame left for their own dispatch (quad_reflections.glsl QUAD_REFLECTIONS_DEFER). The head
 // is the dispatch's size (groups x, y, z: glDispatchComputeIndirect reads it), the entries counted
 // and the room; FrameRenderer sets it to {0, 1, 1, 0, room} before each frame. An entry is four
 // uvec4: the pixel (x | y << 16), the bounce's origin, its direction, where its march starts, the
@@ -124,7 +124,7 @@ void main() {
         return;
     }
 #if USE_QUAD_REFLECTIONS
-    if (u_conePass == 4 || u_conePass == 5) {   // the quads' bounces (render.glsl QUAD_REFLECTIONS): 4 after the cone pre-pass, 5 without
+    if (u_conePass == 4 || u_conePass == 5) {   // the quads' bounces (quad_reflections.glsl QUAD_REFLECTIONS): 4 after the cone pre-pass, 5 without
         if (pixel.x >= (int(u_resolution.x) + 1) / 2 || pixel.y >= (int(u_resolution.y) + 1) / 2) return;
         callSceneSetup();
         // Through the quad's centre; its pixels share one cone tile (tiles are 8 wide, quads 2).
@@ -138,7 +138,7 @@ void main() {
     }
 #endif
 #if USE_QUAD_DEFER
-    if (u_conePass == 6) {   // the listed bounces (render.glsl QUAD_REFLECTIONS_DEFER), one an invocation
+    if (u_conePass == 6) {   // the listed bounces (quad_reflections.glsl QUAD_REFLECTIONS_DEFER), one an invocation
         uint i = gl_WorkGroupID.x * QD_GROUP + gl_LocalInvocationIndex;
         if (i >= min(qd_count, qd_room)) return;
         uvec4 a = qd_entries[4u * i], b = qd_entries[4u * i + 1u], c = qd_entries[4u * i + 2u], d = qd_entries[4u * i + 3u];

@@ -50,7 +50,7 @@ vec4 map(vec3 p) {
 vec4 sceneBound() { return vec4(0.0f, 0.0f, 0.0f, mandelbulbBoundingRadius(max(u_power, 2.0f)) + 0.1f); }
 
 // With `quad_reflections`, the fractal's folds leave many pixels no quad lends its bounce to: they
-// are listed and traced in a dispatch of their own (render.glsl QUAD_REFLECTIONS_DEFER), 5 % off its
+// are listed and traced in a dispatch of their own (quad_reflections.glsl QUAD_REFLECTIONS_DEFER), 5 % off its
 // 7680x4320 show on an H200 (9.10 -> 8.63 ms). Scenes with few such pixels pay more for the list's
 // dispatch than they save (docs/performance.md, session 48). Guarded, so a copy can try without.
 #ifndef QUAD_REFLECTIONS_DEFER

@@ -72,7 +72,7 @@ int RunBench(const BenchOptions& o) {
     // One target per size, so all sizes interleave without reallocating.
     std::vector<std::unique_ptr<FrameRenderer>> targets;
     // SDFVJ_QUAD_DEFER_ROOM=N (a measurement's knob): the room of a `quad_reflections` list
-    // (render.glsl QUAD_REFLECTIONS_DEFER; FrameRenderer::SetQuadDeferRoom); 0 times a listing
+    // (quad_reflections.glsl QUAD_REFLECTIONS_DEFER; FrameRenderer::SetQuadDeferRoom); 0 times a listing
     // program with every bounce traced in the frame.
     long long deferRoom = -1;
     if (const char* env = std::getenv("SDFVJ_QUAD_DEFER_ROOM"); env && *env) {

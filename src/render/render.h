@@ -136,10 +136,10 @@ public:
     // A compute program whose scene's setup runs once per frame (main_comp.glsl SCENE_STATE_FRAME):
     // FrameRenderer binds the state's buffer and has it filled before the frame.
     bool FrameState() const { return frameState_; }
-    // A compute program that traces its bounce once per 2x2 pixels (render.glsl QUAD_REFLECTIONS):
+    // A compute program that traces its bounce once per 2x2 pixels (quad_reflections.glsl QUAD_REFLECTIONS):
     // FrameRenderer dispatches the quads' pass, into an image of its own, before the frame.
     bool QuadReflections() const { return quadReflections_; }
-    // ... and leaves the bounces no quad lends to a list (render.glsl QUAD_REFLECTIONS_DEFER), which
+    // ... and leaves the bounces no quad lends to a list (quad_reflections.glsl QUAD_REFLECTIONS_DEFER), which
     // FrameRenderer traces in a dispatch of their own after the frame.
     bool QuadDefer() const { return quadDefer_; }
     const ShaderSource& Source() const { return source_; }

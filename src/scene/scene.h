@@ -44,7 +44,7 @@ struct EffectSet {
     int normals = 0;        // 0 central, 1 forward, 2 tetrahedron
     bool marchFixed = false;
     bool directReflections = false;   // `direct_reflections`: a reflection lands on a surface lit without its shadow ray or AO, in at most 48 steps (render.glsl BOUNCE_LIGHT 2, BOUNCE_STEPS 48)
-    bool quadReflections = false;   // `quad_reflections`: the bounce traced once per 2x2 pixels (render.glsl QUAD_REFLECTIONS; compute path)
+    bool quadReflections = false;   // `quad_reflections`: the bounce traced once per 2x2 pixels (quad_reflections.glsl QUAD_REFLECTIONS; compute path)
     int supersample = 0;   // 1 `ssaa`: 4 samples a pixel, shading shared per surface; 2 `ssaa_exact`: each sample shaded (render/supersample.glsl)
     auto operator<=>(const EffectSet&) const = default;
 };

@@ -95,7 +95,7 @@ TEST_CASE("bounce bound: a reflection's shadow and AO are skipped only where the
     }
 }
 
-// `quad_reflections` (render.glsl QUAD_REFLECTIONS): the bounce traced once per 2x2 pixels through
+// `quad_reflections` (quad_reflections.glsl QUAD_REFLECTIONS): the bounce traced once per 2x2 pixels through
 // their centre, in a dispatch before the frame, each pixel weighting it by its own Fresnel term. A
 // frame drawn 2x2 supersampled, shown averaged 2x2, reflects at the shown pixel's rate: it must
 // show nearly what tracing every pixel's bounce shows (the reflection of a neighbouring surface
@@ -133,7 +133,7 @@ TEST_CASE("quad_reflections: the bounce traced once per 2x2 pixels shows, averag
     CHECK(odd.fractionOver <= 0.03);
 }
 
-// QUAD_REFLECTIONS_DEFER 1 (render.glsl; mandelbulb declares it): a pixel that no quad lends its
+// QUAD_REFLECTIONS_DEFER 1 (quad_reflections.glsl; mandelbulb declares it): a pixel that no quad lends its
 // bounce to is listed by the frame, and a dispatch of its own traces the listed bounces. The same
 // trace as in the frame (QUAD_REFLECTIONS_DEFER 0, the default), carried over as the frame had it:
 // the same bytes, with room in the list for every pixel, with the default room (an eighth of the
