@@ -132,8 +132,7 @@ void main() {
         g_quadPass = true;
         Hit none = Hit(0.0, 0.0, false, vec3(0.0), 0.0);
         traceRay(u_camPos, cameraRay(vec2(pixel * 2) + 1.0), tStart, none, false);
-        imageStore(u_quadReflections, pixel, uvec4(packHalf2x16(g_bounceLight.rg), packHalf2x16(vec2(g_bounceLight.b, g_firstT)),
-                                                    packSnorm2x16(octEncode(g_firstN)), 0u));
+        imageStore(u_quadReflections, pixel, quadTexel(g_bounceLight, g_firstT, g_firstN, g_shadeSeen));
         return;
     }
 #endif

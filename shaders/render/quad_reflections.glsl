@@ -48,9 +48,26 @@
 #define USE_QUAD_DEFER 0
 #endif
 
+// QUAD_SHADE (with quad_reflections): the quads' pass also lends its centre's ambient occlusion (1),
+// its shadow ray (2) or both (3, the default) to the frame pixels on the centre's surface: the quad
+// whose bounce the pixel takes (above), where the pixel's hit lies within two hit thresholds and two
+// pixel footprints of the centre's tangent plane (a step's lower side does not borrow the upper's
+// light). What a pixel borrows it does not trace. In the 7680x4320 show the primary hit's shadow
+// and AO are so found once per shown pixel, as the bounce is; its four samples keep their own march,
+// normal and material. 0: every pixel traces its own.
+#ifndef QUAD_SHADE
+#define QUAD_SHADE 1
+#endif
+#if USE_QUAD_REFLECTIONS && QUAD_SHADE != 0
+#define USE_QUAD_SHADE 1
+#else
+#define USE_QUAD_SHADE 0
+#endif
+
 #if USE_QUAD_REFLECTIONS
-// One texel per 2x2 pixels: what the centre's bounce saw (halves: r g, b and the centre's depth, -1
-// for the sky) and the centre's normal (octahedral, snorm 16).
+// One texel per 2x2 pixels: what the centre's bounce saw (halves r g | b, then the centre's shadow
+// and occlusion as 8 bits each, 255 where it traced none), the centre's normal (octahedral, snorm
+// 16) and its depth (float; -1 for the sky).
 layout(rgba32ui, binding = 2) uniform uimage2D u_quadReflections;
 bool g_quadPass = false;   // the quads' own dispatch: traceRay shades only the bounce, into g_bounceLight
 vec3 g_bounceLight = vec3(0.0f);
@@ -58,25 +75,55 @@ float g_firstT = -1.0f;    // the primary hit's distance (-1: the sky) and norma
 vec3 g_firstN = vec3(0.0f, 1.0f, 0.0f);   // the centre's, the frame compares a pixel's with them
 ivec2 g_pixel = ivec2(0);  // the frame's pixel (main_comp.glsl)
 bool g_deferPass = false;  // the list's dispatch (QUAD_REFLECTIONS_DEFER): traceRay starts at the bounce
+uvec4 g_quad = uvec4(0u);  // the frame pixel's quad (quadFind), and whether its surface is the centre's
+bool g_quadFound = false;
+vec2 g_shadeSeen = vec2(-1.0f);   // the quads' pass: the centre's shadow and occlusion (-1: not traced)
+vec2 g_shadeLent = vec2(-1.0f);   // the frame's primary hit: its quad's (-1: the pixel traces its own)
 
-// What the quads' pass saw for this frame pixel's bounce, or -1 where it traces its own: a pixel
-// whose surface is not the centre's (its depth 2 % or more off, the centre sees the sky, or its
-// normal turned more than about 8 degrees from the centre's) traces its own (QUAD_REFLECTIONS_OWN
-// 1, the default). With QUAD_REFLECTIONS_NEAR 1 (the default) it first asks the three quads beside
-// it on its side the same: an edge's pixel is often the neighbour's surface, and a fold's normal
-// often a neighbour's.
-vec3 quadBounceSeen() {
+// The quads' pass's texel for its centre.
+uvec4 quadTexel(vec3 bounceLight, float t, vec3 n, vec2 shade) {
+    uvec2 s = uvec2(shade.x < 0.0f ? 255u : uint(round(saturate(shade.x) * 254.0f)),
+                    shade.y < 0.0f ? 255u : uint(round(saturate(shade.y) * 254.0f)));
+    return uvec4(packHalf2x16(bounceLight.rg), (packHalf2x16(vec2(bounceLight.b, 0.0f)) & 0xffffu) | (s.x << 16) | (s.y << 24),
+                 packSnorm2x16(octEncode(n)), floatBitsToUint(t));
+}
+
+// The frame pixel's primary hit at p (its g_firstT, g_firstN set): finds the quad whose centre's
+// surface it is on, for its bounce (quadBounceSeen) and its light (g_shadeLent). A pixel whose
+// depth is 2 % or more off the centre's, the centre seeing the sky, or whose normal turned more than
+// about 8 degrees from the centre's is not on it. With QUAD_REFLECTIONS_NEAR 1 (the default) the
+// pixel asks its own quad, then the three beside it on its side: an edge's pixel is often the
+// neighbour's surface, and a fold's normal often a neighbour's.
+void quadFind(vec3 p) {
     ivec2 side = (g_pixel & 1) * 2 - 1;
     for (int k = 0; k < (QUAD_REFLECTIONS_NEAR != 0 ? 4 : 1); k++) {
         ivec2 q = (g_pixel >> 1) + (k == 1 ? ivec2(side.x, 0) : k == 2 ? ivec2(0, side.y) : k == 3 ? side : ivec2(0));
         q = clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);   // this frame's quads only
         uvec4 quad = imageLoad(u_quadReflections, q);
-        vec2 rg = unpackHalf2x16(quad.x), bt = unpackHalf2x16(quad.y);
-        if ((QUAD_REFLECTIONS_OWN == 0 && k == 0) ||
-            (abs(bt.y - g_firstT) <= 0.02f * g_firstT && dot(octDecode(unpackSnorm2x16(quad.z)), g_firstN) >= QUAD_REFLECTIONS_COS))
-            return vec3(rg, bt.x);
+        float tc = uintBitsToFloat(quad.w);
+        vec3 nc = octDecode(unpackSnorm2x16(quad.z));
+        if (abs(tc - g_firstT) <= 0.02f * g_firstT && dot(nc, g_firstN) >= QUAD_REFLECTIONS_COS) {
+            g_quad = quad, g_quadFound = true;
+#if USE_QUAD_SHADE
+            vec3 pc = u_camPos + cameraRay(vec2(q * 2) + 1.0f) * tc;
+            if (abs(dot(p - pc, nc)) <= 2.0f * (hitEpsilon(g_firstT) + g_firstT * pixelAngle())) {
+                uvec2 s = uvec2((quad.y >> 16) & 0xffu, quad.y >> 24);
+                g_shadeLent = vec2((QUAD_SHADE & 2) != 0 && s.x != 255u ? float(s.x) / 254.0f : -1.0f,
+                                   (QUAD_SHADE & 1) != 0 && s.y != 255u ? float(s.y) / 254.0f : -1.0f);
+            }
+#endif
+            return;
+        }
     }
-    return vec3(-1.0f);
+    // QUAD_REFLECTIONS_OWN 0: the pixel takes its own quad's bounce all the same (not its light)
+    if (QUAD_REFLECTIONS_OWN == 0) g_quad = imageLoad(u_quadReflections, clamp(g_pixel >> 1, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1)), g_quadFound = true;
+}
+
+// What the quads' pass saw for this frame pixel's bounce, or -1 where it traces its own (its surface
+// is not its quad's centre's: quadFind; QUAD_REFLECTIONS_OWN 1, the default).
+vec3 quadBounceSeen() {
+    if (!g_quadFound) return vec3(-1.0f);
+    return vec3(unpackHalf2x16(g_quad.x), unpackHalf2x16(g_quad.y).x);
 }
 #endif
 #if USE_QUAD_DEFER

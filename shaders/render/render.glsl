@@ -341,12 +341,11 @@ vec3 surfaceNormal(vec3 p, float t) {
 #endif
 }
 
+#include "render/quad_reflections.glsl"
 #include "render/shade.glsl"
 
 // The step budget of a ray: a reflection's is BOUNCE_STEPS where it sets one.
 int rayMaxSteps(int bounce) { return bounce == 0 || BOUNCE_STEPS <= 0 ? u_maxSteps : min(u_maxSteps, BOUNCE_STEPS); }
-
-#include "render/quad_reflections.glsl"
 
 // The primary ray (from `ro` along `rd`) and each mirror bounce run one loop body: one copy of the
 // march, the normal and the shading, not one per bounce (NVIDIA ran a bounce's own copy at 5x the
@@ -405,15 +404,19 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         return vec4(h.hit ? h.t : -1.0f, oct.x, oct.y, h.steps + outOfSteps);
 #endif
 #if USE_QUAD_REFLECTIONS
-        if (g_quadPass) {
-            if (bounce == 1) g_bounceLight = shadeRay(ro, rd, h, n, bounce, col, throughput);
+        if (bounce == 0 && h.hit) {
+            g_firstT = h.t, g_firstN = n;
+            if (!g_quadPass) quadFind(ro + rd * h.t);   // the quad lending this pixel its bounce (and light: QUAD_SHADE)
+        }
+        if (g_quadPass) {   // the centre's bounce; its own light too where it lends it (shadeSurface keeps it)
+            if (bounce == 1 || USE_QUAD_SHADE != 0) {
+                vec3 seen = shadeRay(ro, rd, h, n, bounce, col, throughput);
+                if (bounce == 1) g_bounceLight = seen;
+            }
         } else
 #endif
         col += throughput * shadeRay(ro, rd, h, n, bounce, col, throughput);
         if (!h.hit || bounce == bounces) break;
-#if USE_QUAD_REFLECTIONS
-        if (bounce == 0) g_firstT = h.t, g_firstN = n;
-#endif
         throughput *= fresnelSchlick(max(dot(n, -rd), 0.0f), baseReflectance(h.albedo, u_metalness)) * (1.0f - u_roughness);
         tNext = bounce == 0 ? mirrorStart(ro, rd, h, n, tStart) : 0.0f;
         ro = ro + rd * h.t + n * (4.0f * hitEpsilon(h.t));

@@ -34,6 +34,17 @@ vec3 litSurface(vec3 n, vec3 rd, vec3 albedo, float shadow, float occlusion) {
 // Linear radiance to the display colour: tone mapped, sRGB (supersample.glsl averages these).
 vec3 displayColor(vec3 col) { return linearToSRGB(toneMapACES(col)); }
 
+// The shadow ray SHADOWS asks for (1 hard, 2 soft, 3 improved soft) along l over the range sr.
+float shadowTrace(vec3 ro, vec3 l, vec2 sr) {
+#if SHADOWS == 1
+    return shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
+#elif SHADOWS == 3
+    return shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
+#else
+    return shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
+#endif
+}
+
 // Direct light plus ambient at a surface point (linear radiance); bounce > 0: a surface a
 // reflection met (BOUNCE_LIGHT, BOUNCE_BOUND). before, weight: the pixel's radiance so far and
 // what the mirror passes of this surface's (BOUNCE_BOUND).
@@ -54,21 +65,30 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec
     // Every direct term (Lambert, Blinn-Phong, Cook-Torrance) carries max(n.l, 0), so a surface
     // turned away from the light needs no shadow ray: skipping it changes no pixel.
     bool facesLight = dot(n, l) > 0.0f && (BOUNCE_LIGHT < 2 || bounce == 0);
+    // What this surface's shadow ray and AO found (-1: not traced); a frame pixel's primary hit may
+    // borrow its quad centre's (quad_reflections.glsl QUAD_SHADE), whose pass keeps what it found.
+    vec2 traced = vec2(-1.0f);
+    vec2 lent = vec2(-1.0f);
+#if USE_QUAD_SHADE
+    if (bounce == 0) lent = g_shadeLent;
+#endif
     WORK_PHASE(bounce == 0 ? 2 : 6);
-#if SHADOWS == 1
-    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, 1e6f);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowHard(ro, l, sr.x, sr.y, u_shadowSteps) : 0.5f;
-#elif SHADOWS == 2
-    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK) : 0.5f;
-#elif SHADOWS == 3
-    vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, u_shadowK);
-    if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = wantShadow ? shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK) : 0.5f;
+#if SHADOWS
+    if (lent.x >= 0.0f) {
+        shadow = lent.x;
+    } else {
+        vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, SHADOWS == 1 ? 1e6f : u_shadowK);
+        if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = traced.x = wantShadow ? shadowTrace(ro, l, sr) : 0.5f;
+    }
 #endif
     float occlusion = 1.0f;
     WORK_PHASE(bounce == 0 ? 3 : 7);
 #if AO
-    if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = wantOcclusion ? ambientOcclusion(p, n, u_aoSamples) : 0.5f;
+    if (lent.y >= 0.0f) occlusion = lent.y;
+    else if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = traced.y = wantOcclusion ? ambientOcclusion(p, n, u_aoSamples) : 0.5f;
+#endif
+#if USE_QUAD_SHADE
+    if (bounce == 0) g_shadeSeen = traced;
 #endif
     return litSurface(n, rd, albedo, shadow, occlusion);
 }
