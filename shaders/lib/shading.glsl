@@ -104,10 +104,12 @@ float shadowHard(vec3 ro, vec3 rd, float tmin, float tmax, int steps) {
     return 1.0f;
 }
 
-// Soft: penumbra from the closest miss along the ray, k = hardness (8 soft .. 64 sharp).
-float shadowSoft(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
+// Soft: penumbra from the closest miss along the ray, k = hardness (8 soft .. 64 sharp), as the
+// least penumbra term k h / t of its samples, from res0 down (shadowSoft: 1, which it returns where the
+// ray is lit; a larger res0 also tells by how much a lit ray was lit).
+float shadowSoftFrom(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k, float res0) {
     float stepScale = sceneStepScale();
-    float res = 1.0f;
+    float res = res0;
     float t = tmin;
     for (int i = 0; i < steps; i++) {
         vec2 hp = SHADOW_PROBE(ro, rd, t, k) * stepScale;
@@ -117,7 +119,10 @@ float shadowSoft(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
         t += shadowStep(h, t, res, k, hp.y);
         if (t > tmax) break;
     }
-    return saturate(res);
+    return res;
+}
+float shadowSoft(vec3 ro, vec3 rd, float tmin, float tmax, int steps, float k) {
+    return saturate(shadowSoftFrom(ro, rd, tmin, tmax, steps, k, 1.0f));
 }
 
 // Improved soft (iq): estimates the closest approach between two samples by intersecting

@@ -48,15 +48,22 @@
 #define USE_QUAD_DEFER 0
 #endif
 
-// QUAD_SHADE (with quad_reflections): the quads' pass also lends its centre's ambient occlusion (1),
-// its shadow ray (2) or both (3, the default) to the frame pixels on the centre's surface: the quad
-// whose bounce the pixel takes (above), where the pixel's hit lies within two hit thresholds and two
-// pixel footprints of the centre's tangent plane (a step's lower side does not borrow the upper's
-// light). What a pixel borrows it does not trace. In the 7680x4320 show the primary hit's shadow
-// and AO are so found once per shown pixel, as the bounce is; its four samples keep their own march,
-// normal and material. 0: every pixel traces its own.
+// QUAD_SHADE (with quad_reflections): the quads' pass also lends what its centre's surface found to the
+// frame pixels on that surface: 1 its ambient occlusion, 2 its soft shadow ray's "lit" (where every
+// sample's penumbra term k h / t was QUAD_SHADE_LIT or more, so a ray half a pixel beside it is lit
+// too), 3 both (the default). On the centre's surface: the quad whose bounce the pixel takes (below),
+// and the pixel's hit within two hit thresholds and two pixel footprints of the centre's tangent
+// plane (a step's lower side does not borrow the upper's light). What a pixel borrows it does not
+// trace. In the 7680x4320 show the primary hit's AO, and most of its lit shadow rays (the ones that
+// march their whole range), are so traced once per shown pixel, as the bounce is; the four samples
+// keep their own march, normal and material, and a penumbra's or a shadow's pixel its own shadow ray
+// (lending those too drew the shadows' edges jagged: 1-2 % of llvmpipe's shown pixels moved past
+// 8/255). 0: every pixel traces its own.
 #ifndef QUAD_SHADE
-#define QUAD_SHADE 1
+#define QUAD_SHADE 3
+#endif
+#ifndef QUAD_SHADE_LIT
+#define QUAD_SHADE_LIT 1.25f
 #endif
 #if USE_QUAD_REFLECTIONS && QUAD_SHADE != 0
 #define USE_QUAD_SHADE 1
@@ -66,7 +73,7 @@
 
 #if USE_QUAD_REFLECTIONS
 // One texel per 2x2 pixels: what the centre's bounce saw (halves r g | b, then the centre's shadow
-// and occlusion as 8 bits each, 255 where it traced none), the centre's normal (octahedral, snorm
+// and occlusion as 8 bits each, 255 where it lends none: its shadow only as 254, lit), the centre's normal (octahedral, snorm
 // 16) and its depth (float; -1 for the sky).
 layout(rgba32ui, binding = 2) uniform uimage2D u_quadReflections;
 bool g_quadPass = false;   // the quads' own dispatch: traceRay shades only the bounce, into g_bounceLight
@@ -82,8 +89,7 @@ vec2 g_shadeLent = vec2(-1.0f);   // the frame's primary hit: its quad's (-1: th
 
 // The quads' pass's texel for its centre.
 uvec4 quadTexel(vec3 bounceLight, float t, vec3 n, vec2 shade) {
-    uvec2 s = uvec2(shade.x < 0.0f ? 255u : uint(round(saturate(shade.x) * 254.0f)),
-                    shade.y < 0.0f ? 255u : uint(round(saturate(shade.y) * 254.0f)));
+    uvec2 s = uvec2(shade.x >= QUAD_SHADE_LIT ? 254u : 255u, shade.y < 0.0f ? 255u : uint(round(saturate(shade.y) * 254.0f)));
     return uvec4(packHalf2x16(bounceLight.rg), (packHalf2x16(vec2(bounceLight.b, 0.0f)) & 0xffffu) | (s.x << 16) | (s.y << 24),
                  packSnorm2x16(octEncode(n)), floatBitsToUint(t));
 }

@@ -34,14 +34,15 @@ vec3 litSurface(vec3 n, vec3 rd, vec3 albedo, float shadow, float occlusion) {
 // Linear radiance to the display colour: tone mapped, sRGB (supersample.glsl averages these).
 vec3 displayColor(vec3 col) { return linearToSRGB(toneMapACES(col)); }
 
-// The shadow ray SHADOWS asks for (1 hard, 2 soft, 3 improved soft) along l over the range sr.
-float shadowTrace(vec3 ro, vec3 l, vec2 sr) {
+// The shadow ray SHADOWS asks for (1 hard, 2 soft, 3 improved soft) along l over the range sr; a soft
+// one from res0 (shadowSoftFrom: above 1, a lit ray tells by how much).
+float shadowTrace(vec3 ro, vec3 l, vec2 sr, float res0) {
 #if SHADOWS == 1
     return shadowHard(ro, l, sr.x, sr.y, u_shadowSteps);
 #elif SHADOWS == 3
     return shadowSoftImproved(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
 #else
-    return shadowSoft(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK);
+    return shadowSoftFrom(ro, l, sr.x, sr.y, u_shadowSteps, u_shadowK, res0);
 #endif
 }
 
@@ -78,7 +79,14 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec
         shadow = lent.x;
     } else {
         vec2 sr = shadowRange(ro, l, 0.01f, u_maxDist, SHADOWS == 1 ? 1e6f : u_shadowK);
-        if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) shadow = traced.x = wantShadow ? shadowTrace(ro, l, sr) : 0.5f;
+        if (facesLight && (u_effectsOff & EFFECT_OFF_SHADOWS) == 0 && sr.x <= sr.y) {
+            float res0 = 1.0f;
+#if USE_QUAD_SHADE && SHADOWS == 2
+            if (g_quadPass && bounce == 0 && (QUAD_SHADE & 2) != 0) res0 = QUAD_SHADE_LIT;   // how lit the centre is
+#endif
+            traced.x = wantShadow ? shadowTrace(ro, l, sr, res0) : 0.5f;
+            shadow = saturate(traced.x);
+        }
     }
 #endif
     float occlusion = 1.0f;
