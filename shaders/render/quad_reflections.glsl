@@ -48,22 +48,29 @@
 #define USE_QUAD_DEFER 0
 #endif
 
-// QUAD_SHADE (with quad_reflections): the quads' pass also lends what its centre's surface found to the
-// frame pixels on that surface: 1 its ambient occlusion, 2 its soft shadow ray's "lit" (where every
-// sample's penumbra term k h / t was QUAD_SHADE_LIT or more, so a ray half a pixel beside it is lit
-// too), 3 both (the default). On the centre's surface: the quad whose bounce the pixel takes (below),
-// and the pixel's hit within two hit thresholds and two pixel footprints of the centre's tangent
-// plane (a step's lower side does not borrow the upper's light). What a pixel borrows it does not
-// trace. In the 7680x4320 show the primary hit's AO, and most of its lit shadow rays (the ones that
-// march their whole range), are so traced once per shown pixel, as the bounce is; the four samples
-// keep their own march, normal and material, and a penumbra's or a shadow's pixel its own shadow ray
-// (lending those too drew the shadows' edges jagged: 1-2 % of llvmpipe's shown pixels moved past
-// 8/255). 0: every pixel traces its own.
+// QUAD_SHADE (with quad_reflections; bits): the quads' pass also lends what its centre's surface
+// found to the frame pixels on that surface, which then trace none of it themselves:
+//   1 its ambient occlusion;
+//   2 its soft shadow ray's "lit", where every sample's penumbra term k h / t was QUAD_SHADE_LIT or
+//     more (a ray half a pixel beside it is lit too);
+//   4 a shadow blended from the four centres around the pixel (its quad's and the three beside it on
+//     its side, weighed by nearness), where all four are on its surface and found shadows within
+//     QUAD_SHADE_SPREAD of each other: a penumbra's or a shadow's inside, not its edge.
+// 7 (all three) by default. On the centre's surface: the pixel's normal within QUAD_REFLECTIONS_COS
+// of the centre's, and its hit within two hit thresholds and two pixel footprints of the centre's
+// tangent plane (a step's lower side does not borrow the upper's light). In the 7680x4320 show the
+// primary hits' AO and most of their shadow rays are so traced once per shown pixel, as the bounce
+// is; the four samples keep their own march, normal and material, and a shadow's edge its own
+// shadow rays (lending those too, the centre's shadow alone, drew the edges jagged: 1-2 % of
+// llvmpipe's shown pixels moved past 8/255). 0: every pixel traces its own.
 #ifndef QUAD_SHADE
-#define QUAD_SHADE 3
+#define QUAD_SHADE 7
 #endif
 #ifndef QUAD_SHADE_LIT
 #define QUAD_SHADE_LIT 1.25f
+#endif
+#ifndef QUAD_SHADE_SPREAD
+#define QUAD_SHADE_SPREAD 0.1f
 #endif
 #if USE_QUAD_REFLECTIONS && QUAD_SHADE != 0
 #define USE_QUAD_SHADE 1
@@ -87,19 +94,53 @@ bool g_quadFound = false;
 vec2 g_shadeSeen = vec2(-1.0f);   // the quads' pass: the centre's shadow and occlusion (-1: not traced)
 vec2 g_shadeLent = vec2(-1.0f);   // the frame's primary hit: its quad's (-1: the pixel traces its own)
 
-// The quads' pass's texel for its centre.
+// The quads' pass's texel for its centre. Its shadow in 8 bits: 0..253 what its ray found, 254 lit
+// by QUAD_SHADE_LIT or more, 255 none traced; its occlusion: 0..254, 255 none.
 uvec4 quadTexel(vec3 bounceLight, float t, vec3 n, vec2 shade) {
-    uvec2 s = uvec2(shade.x >= QUAD_SHADE_LIT ? 254u : 255u, shade.y < 0.0f ? 255u : uint(round(saturate(shade.y) * 254.0f)));
+    uvec2 s = uvec2(shade.x >= QUAD_SHADE_LIT ? 254u : shade.x < 0.0f ? 255u : uint(round(saturate(shade.x) * 253.0f)),
+                    shade.y < 0.0f ? 255u : uint(round(saturate(shade.y) * 254.0f)));
     return uvec4(packHalf2x16(bounceLight.rg), (packHalf2x16(vec2(bounceLight.b, 0.0f)) & 0xffffu) | (s.x << 16) | (s.y << 24),
                  packSnorm2x16(octEncode(n)), floatBitsToUint(t));
 }
+float quadShadow(uint s) { return s == 255u ? -1.0f : s == 254u ? 1.0f : float(s) / 253.0f; }
+
+// Whether the frame pixel's primary hit p (depth g_firstT, normal g_firstN) is on the surface of
+// the centre of quad q (its texel): its normal within QUAD_REFLECTIONS_COS of the centre's, and p
+// within two hit thresholds and two pixel footprints of the centre's tangent plane.
+bool quadOnSurface(uvec4 quad, ivec2 q, vec3 p) {
+    float tc = uintBitsToFloat(quad.w);
+    vec3 nc = octDecode(unpackSnorm2x16(quad.z));
+    vec3 pc = u_camPos + cameraRay(vec2(q * 2) + 1.0f) * tc;
+    return tc > 0.0f && dot(nc, g_firstN) >= QUAD_REFLECTIONS_COS &&
+           abs(dot(p - pc, nc)) <= 2.0f * (hitEpsilon(g_firstT) + g_firstT * pixelAngle());
+}
+
+// QUAD_SHADE 4: the frame pixel's shadow blended bilinearly from the four quad centres around it
+// (its own and those beside it on its side, weighed 9 3 3 1 by nearness), where all four are on its
+// surface, traced a shadow ray and found values within QUAD_SHADE_SPREAD of each other (a penumbra's
+// or a shadow's inside, not its edge); -1 elsewhere.
+float quadShadowBlend(vec3 p) {
+    ivec2 side = (g_pixel & 1) * 2 - 1;
+    float lo = 2.0f, hi = -2.0f, sum = 0.0f;
+    for (int k = 0; k < 4; k++) {
+        ivec2 q = (g_pixel >> 1) + (k == 1 ? ivec2(side.x, 0) : k == 2 ? ivec2(0, side.y) : k == 3 ? side : ivec2(0));
+        q = clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);
+        uvec4 quad = imageLoad(u_quadReflections, q);
+        float v = quadShadow((quad.y >> 16) & 0xffu);
+        if (v < 0.0f || !quadOnSurface(quad, q, p)) return -1.0f;
+        lo = min(lo, v), hi = max(hi, v);
+        sum += v * (k == 0 ? 9.0f : k == 3 ? 1.0f : 3.0f);
+    }
+    return hi - lo <= QUAD_SHADE_SPREAD ? sum / 16.0f : -1.0f;
+}
 
 // The frame pixel's primary hit at p (its g_firstT, g_firstN set): finds the quad whose centre's
-// surface it is on, for its bounce (quadBounceSeen) and its light (g_shadeLent). A pixel whose
-// depth is 2 % or more off the centre's, the centre seeing the sky, or whose normal turned more than
-// about 8 degrees from the centre's is not on it. With QUAD_REFLECTIONS_NEAR 1 (the default) the
-// pixel asks its own quad, then the three beside it on its side: an edge's pixel is often the
-// neighbour's surface, and a fold's normal often a neighbour's.
+// surface it is on, for its bounce (quadBounceSeen) and its light (g_shadeLent, QUAD_SHADE). For
+// the bounce: a pixel whose depth is 2 % or more off the centre's, the centre seeing the sky, or
+// whose normal turned more than about 8 degrees from the centre's is not on it. With
+// QUAD_REFLECTIONS_NEAR 1 (the default) the pixel asks its own quad, then the three beside it on its
+// side: an edge's pixel is often the neighbour's surface, and a fold's normal often a neighbour's.
+// For the light, the quad found must also pass quadOnSurface.
 void quadFind(vec3 p) {
     ivec2 side = (g_pixel & 1) * 2 - 1;
     for (int k = 0; k < (QUAD_REFLECTIONS_NEAR != 0 ? 4 : 1); k++) {
@@ -107,22 +148,24 @@ void quadFind(vec3 p) {
         q = clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);   // this frame's quads only
         uvec4 quad = imageLoad(u_quadReflections, q);
         float tc = uintBitsToFloat(quad.w);
-        vec3 nc = octDecode(unpackSnorm2x16(quad.z));
-        if (abs(tc - g_firstT) <= 0.02f * g_firstT && dot(nc, g_firstN) >= QUAD_REFLECTIONS_COS) {
+        if (abs(tc - g_firstT) <= 0.02f * g_firstT && dot(octDecode(unpackSnorm2x16(quad.z)), g_firstN) >= QUAD_REFLECTIONS_COS) {
             g_quad = quad, g_quadFound = true;
 #if USE_QUAD_SHADE
-            vec3 pc = u_camPos + cameraRay(vec2(q * 2) + 1.0f) * tc;
-            if (abs(dot(p - pc, nc)) <= 2.0f * (hitEpsilon(g_firstT) + g_firstT * pixelAngle())) {
+            if (quadOnSurface(quad, q, p)) {
                 uvec2 s = uvec2((quad.y >> 16) & 0xffu, quad.y >> 24);
-                g_shadeLent = vec2((QUAD_SHADE & 2) != 0 && s.x != 255u ? float(s.x) / 254.0f : -1.0f,
+                g_shadeLent = vec2((QUAD_SHADE & 2) != 0 && s.x == 254u ? 1.0f : -1.0f,
                                    (QUAD_SHADE & 1) != 0 && s.y != 255u ? float(s.y) / 254.0f : -1.0f);
             }
 #endif
-            return;
+            break;
         }
     }
+#if USE_QUAD_SHADE && (QUAD_SHADE & 4) != 0
+    if (g_shadeLent.x < 0.0f) g_shadeLent.x = quadShadowBlend(p);
+#endif
     // QUAD_REFLECTIONS_OWN 0: the pixel takes its own quad's bounce all the same (not its light)
-    if (QUAD_REFLECTIONS_OWN == 0) g_quad = imageLoad(u_quadReflections, clamp(g_pixel >> 1, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1)), g_quadFound = true;
+    if (QUAD_REFLECTIONS_OWN == 0 && !g_quadFound)
+        g_quad = imageLoad(u_quadReflections, clamp(g_pixel >> 1, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1)), g_quadFound = true;
 }
 
 // What the quads' pass saw for this frame pixel's bounce, or -1 where it traces its own (its surface

@@ -70,8 +70,13 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec
     // borrow its quad centre's (quad_reflections.glsl QUAD_SHADE), whose pass keeps what it found.
     vec2 traced = vec2(-1.0f);
     vec2 lent = vec2(-1.0f);
+    bool probeOcclusion = true;
 #if USE_QUAD_SHADE
     if (bounce == 0) lent = g_shadeLent;
+    if (g_quadPass && bounce == 0) {   // the quads' pass traces only what its centre lends
+        facesLight = facesLight && (QUAD_SHADE & 6) != 0;
+        probeOcclusion = (QUAD_SHADE & 1) != 0;
+    }
 #endif
     WORK_PHASE(bounce == 0 ? 2 : 6);
 #if SHADOWS
@@ -93,7 +98,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 rd, vec3 albedo, float t, int bounce, vec
     WORK_PHASE(bounce == 0 ? 3 : 7);
 #if AO
     if (lent.y >= 0.0f) occlusion = lent.y;
-    else if ((u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = traced.y = wantOcclusion ? ambientOcclusion(p, n, u_aoSamples) : 0.5f;
+    else if (probeOcclusion && (u_effectsOff & EFFECT_OFF_AO) == 0 && (BOUNCE_LIGHT < 1 || bounce == 0)) occlusion = traced.y = wantOcclusion ? ambientOcclusion(p, n, u_aoSamples) : 0.5f;
 #endif
 #if USE_QUAD_SHADE
     if (bounce == 0) g_shadeSeen = traced;
