@@ -573,7 +573,8 @@ case "${1:-}" in
     # "SUFFIX/NAME=VALUE,NAME=VALUE": near0 (no quad beside asked first: session 46's), own0 (never
     # their own bounce), cos95 and cos90 (their own only where the normals part by more than about
     # 18 or 26 degrees, not 8); session 48: defer0 (QUAD_REFLECTIONS_DEFER 0: their own bounce in
-    # the frame, not listed for a dispatch of its own). Session 47's first call also had own2 (their own without its
+    # the frame, not listed for a dispatch of its own); session 49: qs7, qs1, qs3 (QUAD_SHADE: the
+    # quads lend their centres' AO and shadows, all, the AO alone, AO and "lit"). Session 47's first call also had own2 (their own without its
     # shadow ray and AO: QUAD_REFLECTIONS_OWN 2, commit 8e46934, since removed). The 7680x4320 show with and without quad_reflections, then
     # `bench ssaa` at 3840x2160 (its last column: what each draws).
     root="$(mktemp -d)"; cp -r shaders presets mappings "$root/"; sc="${QREFL2_SCENES:-$all}"

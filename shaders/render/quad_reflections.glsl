@@ -56,15 +56,16 @@
 //   4 a shadow blended from the four centres around the pixel (its quad's and the three beside it on
 //     its side, weighed by nearness), where all four are on its surface and found shadows within
 //     QUAD_SHADE_SPREAD of each other: a penumbra's or a shadow's inside, not its edge.
-// 7 (all three) by default. On the centre's surface: the pixel's normal within QUAD_REFLECTIONS_COS
+// 0 (the default until it is timed on a GPU: every pixel traces its own) or 7 (all three, what the
+// tests check) in a scene's header. On the centre's surface: the pixel's normal within QUAD_REFLECTIONS_COS
 // of the centre's, and its hit within two hit thresholds and two pixel footprints of the centre's
 // tangent plane (a step's lower side does not borrow the upper's light). In the 7680x4320 show the
 // primary hits' AO and most of their shadow rays are so traced once per shown pixel, as the bounce
 // is; the four samples keep their own march, normal and material, and a shadow's edge its own
 // shadow rays (lending those too, the centre's shadow alone, drew the edges jagged: 1-2 % of
-// llvmpipe's shown pixels moved past 8/255). 0: every pixel traces its own.
+// llvmpipe's shown pixels moved past 8/255).
 #ifndef QUAD_SHADE
-#define QUAD_SHADE 7
+#define QUAD_SHADE 0
 #endif
 #ifndef QUAD_SHADE_LIT
 #define QUAD_SHADE_LIT 1.25f
