@@ -141,7 +141,7 @@ float quadShadowBlend(vec3 p) {
 // whose normal turned more than about 8 degrees from the centre's is not on it. With
 // QUAD_REFLECTIONS_NEAR 1 (the default) the pixel asks its own quad, then the three beside it on its
 // side: an edge's pixel is often the neighbour's surface, and a fold's normal often a neighbour's.
-// For the light, the quad found must also pass quadOnSurface.
+// For the light (QUAD_SHADE; p is read for nothing else), the quad found must also pass quadOnSurface.
 void quadFind(vec3 p) {
     ivec2 side = (g_pixel & 1) * 2 - 1;
     for (int k = 0; k < (QUAD_REFLECTIONS_NEAR != 0 ? 4 : 1); k++) {

@@ -369,6 +369,9 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
         WORK_PHASE(bounce == 0 ? 0 : 4);
 #if USE_QUAD_REFLECTIONS
         if (bounce == 1 && !g_quadPass && !g_deferPass) {   // the quad's bounce, traced before the frame
+#if !USE_QUAD_SHADE
+            quadFind(ro);   // (found here, after the shading: nothing of it stays live through the shadow and AO)
+#endif
             vec3 seen = quadBounceSeen();
             if (seen.x >= 0.0f) {
                 col += throughput * seen;
@@ -406,7 +409,9 @@ vec4 traceRay(vec3 ro, vec3 rd, float tStart, Hit first, bool given) {
 #if USE_QUAD_REFLECTIONS
         if (bounce == 0 && h.hit) {
             g_firstT = h.t, g_firstN = n;
-            if (!g_quadPass) quadFind(ro + rd * h.t);   // the quad lending this pixel its bounce (and light: QUAD_SHADE)
+#if USE_QUAD_SHADE
+            if (!g_quadPass) quadFind(ro + rd * h.t);   // the quad lending this pixel its light and its bounce
+#endif
         }
         if (g_quadPass) {   // the centre's bounce; its own light too where it lends it (shadeSurface keeps it)
             if (bounce == 1 || USE_QUAD_SHADE != 0) {
