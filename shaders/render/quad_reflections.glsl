@@ -81,8 +81,8 @@
 
 #if USE_QUAD_REFLECTIONS
 // One texel per 2x2 pixels: what the centre's bounce saw (halves r g | b, then the centre's shadow
-// and occlusion as 8 bits each, 255 where it lends none: its shadow only as 254, lit), the centre's normal (octahedral, snorm
-// 16) and its depth (float; -1 for the sky).
+// and occlusion as 8 bits each: quadTexel), the centre's normal (octahedral, snorm 16) and its depth
+// (float; -1 for the sky).
 layout(rgba32ui, binding = 2) uniform uimage2D u_quadReflections;
 bool g_quadPass = false;   // the quads' own dispatch: traceRay shades only the bounce, into g_bounceLight
 vec3 g_bounceLight = vec3(0.0f);
@@ -105,12 +105,18 @@ uvec4 quadTexel(vec3 bounceLight, float t, vec3 n, vec2 shade) {
 }
 float quadShadow(uint s) { return s == 255u ? -1.0f : s == 254u ? 1.0f : float(s) / 253.0f; }
 
+// The quads around the frame pixel: k 0 its own, 1 and 2 the ones beside it on its side across and
+// up or down, 3 the one diagonally beside (clamped to this frame's quads).
+ivec2 quadNear(int k) {
+    ivec2 side = (g_pixel & 1) * 2 - 1;
+    ivec2 q = (g_pixel >> 1) + (k == 1 ? ivec2(side.x, 0) : k == 2 ? ivec2(0, side.y) : k == 3 ? side : ivec2(0));
+    return clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);
+}
+
 // Whether the frame pixel's primary hit p (depth g_firstT, normal g_firstN) is on the surface of
-// the centre of quad q (its texel): its normal within QUAD_REFLECTIONS_COS of the centre's, and p
-// within two hit thresholds and two pixel footprints of the centre's tangent plane.
-bool quadOnSurface(uvec4 quad, ivec2 q, vec3 p) {
-    float tc = uintBitsToFloat(quad.w);
-    vec3 nc = octDecode(unpackSnorm2x16(quad.z));
+// the centre of quad q (its depth tc and normal nc): its normal within QUAD_REFLECTIONS_COS of the
+// centre's, and p within two hit thresholds and two pixel footprints of the centre's tangent plane.
+bool quadOnSurface(float tc, vec3 nc, ivec2 q, vec3 p) {
     vec3 pc = u_camPos + cameraRay(vec2(q * 2) + 1.0f) * tc;
     return tc > 0.0f && dot(nc, g_firstN) >= QUAD_REFLECTIONS_COS &&
            abs(dot(p - pc, nc)) <= 2.0f * (hitEpsilon(g_firstT) + g_firstT * pixelAngle());
@@ -121,14 +127,12 @@ bool quadOnSurface(uvec4 quad, ivec2 q, vec3 p) {
 // surface, traced a shadow ray and found values within QUAD_SHADE_SPREAD of each other (a penumbra's
 // or a shadow's inside, not its edge); -1 elsewhere.
 float quadShadowBlend(vec3 p) {
-    ivec2 side = (g_pixel & 1) * 2 - 1;
     float lo = 2.0f, hi = -2.0f, sum = 0.0f;
     for (int k = 0; k < 4; k++) {
-        ivec2 q = (g_pixel >> 1) + (k == 1 ? ivec2(side.x, 0) : k == 2 ? ivec2(0, side.y) : k == 3 ? side : ivec2(0));
-        q = clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);
+        ivec2 q = quadNear(k);
         uvec4 quad = imageLoad(u_quadReflections, q);
         float v = quadShadow((quad.y >> 16) & 0xffu);
-        if (v < 0.0f || !quadOnSurface(quad, q, p)) return -1.0f;
+        if (v < 0.0f || !quadOnSurface(uintBitsToFloat(quad.w), octDecode(unpackSnorm2x16(quad.z)), q, p)) return -1.0f;
         lo = min(lo, v), hi = max(hi, v);
         sum += v * (k == 0 ? 9.0f : k == 3 ? 1.0f : 3.0f);
     }
@@ -143,16 +147,15 @@ float quadShadowBlend(vec3 p) {
 // side: an edge's pixel is often the neighbour's surface, and a fold's normal often a neighbour's.
 // For the light (QUAD_SHADE; p is read for nothing else), the quad found must also pass quadOnSurface.
 void quadFind(vec3 p) {
-    ivec2 side = (g_pixel & 1) * 2 - 1;
     for (int k = 0; k < (QUAD_REFLECTIONS_NEAR != 0 ? 4 : 1); k++) {
-        ivec2 q = (g_pixel >> 1) + (k == 1 ? ivec2(side.x, 0) : k == 2 ? ivec2(0, side.y) : k == 3 ? side : ivec2(0));
-        q = clamp(q, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1);   // this frame's quads only
+        ivec2 q = quadNear(k);
         uvec4 quad = imageLoad(u_quadReflections, q);
         float tc = uintBitsToFloat(quad.w);
-        if (abs(tc - g_firstT) <= 0.02f * g_firstT && dot(octDecode(unpackSnorm2x16(quad.z)), g_firstN) >= QUAD_REFLECTIONS_COS) {
+        vec3 nc = octDecode(unpackSnorm2x16(quad.z));
+        if (abs(tc - g_firstT) <= 0.02f * g_firstT && dot(nc, g_firstN) >= QUAD_REFLECTIONS_COS) {
             g_quad = quad, g_quadFound = true;
 #if USE_QUAD_SHADE
-            if (quadOnSurface(quad, q, p)) {
+            if (quadOnSurface(tc, nc, q, p)) {
                 uvec2 s = uvec2((quad.y >> 16) & 0xffu, quad.y >> 24);
                 g_shadeLent = vec2((QUAD_SHADE & 2) != 0 && s.x == 254u ? 1.0f : -1.0f,
                                    (QUAD_SHADE & 1) != 0 && s.y != 255u ? float(s.y) / 254.0f : -1.0f);
@@ -165,8 +168,7 @@ void quadFind(vec3 p) {
     if (g_shadeLent.x < 0.0f) g_shadeLent.x = quadShadowBlend(p);
 #endif
     // QUAD_REFLECTIONS_OWN 0: the pixel takes its own quad's bounce all the same (not its light)
-    if (QUAD_REFLECTIONS_OWN == 0 && !g_quadFound)
-        g_quad = imageLoad(u_quadReflections, clamp(g_pixel >> 1, ivec2(0), (ivec2(u_resolution) + 1) / 2 - 1)), g_quadFound = true;
+    if (QUAD_REFLECTIONS_OWN == 0 && !g_quadFound) g_quad = imageLoad(u_quadReflections, quadNear(0)), g_quadFound = true;
 }
 
 // What the quads' pass saw for this frame pixel's bounce, or -1 where it traces its own (its surface

@@ -5,8 +5,8 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -15,6 +15,7 @@
 
 #include "app/bench_support.h"
 #include "app/commands.h"
+#include "render/live_program.h"
 
 namespace sdfvj {
 
@@ -74,13 +75,10 @@ int RunBench(const BenchOptions& o) {
     // SDFVJ_QUAD_DEFER_ROOM=N (a measurement's knob): the room of a `quad_reflections` list
     // (quad_reflections.glsl QUAD_REFLECTIONS_DEFER; FrameRenderer::SetQuadDeferRoom); 0 times a listing
     // program with every bounce traced in the frame.
-    long long deferRoom = -1;
-    if (const char* env = std::getenv("SDFVJ_QUAD_DEFER_ROOM"); env && *env) {
-        const char* end = env + std::char_traits<char>::length(env);
-        long long v = 0;
-        const auto [at, ec] = std::from_chars(env, end, v);
-        if (ec != std::errc() || at != end || v < 0) { std::fprintf(stderr, "sdfvj bench: SDFVJ_QUAD_DEFER_ROOM=%s: expected a count of entries, 0 or more\n", env); return 2; }
-        deferRoom = v;
+    const long long deferRoom = EnvInt("SDFVJ_QUAD_DEFER_ROOM", -1, 0, INT_MAX);
+    if (const char* env = std::getenv("SDFVJ_QUAD_DEFER_ROOM"); env && *env && deferRoom < 0) {
+        std::fprintf(stderr, "sdfvj bench: SDFVJ_QUAD_DEFER_ROOM=%s: expected a count of entries, 0 or more\n", env);
+        return 2;
     }
     for (auto [w, h] : sizes) {
         targets.push_back(std::make_unique<FrameRenderer>());

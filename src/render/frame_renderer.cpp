@@ -273,23 +273,23 @@ long long FrameRenderer::QuadDeferRoom() {
     // The entries: immutable, no CPU access (the GPU's own memory); grown, never shrunk, and not
     // asked again for a size the driver had no memory for.
     if (deferBuffer_ && (room <= deferRoom_ || (deferFailed_ != 0 && room >= deferFailed_))) return std::min(room, deferRoom_);
-    if (deferBuffer_) glDeleteBuffers(1, &deferBuffer_);
-    glGenBuffers(1, &deferBuffer_);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+    auto remake = [this](GLsizeiptr bytes) {   // the size the driver gave it
+        if (deferBuffer_) glDeleteBuffers(1, &deferBuffer_);
+        glGenBuffers(1, &deferBuffer_);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
+        glBufferStorage(GL_SHADER_STORAGE_BUFFER, bytes, nullptr, 0);
+        GLint64 got = 0;
+        glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &got);
+        return got;
+    };
     const GLsizeiptr want = (GLsizeiptr)(std::max(room, 1LL) * kDeferEntryBytes);
-    glBufferStorage(GL_SHADER_STORAGE_BUFFER, want, nullptr, 0);
-    GLint64 got = 0;
-    glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &got);
-    if (got >= want) {
+    if (remake(want) >= want) {
         deferRoom_ = room;
         return room;
     }
     // No memory for it: a list of one entry with room for none, every pixel's bounce traced in the frame.
     while (glGetError() != GL_NO_ERROR) {}   // its GL_OUT_OF_MEMORY, not a later check's
-    glDeleteBuffers(1, &deferBuffer_);
-    glGenBuffers(1, &deferBuffer_);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, deferBuffer_);
-    glBufferStorage(GL_SHADER_STORAGE_BUFFER, kDeferEntryBytes, nullptr, 0);
+    remake(kDeferEntryBytes);
     deferRoom_ = 0;
     deferFailed_ = room;
     return 0;
