@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -216,7 +217,12 @@ private:
         code_.clear();
         static const std::regex kLine(R"(^\s*#\s*line\s+\d+\s+(\d+)\s*$)");
         if (std::regex_match(code, m, kLine)) {
-            file_ = std::stoi(m[1]);
+            // The file index of a line marker (the text may be a save's, so checked, not stoi)
+            const std::string index = m[1];
+            int f = -1;
+            if (std::from_chars(index.data(), index.data() + index.size(), f).ec != std::errc())
+                return Fail("#line names source " + index + ", expected a source number that fits an int");
+            file_ = f;
             // The scene's line numbers move with every edit of a body above them: not in the stub.
             if (InScene()) {
                 NewLine();

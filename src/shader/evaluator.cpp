@@ -6,6 +6,7 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -168,7 +169,10 @@ std::string MapGlslangLog(const std::string& log, const UnitFiles& files) {
         std::smatch m;
         if (std::regex_match(line, m, kLine)) {
             if (m[1] != "ERROR") continue;
-            out += files.Where((uint32_t)std::stoul(m[2])) + ": " + m[3].str() + "\n";
+            const std::string at = m[2];
+            uint32_t where = 0;
+            if (std::from_chars(at.data(), at.data() + at.size(), where).ec == std::errc()) out += files.Where(where) + ": " + m[3].str() + "\n";
+            else out += line + "\n";
         } else if (!line.empty() && line.find("compilation errors") == std::string::npos) {
             out += line + "\n";
         }

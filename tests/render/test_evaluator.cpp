@@ -10,6 +10,7 @@
 #include <random>
 
 #include "accuracy/cpu_scene.h"
+#include "shader/eval_program.h"
 #include "shader/evaluator.h"
 
 using namespace sdfvj;
@@ -380,4 +381,23 @@ TEST_CASE("evaluator: a refused scene names its file and line", "[evaluator]") {
     INFO(error);
     CHECK(error.find("evaluator_refused.glsl:3: ") != std::string::npos);
     CHECK(error.find("bit cast") != std::string::npos);
+}
+
+TEST_CASE("evaluator: a #line whose source number overflows an int is refused with a message and nothing thrown", "[evaluator]") {
+    const std::string path = std::string(SDFVJ_TEST_OUTPUT_DIR) + "/evaluator_line_overflow.glsl";
+    std::filesystem::create_directories(SDFVJ_TEST_OUTPUT_DIR);
+    std::ofstream(path) << "/*{ \"NAME\": \"overflow\", \"INPUTS\": [] }*/\n"
+                           "#include \"lib/common.glsl\"\n"
+                           "#line 3 99999999999999999999\n"
+                           "vec4 map(vec3 p) { return vec4(1.0, 1.0, 1.0, length(p) - 1.0); }\n"
+                           "float sceneLipschitz() { return 1.0; }\n";
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(LoadScene(path, &scene, &error));
+    ShaderSource src;
+    bool ok = true;
+    REQUIRE_NOTHROW(ok = AssembleEvaluatorProgram(scene, VariantKey{path, scene.effects, RenderPath::Fragment}, &src, &error));
+    CHECK_FALSE(ok);
+    INFO(error);
+    CHECK(error.find("#line names source 99999999999999999999") != std::string::npos);
 }
