@@ -37,17 +37,6 @@
 #ifndef QUAD_REFLECTIONS_DEFER
 #define QUAD_REFLECTIONS_DEFER 0
 #endif
-#if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && DEBUG_VIEW == 0 && REFLECTIONS == 1
-#define USE_QUAD_REFLECTIONS 1
-#else
-#define USE_QUAD_REFLECTIONS 0
-#endif
-#if USE_QUAD_REFLECTIONS && QUAD_REFLECTIONS_DEFER && QUAD_REFLECTIONS_OWN && SUPERSAMPLE == 0
-#define USE_QUAD_DEFER 1
-#else
-#define USE_QUAD_DEFER 0
-#endif
-
 // QUAD_SHADE (with quad_reflections; bits): the quads' pass also lends what its centre's surface
 // found to the frame pixels on that surface, which then trace none of it themselves:
 //   1 its ambient occlusion;
@@ -73,6 +62,18 @@
 #ifndef QUAD_SHADE_SPREAD
 #define QUAD_SHADE_SPREAD 0.1f
 #endif
+// A scene with no reflection bounce runs the quads' pass for its light alone where QUAD_SHADE is set.
+#if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && (DEBUG_VIEW == 0 || WORK_VIEW) && (REFLECTIONS == 1 || (REFLECTIONS == 0 && QUAD_SHADE != 0))
+#define USE_QUAD_REFLECTIONS 1
+#else
+#define USE_QUAD_REFLECTIONS 0
+#endif
+#if USE_QUAD_REFLECTIONS && REFLECTIONS == 1 && QUAD_REFLECTIONS_DEFER && QUAD_REFLECTIONS_OWN && SUPERSAMPLE == 0
+#define USE_QUAD_DEFER 1
+#else
+#define USE_QUAD_DEFER 0
+#endif
+
 #if USE_QUAD_REFLECTIONS && QUAD_SHADE != 0
 #define USE_QUAD_SHADE 1
 #else

@@ -39,10 +39,11 @@ int RunBench(const BenchOptions& o) {
     known.push_back(ShowSupersampledLightingTest(true));
     known.push_back(ShowDirectReflectionsLightingTest());
     known.push_back(ShowQuadReflectionsLightingTest());
+    known.push_back(FullQuadShadeLightingTest());
     for (const LightingTest& t : FramePartTests()) known.push_back(t);
     for (const std::string& name : o.tests)
         if (std::none_of(known.begin(), known.end(), [&](const LightingTest& t) { return name == t.name; })) {
-            std::fprintf(stderr, "sdfvj bench: unknown lighting test '%s', expected full, shadows_ao, shadows, none, show, show_ssaa, show_ssaa_exact, show_direct, show_quad_reflections, march or normals\n", name.c_str());
+            std::fprintf(stderr, "sdfvj bench: unknown lighting test '%s', expected full, shadows_ao, shadows, none, show, show_ssaa, show_ssaa_exact, show_direct, show_quad_reflections, full_quad_shade, march or normals\n", name.c_str());
             return 2;
         }
     for (const auto& t : o.tests.empty() ? SeedLightingTests() : known)   // a bare bench: the seed's four

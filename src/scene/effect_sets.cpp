@@ -57,6 +57,13 @@ LightingTest ShowQuadReflectionsLightingTest() {
     return t;
 }
 
+LightingTest FullQuadShadeLightingTest() {
+    LightingTest t = SeedLightingTests().front();
+    t.effects.quadReflections = true;
+    t.name = "full_quad_shade";
+    return t;
+}
+
 LightingTest ShowDirectReflectionsLightingTest() {
     LightingTest t = ShowLightingTest();
     t.effects.directReflections = true;
