@@ -45,16 +45,23 @@
 //   4 a shadow blended from the four centres around the pixel (its quad's and the three beside it on
 //     its side, weighed by nearness), where all four are on its surface and found shadows within
 //     QUAD_SHADE_SPREAD of each other: a penumbra's or a shadow's inside, not its edge.
-// 0 (the default until it is timed on a GPU: every pixel traces its own) or 7 (all three, what the
-// tests check) in a scene's header. On the centre's surface: the pixel's normal within QUAD_REFLECTIONS_COS
+// 7 (all three) by default: on an H100 it takes 8-21 % off the 7680x4320 show of every scene but
+// mandelbulb (docs/performance.md, session 50), whose folds borrow in scattered pixels and whose
+// header keeps 1; 0: every pixel traces its own. On the centre's surface: the pixel's normal within QUAD_REFLECTIONS_COS
 // of the centre's, and its hit within two hit thresholds and two pixel footprints of the centre's
 // tangent plane (a step's lower side does not borrow the upper's light). In the 7680x4320 show the
 // primary hits' AO and most of their shadow rays are so traced once per shown pixel, as the bounce
 // is; the four samples keep their own march, normal and material, and a shadow's edge its own
 // shadow rays (lending those too, the centre's shadow alone, drew the edges jagged: 1-2 % of
 // llvmpipe's shown pixels moved past 8/255).
+// QUAD_SHADE_ALONE 1: a frame with no reflection bounce runs the quads' pass for the light alone
+// (`bench --tests full_quad_shade`). Off: at one sample a pixel it lost on the H100 (field150 at
+// 3840x2160 1.385 -> 1.427 ms, mandelbulb 1.343 -> 1.691), the pass costing more than it lends.
 #ifndef QUAD_SHADE
-#define QUAD_SHADE 0
+#define QUAD_SHADE 7
+#endif
+#ifndef QUAD_SHADE_ALONE
+#define QUAD_SHADE_ALONE 0
 #endif
 #ifndef QUAD_SHADE_LIT
 #define QUAD_SHADE_LIT 1.25f
@@ -62,8 +69,8 @@
 #ifndef QUAD_SHADE_SPREAD
 #define QUAD_SHADE_SPREAD 0.1f
 #endif
-// A scene with no reflection bounce runs the quads' pass for its light alone where QUAD_SHADE is set.
-#if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && (DEBUG_VIEW == 0 || WORK_VIEW) && (REFLECTIONS == 1 || (REFLECTIONS == 0 && QUAD_SHADE != 0))
+// A frame with no reflection bounce runs the quads' pass for its light alone where QUAD_SHADE_ALONE asks.
+#if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && (DEBUG_VIEW == 0 || WORK_VIEW) && (REFLECTIONS == 1 || (REFLECTIONS == 0 && QUAD_SHADE != 0 && QUAD_SHADE_ALONE != 0))
 #define USE_QUAD_REFLECTIONS 1
 #else
 #define USE_QUAD_REFLECTIONS 0

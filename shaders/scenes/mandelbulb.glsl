@@ -56,6 +56,13 @@ vec4 sceneBound() { return vec4(0.0f, 0.0f, 0.0f, mandelbulbBoundingRadius(max(u
 #ifndef QUAD_REFLECTIONS_DEFER
 #define QUAD_REFLECTIONS_DEFER 1
 #endif
+// The quads lend their centres' AO, not their shadows (quad_reflections.glsl QUAD_SHADE): the folds'
+// self-shadowing changes faster than two pixels, so few pixels borrow a shadow and the quads' own
+// shadow rays cost more than they save. H100, 7680x4320 show: 8.777 ms lending nothing, 8.701 the
+// AO, 8.760 both (docs/performance.md, session 50).
+#ifndef QUAD_SHADE
+#define QUAD_SHADE 1
+#endif
 
 // The distance estimate overshoots a little close to the surface.
 float sceneLipschitz() { return 1.1f; }
