@@ -8,6 +8,9 @@
 #                                 run `sdfvj-headless ARGS..` and leave its output in $OUT
 #   scripts/gpu.sh prepare-ab REV here: .devbuild/ab/, every scene now and as of REV (NAME_before)
 #   scripts/gpu.sh prepare-rev REV here: .devbuild/rev/, shaders/ presets/ mappings/ as of REV (`measure loops`)
+#   scripts/gpu.sh prepare-roots  here: .devbuild/revs/NAME, trees of shaders as of a commit plus a patch
+#                                 (ROOTS="NAME=REV+PATCH ..."), each scene with and without QUAD_SHADE
+#                                 (`measure roots`: the show drawn by each tree in turn)
 #   scripts/gpu.sh measure PART   there: the figures docs/ quotes, into $OUT (a part per call: the
 #                                 timeouts of several add up past one 600 s call). Each part's comment
 #                                 below says what it measures. Issue 12 (reloads): reload, retune,
@@ -92,6 +95,29 @@ case "${1:-}" in
       git show "$rev:$f" | rename | sed "s/\"NAME\": \"$n\"/\"NAME\": \"${n}_before\"/" > "$ab/shaders/scenes/${n}_before.glsl"
     done
     echo "changed libs: ${changed:-none}"
+    ;;
+  prepare-roots)
+    # here: .devbuild/revs/NAME for each ROOTS entry NAME=REV or NAME=REV+PATCH (shaders, presets and
+    # mappings as of REV, with docs/performance/nvidia-h100-s50/variants/PATCH.patch applied), each
+    # scene also as SCENE_qs0 and SCENE_qs7 (QUAD_SHADE 0 / 7; a no-op before session 49), for
+    # `measure roots`. Session 50: the show with quad_reflections got slower with session 49's code
+    # (character 2.55 -> 5.08 ms with QUAD_SHADE 0 on an H100, the same picture); the defaults are the
+    # variants that would tell which change: session 48's shaders, with only the texel's float depth,
+    # now, and now with quadFind returning, the bounce's look-up inline, and that plus the old shading.
+    roots="${ROOTS:-s48=07e4006 s48depth=07e4006+s48_float_depth now=HEAD return=HEAD+return inline=HEAD+inline oldshade=HEAD+inline_oldshade}"
+    rm -rf .devbuild/revs && mkdir -p .devbuild/revs
+    for e in $roots; do
+      name="${e%%=*}"; spec="${e#*=}"; rev="${spec%%+*}"; patchName=""; [ "$spec" != "$rev" ] && patchName="${spec#*+}"
+      d=.devbuild/revs/$name; mkdir -p "$d"; git archive "$rev" shaders presets mappings | tar x -C "$d"
+      [ -n "$patchName" ] && (cd "$d" && patch -s -p1 < "$OLDPWD/docs/performance/nvidia-h100-s50/variants/$patchName.patch")
+      for f in "$d"/shaders/scenes/*.glsl; do
+        s="$(basename "$f" .glsl)"
+        for q in 0 7; do
+          sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_qs$q\"/" -e "/^}\*\//a #define QUAD_SHADE $q" "$f" > "$d/shaders/scenes/${s}_qs$q.glsl"
+        done
+      done
+      echo ".devbuild/revs/$name: $rev${patchName:+ + $patchName}"
+    done
     ;;
   prepare-rev)
     rev="${2:?usage: scripts/gpu.sh prepare-rev REV}"
@@ -566,6 +592,20 @@ case "${1:-}" in
     timeout ${QREFL_IMAGE_TIMEOUT:-240} bash "$0" remote bench ssaa --size 3840x2160 --effects none,soft_shadows,ao,specular,pbr,reflections=1 \
       --markdown "$out/qrefl_image.md" > "$out/qrefl_image.txt" 2>&1 || true
     cat "$out/qrefl_image.txt"
+    fi
+    if [ "$part" = roots ]; then
+    # Session 50, issue 13: the 7680x4320 show with quad_reflections drawn by each tree of
+    # `prepare-roots` in turn (not interleaved across trees: each is its own bench run), twice;
+    # ROOT_SCENES (character and field150, each lending nothing and all).
+    for pass in 1 2; do
+      for d in .devbuild/revs/*/; do
+        n="$(basename "$d")"
+        SDFVJ_ROOT_OVERRIDE="$PWD/$d" timeout ${ROOT_TIMEOUT:-60} bash "$0" remote bench --scenes ${ROOT_SCENES:-character_qs0 character_qs7 field150_qs0 field150_qs7} \
+          --sizes 7680x4320 --tests show_quad_reflections --paths compute --frames 10 --warmup 3 \
+          --markdown "$out/roots_${n}_$pass.md" --csv "$out/roots_${n}_$pass.csv" > "$out/roots_${n}_$pass.txt" 2>&1 || true
+        echo "$pass $n: $(grep -h '^| [a-z]' "$out/roots_${n}_$pass.md" 2>/dev/null | awk -F'|' '{printf "%s%s ", $2, $5}')"
+      done
+    done
     fi
     if [ "$part" = qrefl2 ]; then
     # Session 47, issue 13: what the pixels that trace their own bounce cost and draw. Every scene
