@@ -47,6 +47,12 @@
 #   bash scripts/gpu.sh remote bench --markdown $OUT/bench.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# variant ROOT SCENE SUFFIX "NAME VALUE"...: ROOT/shaders/scenes/SCENE_SUFFIX.glsl, the scene (from
+# VARIANT_SRC, ./shaders by default) renamed, each #define right after its header (a scene copy for
+# an interleaved A/B through SDFVJ_ROOT_OVERRIDE)
+variant() { local root=$1 s=$2 v=$3 d; shift 3
+  sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$v\"/" "${VARIANT_SRC:-shaders}/scenes/$s.glsl" > "$root/shaders/scenes/${s}_$v.glsl"
+  for d in "$@"; do sed -i "/^}\*\//a #define $d" "$root/shaders/scenes/${s}_$v.glsl"; done; }
 case "${1:-}" in
   prepare)
     mkdir -p .gl /tmp/amd64/partial .devbuild/lib
@@ -111,10 +117,7 @@ case "${1:-}" in
       d=.devbuild/revs/$name; mkdir -p "$d"; git archive "$rev" shaders presets mappings | tar x -C "$d"
       [ -n "$patchName" ] && (cd "$d" && patch -s -p1 < "$OLDPWD/docs/performance/nvidia-h100-s50/variants/$patchName.patch")
       for f in "$d"/shaders/scenes/*.glsl; do
-        s="$(basename "$f" .glsl)"
-        for q in 0 7; do
-          sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_qs$q\"/" -e "/^}\*\//a #define QUAD_SHADE $q" "$f" > "$d/shaders/scenes/${s}_qs$q.glsl"
-        done
+        for q in 0 7; do VARIANT_SRC="$d/shaders" variant "$d" "$(basename "$f" .glsl)" "qs$q" "QUAD_SHADE $q"; done
       done
       echo ".devbuild/revs/$name: $rev${patchName:+ + $patchName}"
     done
@@ -131,11 +134,6 @@ case "${1:-}" in
     part="${2:-all}"
     if [ "$part" = pending ]; then bash "$0" measure adopt; bash "$0" measure field; bash "$0" measure cone; exit; fi
     run() { bash "$0" remote "$@"; }
-    # variant ROOT SCENE SUFFIX "NAME VALUE"...: ROOT/shaders/scenes/SCENE_SUFFIX.glsl, the scene renamed,
-    # each #define right after its header (a scene copy for an interleaved A/B through SDFVJ_ROOT_OVERRIDE)
-    variant() { local root=$1 s=$2 v=$3 d; shift 3
-      sed -e "s/\"NAME\": \"$s\"/\"NAME\": \"${s}_$v\"/" "shaders/scenes/$s.glsl" > "$root/shaders/scenes/${s}_$v.glsl"
-      for d in "$@"; do sed -i "/^}\*\//a #define $d" "$root/shaders/scenes/${s}_$v.glsl"; done; }
     all="midi primitives character mandelbulb field50 field150"   # every shipped scene
     if [ "$part" = reload ] || [ "$part" = all ]; then
     for s in midi character; do

@@ -69,7 +69,6 @@
 #ifndef QUAD_SHADE_SPREAD
 #define QUAD_SHADE_SPREAD 0.1f
 #endif
-// A frame with no reflection bounce runs the quads' pass for its light alone where QUAD_SHADE_ALONE asks.
 #if QUAD_REFLECTIONS && defined(SDFVJ_COMPUTE) && (DEBUG_VIEW == 0 || WORK_VIEW) && (REFLECTIONS == 1 || (REFLECTIONS == 0 && QUAD_SHADE != 0 && QUAD_SHADE_ALONE != 0))
 #define USE_QUAD_REFLECTIONS 1
 #else

@@ -108,8 +108,8 @@ LightingTest ShowSupersampledLightingTest(bool exact);
 // 4x supersampled 4K's bounce traced once per shown pixel.
 LightingTest ShowQuadReflectionsLightingTest();
 // The seed's full lighting with `quad_reflections` (`bench --tests full_quad_shade`): with no bounce
-// to trace, the quads' pass runs only where the scene sets QUAD_SHADE (quad_reflections.glsl), its
-// centres' shadows and occlusion lent to the pixels on their surface; elsewhere it draws as full.
+// to trace, the quads' pass runs only where the scene sets QUAD_SHADE_ALONE 1 (quad_reflections.glsl),
+// its centres' shadows and occlusion lent to the pixels on their surface; elsewhere it draws as full.
 LightingTest FullQuadShadeLightingTest();
 // The show lighting with `direct_reflections` (`bench --tests show_direct`): the reflected surface
 // lit directly, unshadowed and unoccluded, its march at most 48 steps.

@@ -361,20 +361,28 @@ TEST_CASE("evaluator: each accepted scene's map equals its C++ float build", "[e
     }
 }
 
+// A scene file written into the tests' output folder, loaded.
+static SceneInfo WrittenScene(const std::string& file, const std::string& text) {
+    const std::string path = std::string(SDFVJ_TEST_OUTPUT_DIR) + "/" + file;
+    std::filesystem::create_directories(SDFVJ_TEST_OUTPUT_DIR);
+    std::ofstream(path) << text;
+    SceneInfo scene;
+    std::string error;
+    REQUIRE(LoadScene(path, &scene, &error));
+    return scene;
+}
+
 // A refused construct names the scene file and line the performer edited.
 TEST_CASE("evaluator: a refused scene names its file and line", "[evaluator]") {
-    const std::string path = std::string(SDFVJ_TEST_OUTPUT_DIR) + "/evaluator_refused.glsl";
-    std::filesystem::create_directories(SDFVJ_TEST_OUTPUT_DIR);
-    std::ofstream(path) << "/*{ \"NAME\": \"refused\", \"INPUTS\": [{\"NAME\": \"k\", \"TYPE\": \"float\", \"DEFAULT\": 1.0}] }*/\n"
-                           "#include \"lib/common.glsl\"\n"
-                           "float g_hash(vec3 p) { return intBitsToFloat(floatBitsToInt(p.x) & 0x7fffff); }\n"
-                           "vec4 map(vec3 p) { return vec4(1.0, 1.0, 1.0, length(p) - u_k + g_hash(p)); }\n"
-                           "float sceneLipschitz() { return 1.0; }\n";
-    SceneInfo scene;
+    const SceneInfo scene = WrittenScene("evaluator_refused.glsl",
+                                         "/*{ \"NAME\": \"refused\", \"INPUTS\": [{\"NAME\": \"k\", \"TYPE\": \"float\", \"DEFAULT\": 1.0}] }*/\n"
+                                         "#include \"lib/common.glsl\"\n"
+                                         "float g_hash(vec3 p) { return intBitsToFloat(floatBitsToInt(p.x) & 0x7fffff); }\n"
+                                         "vec4 map(vec3 p) { return vec4(1.0, 1.0, 1.0, length(p) - u_k + g_hash(p)); }\n"
+                                         "float sceneLipschitz() { return 1.0; }\n");
     std::string error, unit;
-    REQUIRE(LoadScene(path, &scene, &error));
     std::vector<std::string> slots;
-    REQUIRE(AssembleEvaluatorUnit(scene, VariantKey{path, scene.effects, RenderPath::Fragment}, &unit, &slots, &error));
+    REQUIRE(AssembleEvaluatorUnit(scene, VariantKey{scene.path, scene.effects, RenderPath::Fragment}, &unit, &slots, &error));
     CHECK(slots.back() == "u_k");
     Program p;
     CHECK_FALSE(Translate(unit, slots, &p, &error));
@@ -384,19 +392,16 @@ TEST_CASE("evaluator: a refused scene names its file and line", "[evaluator]") {
 }
 
 TEST_CASE("evaluator: a #line whose source number overflows an int is refused with a message and nothing thrown", "[evaluator]") {
-    const std::string path = std::string(SDFVJ_TEST_OUTPUT_DIR) + "/evaluator_line_overflow.glsl";
-    std::filesystem::create_directories(SDFVJ_TEST_OUTPUT_DIR);
-    std::ofstream(path) << "/*{ \"NAME\": \"overflow\", \"INPUTS\": [] }*/\n"
-                           "#include \"lib/common.glsl\"\n"
-                           "#line 3 99999999999999999999\n"
-                           "vec4 map(vec3 p) { return vec4(1.0, 1.0, 1.0, length(p) - 1.0); }\n"
-                           "float sceneLipschitz() { return 1.0; }\n";
-    SceneInfo scene;
+    const SceneInfo scene = WrittenScene("evaluator_line_overflow.glsl",
+                                         "/*{ \"NAME\": \"overflow\", \"INPUTS\": [] }*/\n"
+                                         "#include \"lib/common.glsl\"\n"
+                                         "#line 3 99999999999999999999\n"
+                                         "vec4 map(vec3 p) { return vec4(1.0, 1.0, 1.0, length(p) - 1.0); }\n"
+                                         "float sceneLipschitz() { return 1.0; }\n");
     std::string error;
-    REQUIRE(LoadScene(path, &scene, &error));
     ShaderSource src;
     bool ok = true;
-    REQUIRE_NOTHROW(ok = AssembleEvaluatorProgram(scene, VariantKey{path, scene.effects, RenderPath::Fragment}, &src, &error));
+    REQUIRE_NOTHROW(ok = AssembleEvaluatorProgram(scene, VariantKey{scene.path, scene.effects, RenderPath::Fragment}, &src, &error));
     CHECK_FALSE(ok);
     INFO(error);
     CHECK(error.find("#line names source 99999999999999999999") != std::string::npos);

@@ -134,7 +134,7 @@ TEST_CASE("quad_reflections: the bounce traced once per 2x2 pixels shows, averag
     CHECK(odd.fractionOver <= 0.03);
 }
 
-// QUAD_SHADE 7 (quad_reflections.glsl; a scene's choice, 0 by default until timed on a GPU): the
+// QUAD_SHADE 7 (quad_reflections.glsl; the default, mandelbulb's header keeps 1): the
 // quads' pass lends its centre's occlusion, its shadow ray's "lit" where every sample's penumbra term
 // passed QUAD_SHADE_LIT (1.25), and a shadow blended from the four centres around a pixel where all
 // four are on its surface and agree within QUAD_SHADE_SPREAD (0.1), to the frame pixels on the
