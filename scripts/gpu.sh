@@ -604,6 +604,14 @@ case "${1:-}" in
         echo "$pass $n: $(grep -h '^| [a-z]' "$out/roots_${n}_$pass.md" 2>/dev/null | awk -F'|' '{printf "%s%s ", $2, $5}')"
       done
     done
+    # Then every shipped scene as its tree ships it, for the trees in ROOT_SHOW_TREES (session 51).
+    for n in ${ROOT_SHOW_TREES-now return inline}; do
+      [ -d ".devbuild/revs/$n" ] || continue
+      SDFVJ_ROOT_OVERRIDE="$PWD/.devbuild/revs/$n" timeout ${ROOT_SHOW_TIMEOUT:-80} bash "$0" remote bench --scenes $all \
+        --sizes 7680x4320 --tests show_quad_reflections --paths compute --frames 10 --warmup 3 \
+        --markdown "$out/roots_show_$n.md" --csv "$out/roots_show_$n.csv" > "$out/roots_show_$n.txt" 2>&1 || true
+      echo "show $n: $(grep -h '^| [a-z]' "$out/roots_show_$n.md" 2>/dev/null | awk -F'|' '{printf "%s%s ", $2, $5}')"
+    done
     fi
     if [ "$part" = qrefl2 ]; then
     # Session 47, issue 13: what the pixels that trace their own bounce cost and draw. Every scene
